@@ -1,0 +1,47 @@
+//! `rslam`: arguments in, library calls out. Each subcommand lives in its own file under
+//! `commands/`; exit code 0 = ok, 1 = a check failed, 2 = an error.
+
+mod commands;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "rslam", version, about = "Robustness benchmarks for RGB-D SLAM: render, perturb, evaluate")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render an RGB-D sequence of a scene along a trajectory, optionally perturbed.
+    Render(commands::render::RenderArgs),
+    /// Apply perturbations to an existing dataset, image folder or image.
+    Perturb(commands::perturb::PerturbArgs),
+    /// List every perturbation with its parameters at each severity.
+    List(commands::list::ListArgs),
+    /// Built-in scenes: export the ground-truth mesh or the default trajectory.
+    Scene(commands::scene::SceneArgs),
+    /// Evaluate an estimated trajectory against ground truth (ATE, RPE, SR), or many runs.
+    Eval(commands::eval::EvalArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(args) => commands::render::run(args),
+        Command::Perturb(args) => commands::perturb::run(args),
+        Command::List(args) => commands::list::run(args),
+        Command::Scene(args) => commands::scene::run(args),
+        Command::Eval(args) => commands::eval::run(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,142 @@
+//! Image encoding and decoding. PNG always with fast compression (the default level costs 10–40×
+//! more time for a few percent of size); JPEG through the SIMD `jpeg-encoder`.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
+
+use crate::{CoreError, DepthImage, RgbImage};
+
+fn encode_failed(what: &str, e: impl std::fmt::Display) -> CoreError {
+    CoreError::Encode {
+        message: format!("{what}: {e}"),
+    }
+}
+
+pub fn encode_jpeg(image: &RgbImage, quality: u8) -> Result<Vec<u8>, CoreError> {
+    let mut out = Vec::new();
+    let encoder = jpeg_encoder::Encoder::new(&mut out, quality);
+    encoder
+        .encode(
+            &image.data,
+            image.width as u16,
+            image.height as u16,
+            jpeg_encoder::ColorType::Rgb,
+        )
+        .map_err(|e| encode_failed("JPEG", e))?;
+    Ok(out)
+}
+
+fn png_encoder(out: &mut Vec<u8>) -> PngEncoder<&mut Vec<u8>> {
+    PngEncoder::new_with_quality(out, CompressionType::Fast, FilterType::Adaptive)
+}
+
+pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
+    let mut out = Vec::new();
+    png_encoder(&mut out)
+        .write_image(&image.data, image.width, image.height, ExtendedColorType::Rgb8)
+        .map_err(|e| encode_failed("PNG", e))?;
+    Ok(out)
+}
+
+/// 16-bit grayscale PNG of `round(z · scale)`, saturating; 0 stays 0 (invalid).
+pub fn encode_depth_png(depth: &DepthImage, scale: f64) -> Result<Vec<u8>, CoreError> {
+    let big_endian: Vec<u8> = depth
+        .to_u16(scale)
+        .iter()
+        .flat_map(|v| v.to_be_bytes())
+        .collect();
+    let mut out = Vec::new();
+    png_encoder(&mut out)
+        .write_image(&big_endian, depth.width, depth.height, ExtendedColorType::L16)
+        .map_err(|e| encode_failed("depth PNG", e))?;
+    Ok(out)
+}
+
+/// Reads a colour image (PNG or JPEG); alpha and 16-bit depth are dropped to 8-bit RGB.
+pub fn read_rgb(path: &Path) -> Result<RgbImage, CoreError> {
+    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
+    decode_rgb(&bytes).map_err(|message| CoreError::bad_file(path, message))
+}
+
+pub fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
+    let image = image::ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?
+        .decode()
+        .map_err(|e| format!("not a readable image: {e}"))?
+        .into_rgb8();
+    Ok(RgbImage {
+        width: image.width(),
+        height: image.height(),
+        data: image.into_raw(),
+    })
+}
+
+/// A 16-bit (or 8-bit) single-channel PNG as metric depth.
+pub fn decode_depth_png(path: &Path, scale: f64) -> Result<DepthImage, CoreError> {
+    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
+    let image = image::load_from_memory(&bytes)
+        .map_err(|e| CoreError::bad_file(path, format!("not a readable depth PNG: {e}")))?;
+    if image.color().channel_count() != 1 {
+        return Err(CoreError::bad_file(
+            path,
+            "expected a single-channel (grayscale) depth PNG",
+        ));
+    }
+    let raw = image.into_luma16();
+    Ok(DepthImage::from_u16(raw.width(), raw.height(), raw.as_raw(), scale))
+}
+
+/// Writes `image` in the format that `like` names by its extension (PNG or JPEG at `quality`).
+pub fn write_rgb_like(path: &Path, image: &RgbImage, quality: u8) -> Result<(), CoreError> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    let bytes = match ext.as_str() {
+        "jpg" | "jpeg" => encode_jpeg(image, quality)?,
+        "png" => encode_png(image)?,
+        other => {
+            return Err(CoreError::bad_file(
+                path,
+                format!("unsupported image extension '{other}': expected .png, .jpg or .jpeg"),
+            ))
+        }
+    };
+    std::fs::write(path, bytes).map_err(|e| CoreError::io(path, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depth_png_round_trips_within_one_step() {
+        let depth = DepthImage {
+            width: 3,
+            height: 1,
+            data: vec![0.0, 1.23456, 12.0],
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("d.png");
+        std::fs::write(&path, encode_depth_png(&depth, 6553.5).unwrap()).unwrap();
+        let back = decode_depth_png(&path, 6553.5).unwrap();
+        assert_eq!(back.data[0], 0.0);
+        assert!((back.data[1] - 1.23456).abs() <= 0.5 / 6553.5 + 1e-6);
+        assert!((back.data[2] - 65535.0 / 6553.5).abs() < 1e-4, "saturates at 10 m");
+    }
+
+    #[test]
+    fn png_colour_round_trips_exactly_and_jpeg_closely() {
+        let mut image = RgbImage::new(16, 8);
+        for (i, v) in image.data.iter_mut().enumerate() {
+            *v = (i * 7 % 256) as u8;
+        }
+        assert_eq!(decode_rgb(&encode_png(&image).unwrap()).unwrap(), image);
+        let jpeg = decode_rgb(&encode_jpeg(&image, 95).unwrap()).unwrap();
+        assert_eq!((jpeg.width, jpeg.height), (16, 8));
+    }
+}

@@ -1,0 +1,16 @@
+//! Dataset layouts that SLAM systems read unchanged: Replica (NICE-SLAM, SplaTAM, Co-SLAM,
+//! GO-SLAM) and TUM RGB-D (ORB-SLAM3). [`DatasetWriter`] writes frames from many threads and
+//! the manifest last; [`read_dataset`] reads either layout back.
+
+mod codec;
+mod layout;
+mod manifest;
+mod orbslam3;
+mod reader;
+mod writer;
+
+pub use codec::{decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, read_rgb, write_rgb_like};
+pub use layout::DatasetFormat;
+pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
+pub use reader::{read_dataset, DatasetFrame, SourceDataset};
+pub use writer::{DatasetWriter, OutputFrame};

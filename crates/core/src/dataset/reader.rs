@@ -1,0 +1,266 @@
+//! Reads an existing dataset in the Replica or TUM layout (rslam's own or the original ones).
+
+use std::path::{Path, PathBuf};
+
+use crate::dataset::{DatasetFormat, Manifest, MANIFEST_FILE};
+use crate::trajectory_io::{read_trajectory_with, ReadOptions, TrajectoryFormat};
+use crate::{CoreError, Intrinsics, Trajectory};
+
+/// Largest RGB–depth time difference when pairing TUM rgb.txt and depth.txt without associations.
+const TUM_PAIR_MAX_DIFF_S: f64 = 0.02;
+const REPLICA_RATE_HZ: f64 = 20.0;
+
+/// One frame of a source dataset: its colour file and, where present, its depth file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DatasetFrame {
+    pub rgb: PathBuf,
+    pub rgb_time: f64,
+    pub depth: Option<PathBuf>,
+    pub depth_time: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct SourceDataset {
+    pub root: PathBuf,
+    pub format: DatasetFormat,
+    pub intrinsics: Intrinsics,
+    pub rate_hz: f64,
+    pub frames: Vec<DatasetFrame>,
+    /// traj.txt / groundtruth.txt, if the dataset has one.
+    pub ground_truth: Option<Trajectory>,
+    pub manifest: Option<Manifest>,
+}
+
+/// Detects the layout of `root` (Replica: `results/`; TUM: `rgb.txt`) and lists its frames.
+pub fn read_dataset(root: &Path) -> Result<SourceDataset, CoreError> {
+    let manifest = if root.join(MANIFEST_FILE).exists() {
+        Some(Manifest::read(root)?)
+    } else {
+        None
+    };
+    if root.join("rgb.txt").is_file() {
+        read_tum(root, manifest)
+    } else if root.join("results").is_dir() {
+        read_replica(root, manifest)
+    } else {
+        Err(CoreError::bad_file(
+            root,
+            "not a dataset: expected the Replica layout (results/frame*.jpg, results/depth*.png) or the TUM layout (rgb.txt, depth.txt)",
+        ))
+    }
+}
+
+fn sorted_with_prefix(dir: &Path, prefix: &str) -> Result<Vec<PathBuf>, CoreError> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| CoreError::io(dir, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            name.starts_with(prefix) && !name.ends_with(".partial")
+        })
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// cam_params.json in the dataset or its parent (Replica SLAM keeps one beside the scenes).
+fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
+    let candidates = [root.join("cam_params.json"), root.join("../cam_params.json")];
+    let Some(path) = candidates.iter().find(|p| p.is_file()) else {
+        return Ok(None);
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| CoreError::io(path, e))?;
+    let json: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| CoreError::bad_file(path, format!("not JSON: {e}")))?;
+    let camera = &json["camera"];
+    let number = |key: &str| {
+        camera[key]
+            .as_f64()
+            .ok_or_else(|| CoreError::bad_file(path, format!("expected a number at camera.{key}")))
+    };
+    Ok(Some(Intrinsics {
+        width: number("w")? as u32,
+        height: number("h")? as u32,
+        fx: number("fx")?,
+        fy: number("fy")?,
+        cx: number("cx")?,
+        cy: number("cy")?,
+    }))
+}
+
+fn read_replica(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, CoreError> {
+    let results = root.join("results");
+    let rgb = sorted_with_prefix(&results, "frame")?;
+    let depth = sorted_with_prefix(&results, "depth")?;
+    if rgb.is_empty() {
+        return Err(CoreError::bad_file(&results, "no frame*.jpg/png colour images"));
+    }
+    if !depth.is_empty() && depth.len() != rgb.len() {
+        return Err(CoreError::bad_file(
+            &results,
+            format!("{} colour frames but {} depth frames", rgb.len(), depth.len()),
+        ));
+    }
+    let rate_hz = manifest.as_ref().map_or(REPLICA_RATE_HZ, |m| m.rate_hz);
+    let traj_path = root.join("traj.txt");
+    let ground_truth = if traj_path.is_file() {
+        let options = ReadOptions {
+            format: Some(TrajectoryFormat::Replica),
+            replica_rate_hz: rate_hz,
+            ..ReadOptions::default()
+        };
+        Some(read_trajectory_with(&traj_path, &options)?.trajectory)
+    } else {
+        None
+    };
+    let intrinsics = match &manifest {
+        Some(m) => m.camera,
+        None => replica_camera(root)?.unwrap_or(Intrinsics::REPLICA),
+    };
+    let frames = rgb
+        .into_iter()
+        .enumerate()
+        .map(|(i, rgb)| DatasetFrame {
+            rgb,
+            rgb_time: i as f64 / rate_hz,
+            depth: depth.get(i).cloned(),
+            depth_time: i as f64 / rate_hz,
+        })
+        .collect();
+    Ok(SourceDataset {
+        root: root.to_path_buf(),
+        format: DatasetFormat::Replica,
+        intrinsics,
+        rate_hz,
+        frames,
+        ground_truth,
+        manifest,
+    })
+}
+
+/// `<t> <file>` lines of rgb.txt / depth.txt, `#` comments skipped.
+fn tum_list(path: &Path) -> Result<Vec<(f64, PathBuf)>, CoreError> {
+    let text = std::fs::read_to_string(path).map_err(|e| CoreError::io(path, e))?;
+    let root = path.parent().unwrap_or(Path::new("."));
+    let mut entries = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let bad = |message: &str| CoreError::BadLine {
+            path: path.to_path_buf(),
+            line: i + 1,
+            message: message.to_string(),
+        };
+        let mut parts = line.split_whitespace();
+        let time = parts
+            .next()
+            .and_then(|t| t.parse::<f64>().ok())
+            .filter(|t| t.is_finite())
+            .ok_or_else(|| bad("expected '<timestamp> <file>' with a numeric timestamp"))?;
+        let file = parts.next().ok_or_else(|| bad("expected '<timestamp> <file>': file missing"))?;
+        entries.push((time, root.join(file)));
+    }
+    Ok(entries)
+}
+
+fn read_tum(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, CoreError> {
+    let associations = root.join("associations.txt");
+    let frames: Vec<DatasetFrame> = if associations.is_file() {
+        read_associations(&associations)?
+    } else {
+        let rgb = tum_list(&root.join("rgb.txt"))?;
+        let depth_path = root.join("depth.txt");
+        let depth = if depth_path.is_file() { tum_list(&depth_path)? } else { Vec::new() };
+        rgb.into_iter()
+            .map(|(rgb_time, rgb)| {
+                let nearest = depth
+                    .iter()
+                    .min_by(|a, b| (a.0 - rgb_time).abs().total_cmp(&(b.0 - rgb_time).abs()))
+                    .filter(|d| (d.0 - rgb_time).abs() <= TUM_PAIR_MAX_DIFF_S);
+                DatasetFrame {
+                    rgb,
+                    rgb_time,
+                    depth: nearest.map(|d| d.1.clone()),
+                    depth_time: nearest.map_or(rgb_time, |d| d.0),
+                }
+            })
+            .collect()
+    };
+    if frames.is_empty() {
+        return Err(CoreError::bad_file(root.join("rgb.txt"), "lists no frames"));
+    }
+    let gt_path = root.join("groundtruth.txt");
+    let ground_truth = if gt_path.is_file() {
+        let options = ReadOptions {
+            format: Some(TrajectoryFormat::Tum),
+            ..ReadOptions::default()
+        };
+        Some(read_trajectory_with(&gt_path, &options)?.trajectory)
+    } else {
+        None
+    };
+    let rate_hz = match &manifest {
+        Some(m) => m.rate_hz,
+        None => estimate_rate(&frames),
+    };
+    let intrinsics = match &manifest {
+        Some(m) => m.camera,
+        None => Intrinsics::TUM,
+    };
+    Ok(SourceDataset {
+        root: root.to_path_buf(),
+        format: DatasetFormat::Tum,
+        intrinsics,
+        rate_hz,
+        frames,
+        ground_truth,
+        manifest,
+    })
+}
+
+fn read_associations(path: &Path) -> Result<Vec<DatasetFrame>, CoreError> {
+    let text = std::fs::read_to_string(path).map_err(|e| CoreError::io(path, e))?;
+    let root = path.parent().unwrap_or(Path::new("."));
+    let mut frames = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let parts: Vec<&str> = line.split_whitespace().collect();
+        let times: Option<(f64, f64)> = match parts.as_slice() {
+            [t0, _, t1, _] => t0.parse().ok().zip(t1.parse().ok()),
+            _ => None,
+        };
+        let Some((rgb_time, depth_time)) = times else {
+            return Err(CoreError::BadLine {
+                path: path.to_path_buf(),
+                line: i + 1,
+                message: "expected 't_rgb rgb/<t>.png t_depth depth/<t>.png'".into(),
+            });
+        };
+        frames.push(DatasetFrame {
+            rgb: root.join(parts[1]),
+            rgb_time,
+            depth: Some(root.join(parts[3])),
+            depth_time,
+        });
+    }
+    Ok(frames)
+}
+
+/// Median frame interval of the colour stream, as a rate (TUM's 30 Hz when unknown).
+fn estimate_rate(frames: &[DatasetFrame]) -> f64 {
+    let mut gaps: Vec<f64> = frames
+        .windows(2)
+        .map(|w| w[1].rgb_time - w[0].rgb_time)
+        .filter(|g| *g > 0.0)
+        .collect();
+    if gaps.is_empty() {
+        return 30.0;
+    }
+    gaps.sort_by(f64::total_cmp);
+    1.0 / gaps[gaps.len() / 2]
+}

@@ -1,0 +1,94 @@
+use serde::{Deserialize, Serialize};
+
+use crate::CoreError;
+
+/// Pinhole intrinsics, pixel centres at integer coordinates (OpenCV convention).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Intrinsics {
+    pub width: u32,
+    pub height: u32,
+    pub fx: f64,
+    pub fy: f64,
+    pub cx: f64,
+    pub cy: f64,
+}
+
+impl Intrinsics {
+    /// The Replica SLAM camera (NICE-SLAM's config): 1200×680, f = 600.
+    pub const REPLICA: Intrinsics = Intrinsics {
+        width: 1200,
+        height: 680,
+        fx: 600.0,
+        fy: 600.0,
+        cx: 599.5,
+        cy: 339.5,
+    };
+
+    /// The TUM RGB-D default camera (ROS default calibration): 640×480, f = 525.
+    pub const TUM: Intrinsics = Intrinsics {
+        width: 640,
+        height: 480,
+        fx: 525.0,
+        fy: 525.0,
+        cx: 319.5,
+        cy: 239.5,
+    };
+
+    /// `replica`, `tum` or `W,H,FX,FY,CX,CY`.
+    pub fn parse(text: &str) -> Result<Self, CoreError> {
+        match text {
+            "replica" => return Ok(Self::REPLICA),
+            "tum" => return Ok(Self::TUM),
+            _ => {}
+        }
+        let bad = || CoreError::BadCamera {
+            text: text.to_string(),
+        };
+        let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+        if parts.len() != 6 {
+            return Err(bad());
+        }
+        let width: u32 = parts[0].parse().map_err(|_| bad())?;
+        let height: u32 = parts[1].parse().map_err(|_| bad())?;
+        let f: Vec<f64> = parts[2..]
+            .iter()
+            .map(|p| p.parse::<f64>().map_err(|_| bad()))
+            .collect::<Result<_, _>>()?;
+        let k = Self {
+            width,
+            height,
+            fx: f[0],
+            fy: f[1],
+            cx: f[2],
+            cy: f[3],
+        };
+        if width == 0 || height == 0 || f.iter().any(|v| !v.is_finite()) || k.fx <= 0.0 || k.fy <= 0.0
+        {
+            return Err(bad());
+        }
+        Ok(k)
+    }
+
+    pub fn pixel_count(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_presets_and_explicit_form() {
+        assert_eq!(Intrinsics::parse("tum").unwrap(), Intrinsics::TUM);
+        let k = Intrinsics::parse("64,48,50,51,31.5,23.5").unwrap();
+        assert_eq!((k.width, k.height, k.fy, k.cy), (64, 48, 51.0, 23.5));
+    }
+
+    #[test]
+    fn rejects_malformed_camera() {
+        for bad in ["", "1,2,3", "0,48,50,50,1,1", "64,48,-1,50,1,1", "a,b,c,d,e,f"] {
+            assert!(Intrinsics::parse(bad).is_err(), "{bad}");
+        }
+    }
+}

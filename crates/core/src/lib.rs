@@ -1,0 +1,20 @@
+//! Common types of rslam, free of any GPU code.
+//!
+//! Data flow: a [`Trajectory`] of camera-to-world [`Pose`]s and an [`Intrinsics`] go to the
+//! renderer; it hands back [`RgbImage`] / [`DepthImage`] pairs, which the `dataset` writers encode
+//! into the Replica or TUM layout, manifest last. `trajectory_io` reads and writes the trajectory
+//! file formats that SLAM systems and `rslam eval` use.
+
+pub mod dataset;
+mod error;
+mod image_buffer;
+mod intrinsics;
+mod pose;
+mod trajectory;
+pub mod trajectory_io;
+
+pub use error::CoreError;
+pub use image_buffer::{DepthImage, RgbImage};
+pub use intrinsics::Intrinsics;
+pub use pose::Pose;
+pub use trajectory::Trajectory;

@@ -1,0 +1,104 @@
+use rslam_core::{DepthImage, RgbImage};
+
+use crate::GpuContext;
+
+/// One frame on the GPU: sRGB-encoded colour and metric z-depth (0 = invalid). The renderer
+/// writes both, perturbations transform them in place, the readback copies them out once.
+pub struct FrameTextures {
+    pub width: u32,
+    pub height: u32,
+    /// `Rgba8Unorm` holding sRGB-encoded values (storage-capable); render through
+    /// [`FrameTextures::color_render_view`] so that shading happens in linear space.
+    pub color: wgpu::Texture,
+    /// `R32Float`, metres along the optical axis.
+    pub depth: wgpu::Texture,
+}
+
+impl FrameTextures {
+    pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+    pub const COLOR_SRGB_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+    pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+
+    pub fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST;
+        let make = |label, format, view_formats: &[wgpu::TextureFormat]| {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats,
+            })
+        };
+        Self {
+            width,
+            height,
+            color: make("frame colour", Self::COLOR_FORMAT, &[Self::COLOR_SRGB_FORMAT]),
+            depth: make("frame depth", Self::DEPTH_FORMAT, &[]),
+        }
+    }
+
+    /// The colour texture seen as sRGB: a render target that encodes linear shading to sRGB.
+    pub fn color_render_view(&self) -> wgpu::TextureView {
+        self.color.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(Self::COLOR_SRGB_FORMAT),
+            ..Default::default()
+        })
+    }
+
+    pub fn color_view(&self) -> wgpu::TextureView {
+        self.color.create_view(&Default::default())
+    }
+
+    pub fn depth_view(&self) -> wgpu::TextureView {
+        self.depth.create_view(&Default::default())
+    }
+
+    pub fn size(&self) -> wgpu::Extent3d {
+        wgpu::Extent3d {
+            width: self.width,
+            height: self.height,
+            depth_or_array_layers: 1,
+        }
+    }
+
+    /// Uploads a frame read from disk (the `rslam perturb` path); without depth, depth is zeroed.
+    pub fn upload(&self, ctx: &GpuContext, color: &RgbImage, depth: Option<&DepthImage>) {
+        let layout = |bytes_per_pixel: u32| wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(self.width * bytes_per_pixel),
+            rows_per_image: Some(self.height),
+        };
+        ctx.queue.write_texture(
+            self.color.as_image_copy(),
+            &color.to_rgba(),
+            layout(4),
+            self.size(),
+        );
+        let zeros;
+        let depth_values: &[f32] = match depth {
+            Some(d) => &d.data,
+            None => {
+                zeros = vec![0.0f32; (self.width * self.height) as usize];
+                &zeros
+            }
+        };
+        ctx.queue.write_texture(
+            self.depth.as_image_copy(),
+            bytemuck::cast_slice(depth_values),
+            layout(4),
+            self.size(),
+        );
+    }
+}

@@ -1,0 +1,20 @@
+//! The one GPU context of rslam.
+//!
+//! Data flow: [`GpuContext`] picks the adapter (lavapipe or a real GPU) and owns device and queue;
+//! [`shader`] hands out the embedded WGSL with `#include`s resolved; [`FrameTextures`] hold one
+//! frame's colour and depth on the GPU, where the renderer writes them and the perturbations
+//! transform them; [`FrameRing`] keeps several frames in flight and reads each back once.
+
+mod context;
+mod error;
+mod frame;
+mod frame_ring;
+mod readback;
+pub mod shader;
+
+pub use context::{AdapterChoice, GpuContext};
+pub use error::GpuError;
+pub use frame::FrameTextures;
+pub use frame_ring::{FrameRing, ReadFrame};
+pub use readback::FrameReadback;
+pub use wgpu;

@@ -1,0 +1,88 @@
+//! A tiny harness: a temp dir, a command builder, and output that reads well on failure.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+pub struct Workspace {
+    dir: tempfile::TempDir,
+}
+
+impl Workspace {
+    pub fn new() -> Self {
+        Self {
+            dir: tempfile::tempdir().expect("temp dir"),
+        }
+    }
+
+    pub fn path(&self, rel: &str) -> PathBuf {
+        self.dir.path().join(rel)
+    }
+
+    pub fn root(&self) -> &Path {
+        self.dir.path()
+    }
+
+    pub fn write(&self, rel: &str, contents: &str) -> PathBuf {
+        let p = self.path(rel);
+        if let Some(parent) = p.parent() {
+            std::fs::create_dir_all(parent).expect("mkdir");
+        }
+        std::fs::write(&p, contents).expect("write fixture");
+        p
+    }
+
+    /// Runs `rslam ARGS` inside the workspace.
+    pub fn rslam(&self, args: &[&str]) -> Run {
+        let output = Command::new(env!("CARGO_BIN_EXE_rslam"))
+            .args(args)
+            .current_dir(self.dir.path())
+            .output()
+            .expect("spawn rslam");
+        Run {
+            args: args.join(" "),
+            output,
+        }
+    }
+}
+
+pub struct Run {
+    args: String,
+    pub output: Output,
+}
+
+impl Run {
+    pub fn stdout(&self) -> String {
+        String::from_utf8_lossy(&self.output.stdout).into_owned()
+    }
+
+    pub fn stderr(&self) -> String {
+        String::from_utf8_lossy(&self.output.stderr).into_owned()
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "rslam {}\n--- exit: {:?}\n--- stdout:\n{}\n--- stderr:\n{}",
+            self.args,
+            self.output.status.code(),
+            self.stdout(),
+            self.stderr()
+        )
+    }
+
+    /// Asserts exit 0 and returns stdout.
+    pub fn success(&self) -> String {
+        assert!(self.output.status.success(), "expected success:\n{}", self.describe());
+        self.stdout()
+    }
+
+    /// Asserts the given exit code and that stderr contains every fragment; returns stderr.
+    pub fn fails_with(&self, code: i32, fragments: &[&str]) -> String {
+        assert_eq!(self.output.status.code(), Some(code), "{}", self.describe());
+        let err = self.stderr();
+        for f in fragments {
+            assert!(err.contains(f), "stderr lacks '{f}':\n{}", self.describe());
+        }
+        assert!(!err.contains("panicked"), "panic instead of an error:\n{}", self.describe());
+        err
+    }
+}
