@@ -53,6 +53,7 @@ impl FrameTextures {
     pub fn color_render_view(&self) -> wgpu::TextureView {
         self.color.create_view(&wgpu::TextureViewDescriptor {
             format: Some(Self::COLOR_SRGB_FORMAT),
+            usage: Some(wgpu::TextureUsages::RENDER_ATTACHMENT),
             ..Default::default()
         })
     }

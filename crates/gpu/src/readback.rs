@@ -64,6 +64,8 @@ impl FrameReadback {
         ctx: &GpuContext,
         submission: wgpu::SubmissionIndex,
     ) -> Result<(RgbImage, DepthImage), GpuError> {
+        // A failed submission shows up here first, with the real cause.
+        ctx.check()?;
         let (tx, rx) = mpsc::channel();
         for buffer in [&self.color, &self.depth] {
             let tx = tx.clone();

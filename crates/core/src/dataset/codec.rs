@@ -36,7 +36,12 @@ fn png_encoder(out: &mut Vec<u8>) -> PngEncoder<&mut Vec<u8>> {
 pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
     let mut out = Vec::new();
     png_encoder(&mut out)
-        .write_image(&image.data, image.width, image.height, ExtendedColorType::Rgb8)
+        .write_image(
+            &image.data,
+            image.width,
+            image.height,
+            ExtendedColorType::Rgb8,
+        )
         .map_err(|e| encode_failed("PNG", e))?;
     Ok(out)
 }
@@ -50,7 +55,12 @@ pub fn encode_depth_png(depth: &DepthImage, scale: f64) -> Result<Vec<u8>, CoreE
         .collect();
     let mut out = Vec::new();
     png_encoder(&mut out)
-        .write_image(&big_endian, depth.width, depth.height, ExtendedColorType::L16)
+        .write_image(
+            &big_endian,
+            depth.width,
+            depth.height,
+            ExtendedColorType::L16,
+        )
         .map_err(|e| encode_failed("depth PNG", e))?;
     Ok(out)
 }
@@ -87,7 +97,12 @@ pub fn decode_depth_png(path: &Path, scale: f64) -> Result<DepthImage, CoreError
         ));
     }
     let raw = image.into_luma16();
-    Ok(DepthImage::from_u16(raw.width(), raw.height(), raw.as_raw(), scale))
+    Ok(DepthImage::from_u16(
+        raw.width(),
+        raw.height(),
+        raw.as_raw(),
+        scale,
+    ))
 }
 
 /// Writes `image` in the format that `like` names by its extension (PNG or JPEG at `quality`).
@@ -126,7 +141,10 @@ mod tests {
         let back = decode_depth_png(&path, 6553.5).unwrap();
         assert_eq!(back.data[0], 0.0);
         assert!((back.data[1] - 1.23456).abs() <= 0.5 / 6553.5 + 1e-6);
-        assert!((back.data[2] - 65535.0 / 6553.5).abs() < 1e-4, "saturates at 10 m");
+        assert!(
+            (back.data[2] - 65535.0 / 6553.5).abs() < 1e-4,
+            "saturates at 10 m"
+        );
     }
 
     #[test]

@@ -43,7 +43,9 @@ impl FromStr for DatasetFormat {
         match s {
             "replica" => Ok(Self::Replica),
             "tum" => Ok(Self::Tum),
-            _ => Err(format!("unknown dataset format '{s}': expected replica or tum")),
+            _ => Err(format!(
+                "unknown dataset format '{s}': expected replica or tum"
+            )),
         }
     }
 }

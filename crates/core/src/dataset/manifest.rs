@@ -18,8 +18,10 @@ pub struct Manifest {
     pub source: String,
     /// Content hash of the scene (or empty for an existing dataset).
     pub source_hash: String,
-    pub format: crate::dataset::DatasetFormat,
-    pub camera: Intrinsics,
+    /// Dataset layout; `None` for a folder of perturbed images.
+    pub format: Option<crate::dataset::DatasetFormat>,
+    /// `None` for a folder of perturbed images.
+    pub camera: Option<Intrinsics>,
     pub rate_hz: f64,
     pub frame_count: usize,
     pub seed: u64,
@@ -44,13 +46,15 @@ pub struct ItemSeverities {
 impl Manifest {
     pub fn write(&self, dir: &Path) -> Result<(), CoreError> {
         let path = dir.join(MANIFEST_FILE);
-        let text = serde_json::to_string_pretty(self).map_err(|e| CoreError::bad_file(&path, e.to_string()))?;
+        let text = serde_json::to_string_pretty(self)
+            .map_err(|e| CoreError::bad_file(&path, e.to_string()))?;
         std::fs::write(&path, text + "\n").map_err(|e| CoreError::io(&path, e))
     }
 
     pub fn read(dir: &Path) -> Result<Self, CoreError> {
         let path = dir.join(MANIFEST_FILE);
         let text = std::fs::read_to_string(&path).map_err(|e| CoreError::io(&path, e))?;
-        serde_json::from_str(&text).map_err(|e| CoreError::bad_file(&path, format!("not an rslam manifest: {e}")))
+        serde_json::from_str(&text)
+            .map_err(|e| CoreError::bad_file(&path, format!("not an rslam manifest: {e}")))
     }
 }

@@ -55,7 +55,10 @@ fn sorted_with_prefix(dir: &Path, prefix: &str) -> Result<Vec<PathBuf>, CoreErro
         .map_err(|e| CoreError::io(dir, e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
-            let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let name = p
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
             name.starts_with(prefix) && !name.ends_with(".partial")
         })
         .collect();
@@ -65,13 +68,16 @@ fn sorted_with_prefix(dir: &Path, prefix: &str) -> Result<Vec<PathBuf>, CoreErro
 
 /// cam_params.json in the dataset or its parent (Replica SLAM keeps one beside the scenes).
 fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
-    let candidates = [root.join("cam_params.json"), root.join("../cam_params.json")];
+    let candidates = [
+        root.join("cam_params.json"),
+        root.join("../cam_params.json"),
+    ];
     let Some(path) = candidates.iter().find(|p| p.is_file()) else {
         return Ok(None);
     };
     let text = std::fs::read_to_string(path).map_err(|e| CoreError::io(path, e))?;
-    let json: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| CoreError::bad_file(path, format!("not JSON: {e}")))?;
+    let json: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| CoreError::bad_file(path, format!("not JSON: {e}")))?;
     let camera = &json["camera"];
     let number = |key: &str| {
         camera[key]
@@ -93,12 +99,19 @@ fn read_replica(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset
     let rgb = sorted_with_prefix(&results, "frame")?;
     let depth = sorted_with_prefix(&results, "depth")?;
     if rgb.is_empty() {
-        return Err(CoreError::bad_file(&results, "no frame*.jpg/png colour images"));
+        return Err(CoreError::bad_file(
+            &results,
+            "no frame*.jpg/png colour images",
+        ));
     }
     if !depth.is_empty() && depth.len() != rgb.len() {
         return Err(CoreError::bad_file(
             &results,
-            format!("{} colour frames but {} depth frames", rgb.len(), depth.len()),
+            format!(
+                "{} colour frames but {} depth frames",
+                rgb.len(),
+                depth.len()
+            ),
         ));
     }
     let rate_hz = manifest.as_ref().map_or(REPLICA_RATE_HZ, |m| m.rate_hz);
@@ -113,8 +126,8 @@ fn read_replica(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset
     } else {
         None
     };
-    let intrinsics = match &manifest {
-        Some(m) => m.camera,
+    let intrinsics = match manifest.as_ref().and_then(|m| m.camera) {
+        Some(camera) => camera,
         None => replica_camera(root)?.unwrap_or(Intrinsics::REPLICA),
     };
     let frames = rgb
@@ -159,7 +172,9 @@ fn tum_list(path: &Path) -> Result<Vec<(f64, PathBuf)>, CoreError> {
             .and_then(|t| t.parse::<f64>().ok())
             .filter(|t| t.is_finite())
             .ok_or_else(|| bad("expected '<timestamp> <file>' with a numeric timestamp"))?;
-        let file = parts.next().ok_or_else(|| bad("expected '<timestamp> <file>': file missing"))?;
+        let file = parts
+            .next()
+            .ok_or_else(|| bad("expected '<timestamp> <file>': file missing"))?;
         entries.push((time, root.join(file)));
     }
     Ok(entries)
@@ -172,7 +187,11 @@ fn read_tum(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, Co
     } else {
         let rgb = tum_list(&root.join("rgb.txt"))?;
         let depth_path = root.join("depth.txt");
-        let depth = if depth_path.is_file() { tum_list(&depth_path)? } else { Vec::new() };
+        let depth = if depth_path.is_file() {
+            tum_list(&depth_path)?
+        } else {
+            Vec::new()
+        };
         rgb.into_iter()
             .map(|(rgb_time, rgb)| {
                 let nearest = depth
@@ -205,10 +224,10 @@ fn read_tum(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, Co
         Some(m) => m.rate_hz,
         None => estimate_rate(&frames),
     };
-    let intrinsics = match &manifest {
-        Some(m) => m.camera,
-        None => Intrinsics::TUM,
-    };
+    let intrinsics = manifest
+        .as_ref()
+        .and_then(|m| m.camera)
+        .unwrap_or(Intrinsics::TUM);
     Ok(SourceDataset {
         root: root.to_path_buf(),
         format: DatasetFormat::Tum,

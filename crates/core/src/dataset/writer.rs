@@ -1,6 +1,8 @@
 use std::path::{Path, PathBuf};
 
-use crate::dataset::{encode_depth_png, encode_jpeg, encode_png, orbslam3, DatasetFormat, Manifest, MANIFEST_FILE};
+use crate::dataset::{
+    encode_depth_png, encode_jpeg, encode_png, orbslam3, DatasetFormat, Manifest, MANIFEST_FILE,
+};
 use crate::trajectory_io::{write_replica, write_tum};
 use crate::{CoreError, DepthImage, Intrinsics, RgbImage, Trajectory};
 
@@ -31,7 +33,11 @@ fn tum_name(dir: &str, time: f64) -> String {
 impl DatasetWriter {
     /// Prepares `root`: an empty or missing folder, or an earlier rslam dataset, whose manifest and
     /// frames are removed first so that an interrupted run never looks complete.
-    pub fn create(root: &Path, format: DatasetFormat, intrinsics: Intrinsics) -> Result<Self, CoreError> {
+    pub fn create(
+        root: &Path,
+        format: DatasetFormat,
+        intrinsics: Intrinsics,
+    ) -> Result<Self, CoreError> {
         if root.exists() {
             let is_dataset = root.join(MANIFEST_FILE).exists();
             let mut entries = std::fs::read_dir(root).map_err(|e| CoreError::io(root, e))?;
@@ -67,6 +73,10 @@ impl DatasetWriter {
         &self.root
     }
 
+    pub fn intrinsics(&self) -> Intrinsics {
+        self.intrinsics
+    }
+
     pub fn format(&self) -> DatasetFormat {
         self.format
     }
@@ -81,25 +91,43 @@ impl DatasetWriter {
     /// Colour of output frame `index`, captured at `time`.
     pub fn write_rgb(&self, index: usize, time: f64, image: &RgbImage) -> Result<(), CoreError> {
         match self.format {
-            DatasetFormat::Replica => {
-                self.write_atomic(&format!("results/frame{index:06}.jpg"), &encode_jpeg(image, JPEG_QUALITY)?)
-            }
+            DatasetFormat::Replica => self.write_atomic(
+                &format!("results/frame{index:06}.jpg"),
+                &encode_jpeg(image, JPEG_QUALITY)?,
+            ),
             DatasetFormat::Tum => self.write_atomic(&tum_name("rgb", time), &encode_png(image)?),
         }
     }
 
-    /// Depth delivered with output frame `index`, captured at `time` (TUM names the file by it).
-    pub fn write_depth(&self, index: usize, time: f64, depth: &DepthImage) -> Result<(), CoreError> {
+    /// One depth image, captured at `time`, delivered with each of the output frames `outputs`
+    /// (several under misalignment). Replica writes it once per output frame; TUM once, named by
+    /// its capture time.
+    pub fn write_depth(
+        &self,
+        outputs: &[usize],
+        time: f64,
+        depth: &DepthImage,
+    ) -> Result<(), CoreError> {
+        if outputs.is_empty() {
+            return Ok(());
+        }
         let bytes = encode_depth_png(depth, self.format.depth_scale())?;
         match self.format {
-            DatasetFormat::Replica => self.write_atomic(&format!("results/depth{index:06}.png"), &bytes),
+            DatasetFormat::Replica => outputs.iter().try_for_each(|index| {
+                self.write_atomic(&format!("results/depth{index:06}.png"), &bytes)
+            }),
             DatasetFormat::Tum => self.write_atomic(&tum_name("depth", time), &bytes),
         }
     }
 
     /// Index and trajectory files, then the manifest. `ground_truth` holds one pose per output
     /// frame, stamped with its colour capture time.
-    pub fn finish(self, frames: &[OutputFrame], ground_truth: &Trajectory, manifest: &Manifest) -> Result<(), CoreError> {
+    pub fn finish(
+        self,
+        frames: &[OutputFrame],
+        ground_truth: &Trajectory,
+        manifest: &Manifest,
+    ) -> Result<(), CoreError> {
         match self.format {
             DatasetFormat::Replica => {
                 write_replica(&self.root.join("traj.txt"), ground_truth)?;
@@ -107,7 +135,10 @@ impl DatasetWriter {
             }
             DatasetFormat::Tum => {
                 write_tum(&self.root.join("groundtruth.txt"), ground_truth)?;
-                self.write_text("rgb.txt", &tum_list("rgb", frames.iter().map(|f| f.rgb_time)))?;
+                self.write_text(
+                    "rgb.txt",
+                    &tum_list("rgb", frames.iter().map(|f| f.rgb_time)),
+                )?;
                 let mut depth_times: Vec<f64> = frames.iter().map(|f| f.depth_time).collect();
                 depth_times.sort_by(f64::total_cmp);
                 depth_times.dedup_by(|a, b| format!("{a:.6}") == format!("{b:.6}"));
@@ -125,7 +156,10 @@ impl DatasetWriter {
                     })
                     .collect();
                 self.write_text("associations.txt", &associations)?;
-                self.write_text("orbslam3.yaml", &orbslam3::settings(&self.intrinsics, manifest.rate_hz))?;
+                self.write_text(
+                    "orbslam3.yaml",
+                    &orbslam3::settings(&self.intrinsics, manifest.rate_hz),
+                )?;
             }
         }
         manifest.write(&self.root)

@@ -1,0 +1,10 @@
+//! The wgpu rasterizer: camera projection, scene upload, and the render pass.
+
+mod camera;
+mod depth_agreement;
+mod rasterizer;
+mod texture_array;
+
+pub use depth_agreement::{depth_agreement, DepthAgreement};
+pub use camera::{clip_from_camera, CameraUniform, NEAR};
+pub use rasterizer::Rasterizer;

@@ -1,0 +1,60 @@
+// Rasterizes the scene mesh: sRGB colour (through an sRGB render view, so shading is linear) and
+// metric z-depth along the optical axis into an R32Float target.
+
+struct Camera {
+    // world → camera (OpenCV axes: x right, y down, z forward)
+    camera_from_world: mat4x4<f32>,
+    // camera → clip, built from pinhole intrinsics with the +0.5 px principal-point shift
+    clip_from_camera: mat4x4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> camera: Camera;
+@group(0) @binding(1) var textures: texture_2d_array<f32>;
+@group(0) @binding(2) var texture_sampler: sampler;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) uv: vec2<f32>,
+    @location(2) color: vec4<f32>,
+    @location(3) layer: u32,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) uv: vec2<f32>,
+    @location(1) linear_color: vec3<f32>,
+    @location(2) camera_z: f32,
+    @location(3) @interpolate(flat) layer: u32,
+}
+
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    let low = c / 12.92;
+    let high = pow((c + 0.055) / 1.055, vec3<f32>(2.4));
+    return select(high, low, c <= vec3<f32>(0.04045));
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    let p_cam = camera.camera_from_world * vec4<f32>(v.position, 1.0);
+    var out: VertexOut;
+    out.clip = camera.clip_from_camera * p_cam;
+    out.uv = v.uv;
+    out.linear_color = srgb_to_linear(v.color.rgb);
+    out.camera_z = p_cam.z;
+    out.layer = v.layer;
+    return out;
+}
+
+struct FragmentOut {
+    @location(0) color: vec4<f32>,
+    @location(1) depth: f32,
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> FragmentOut {
+    let texel = textureSample(textures, texture_sampler, in.uv, in.layer);
+    var out: FragmentOut;
+    out.color = vec4<f32>(in.linear_color * texel.rgb, 1.0);
+    out.depth = in.camera_z;
+    return out;
+}
