@@ -2,6 +2,7 @@
 //! `commands/`; exit code 0 = ok, 1 = a check failed, 2 = an error.
 
 mod commands;
+mod generate;
 
 use std::process::ExitCode;
 

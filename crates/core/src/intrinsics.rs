@@ -62,7 +62,11 @@ impl Intrinsics {
             cx: f[2],
             cy: f[3],
         };
-        if width == 0 || height == 0 || f.iter().any(|v| !v.is_finite()) || k.fx <= 0.0 || k.fy <= 0.0
+        if width == 0
+            || height == 0
+            || f.iter().any(|v| !v.is_finite())
+            || k.fx <= 0.0
+            || k.fy <= 0.0
         {
             return Err(bad());
         }
@@ -87,7 +91,13 @@ mod tests {
 
     #[test]
     fn rejects_malformed_camera() {
-        for bad in ["", "1,2,3", "0,48,50,50,1,1", "64,48,-1,50,1,1", "a,b,c,d,e,f"] {
+        for bad in [
+            "",
+            "1,2,3",
+            "0,48,50,50,1,1",
+            "64,48,-1,50,1,1",
+            "a,b,c,d,e,f",
+        ] {
             assert!(Intrinsics::parse(bad).is_err(), "{bad}");
         }
     }

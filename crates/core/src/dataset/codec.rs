@@ -48,15 +48,13 @@ pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
 
 /// 16-bit grayscale PNG of `round(z · scale)`, saturating; 0 stays 0 (invalid).
 pub fn encode_depth_png(depth: &DepthImage, scale: f64) -> Result<Vec<u8>, CoreError> {
-    let big_endian: Vec<u8> = depth
-        .to_u16(scale)
-        .iter()
-        .flat_map(|v| v.to_be_bytes())
-        .collect();
+    // The image crate takes 16-bit samples in native byte order and writes PNG's big-endian.
+    let samples = depth.to_u16(scale);
+    let native: &[u8] = bytemuck::cast_slice(&samples);
     let mut out = Vec::new();
     png_encoder(&mut out)
         .write_image(
-            &big_endian,
+            native,
             depth.width,
             depth.height,
             ExtendedColorType::L16,
@@ -139,6 +137,8 @@ mod tests {
         let path = dir.path().join("d.png");
         std::fs::write(&path, encode_depth_png(&depth, 6553.5).unwrap()).unwrap();
         let back = decode_depth_png(&path, 6553.5).unwrap();
+        let raw = image::open(&path).unwrap().into_luma16();
+        assert_eq!(raw.get_pixel(1, 0).0[0], (1.23456f64 * 6553.5).round() as u16, "stored value");
         assert_eq!(back.data[0], 0.0);
         assert!((back.data[1] - 1.23456).abs() <= 0.5 / 6553.5 + 1e-6);
         assert!(

@@ -46,8 +46,10 @@ pub struct ItemSeverities {
 impl Manifest {
     pub fn write(&self, dir: &Path) -> Result<(), CoreError> {
         let path = dir.join(MANIFEST_FILE);
-        let text = serde_json::to_string_pretty(self)
-            .map_err(|e| CoreError::bad_file(&path, e.to_string()))?;
+        let value =
+            serde_json::to_value(self).map_err(|e| CoreError::bad_file(&path, e.to_string()))?;
+        let mut text = String::new();
+        write_compact_pretty(&value, 0, &mut text);
         std::fs::write(&path, text + "\n").map_err(|e| CoreError::io(&path, e))
     }
 
@@ -56,5 +58,46 @@ impl Manifest {
         let text = std::fs::read_to_string(&path).map_err(|e| CoreError::io(&path, e))?;
         serde_json::from_str(&text)
             .map_err(|e| CoreError::bad_file(&path, format!("not an rslam manifest: {e}")))
+    }
+}
+
+/// Pretty JSON with arrays of scalars on one line, so per-frame lists stay one line each.
+fn write_compact_pretty(value: &serde_json::Value, indent: usize, out: &mut String) {
+    use serde_json::Value;
+    let pad = |n: usize| "  ".repeat(n);
+    match value {
+        Value::Object(map) if !map.is_empty() => {
+            out.push_str("{\n");
+            for (i, (key, v)) in map.iter().enumerate() {
+                out.push_str(&format!("{}{}: ", pad(indent + 1), Value::String(key.clone())));
+                write_compact_pretty(v, indent + 1, out);
+                out.push_str(if i + 1 < map.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}}}", pad(indent)));
+        }
+        Value::Array(items) if items.iter().any(|v| v.is_object() || v.is_array()) => {
+            out.push_str("[\n");
+            for (i, v) in items.iter().enumerate() {
+                out.push_str(&pad(indent + 1));
+                write_compact_pretty(v, indent + 1, out);
+                out.push_str(if i + 1 < items.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}]", pad(indent)));
+        }
+        other => out.push_str(&other.to_string()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scalar_arrays_stay_on_one_line_and_the_text_parses_back() {
+        let value = serde_json::json!({"a": [1, 2, 3], "b": {"c": "x", "d": [{"e": []}]}});
+        let mut text = String::new();
+        write_compact_pretty(&value, 0, &mut text);
+        assert!(text.contains("\"a\": [1,2,3]"), "{text}");
+        assert_eq!(serde_json::from_str::<serde_json::Value>(&text).unwrap(), value);
     }
 }

@@ -1,0 +1,127 @@
+//! Line-level parsing shared by the readers: lenient on whitespace and comments, strict on numbers.
+
+use std::path::Path;
+
+use glam::{DMat3, DQuat, DVec3};
+
+use crate::{CoreError, Pose};
+
+/// Largest |RᵀR − I| entry accepted for a rotation block read from a matrix: files printed with
+/// 6 significant digits (KITTI) or from float32 stay far below it, a scaled (Sim(3)) or sheared
+/// matrix does not.
+const ORTHONORMAL_TOLERANCE: f64 = 1e-4;
+/// Largest deviation of a 4×4 matrix's last row from `0 0 0 1`.
+const LAST_ROW_TOLERANCE: f64 = 1e-6;
+
+/// The data lines of a text file, as (1-based line number, trimmed text): a UTF-8 byte order
+/// mark, blank lines and lines starting with `#` are skipped.
+pub(super) fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    text.lines()
+        .enumerate()
+        .map(|(i, line)| (i + 1, line.trim()))
+        .filter(|(_, line)| !line.is_empty() && !line.starts_with('#'))
+}
+
+/// Where a line came from, to name it in errors.
+#[derive(Clone, Copy)]
+pub(super) struct LineRef<'a> {
+    pub path: &'a Path,
+    pub line: usize,
+}
+
+impl LineRef<'_> {
+    pub fn error(&self, message: impl Into<String>) -> CoreError {
+        CoreError::BadLine {
+            path: self.path.to_path_buf(),
+            line: self.line,
+            message: message.into(),
+        }
+    }
+
+    /// Parses the first `N` fields as finite numbers. With `exact`, there must be exactly `N`
+    /// fields; otherwise at least `N` (the rest is ignored). `layout` says what a line holds.
+    pub fn numbers<'t, const N: usize>(
+        &self,
+        fields: impl Iterator<Item = &'t str>,
+        exact: bool,
+        layout: &str,
+    ) -> Result<[f64; N], CoreError> {
+        let fields: Vec<&str> = fields.collect();
+        let count_ok = if exact {
+            fields.len() == N
+        } else {
+            fields.len() >= N
+        };
+        if !count_ok {
+            return Err(self.error(format!(
+                "expected {layout}, found {} field{}",
+                fields.len(),
+                if fields.len() == 1 { "" } else { "s" }
+            )));
+        }
+        let mut values = [0.0; N];
+        for (i, (value, text)) in values.iter_mut().zip(&fields).enumerate() {
+            let parsed: f64 = text.parse().map_err(|_| {
+                self.error(format!(
+                    "field {} '{text}' is not a number (expected {layout})",
+                    i + 1
+                ))
+            })?;
+            if !parsed.is_finite() {
+                return Err(self.error(format!(
+                    "field {} is '{text}'; expected a finite number",
+                    i + 1
+                )));
+            }
+            *value = parsed;
+        }
+        Ok(values)
+    }
+
+    /// A unit quaternion from possibly unnormalised components; all zero is an error.
+    pub fn quaternion(&self, x: f64, y: f64, z: f64, w: f64) -> Result<DQuat, CoreError> {
+        let q = DQuat::from_xyzw(x, y, z, w);
+        let norm = q.length();
+        if norm == 0.0 {
+            return Err(self.error("zero quaternion (qx qy qz qw all 0); expected a rotation"));
+        }
+        Ok(q / norm)
+    }
+
+    /// A pose from the first three rows of a row-major rigid matrix `[R | t]`.
+    pub fn pose_from_rows(&self, rows: &[f64]) -> Result<Pose, CoreError> {
+        let r = DMat3::from_cols_array(&[
+            rows[0], rows[4], rows[8], rows[1], rows[5], rows[9], rows[2], rows[6], rows[10],
+        ]);
+        let gram = r.transpose() * r - DMat3::IDENTITY;
+        let deviation = gram
+            .to_cols_array()
+            .iter()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        if deviation > ORTHONORMAL_TOLERANCE || r.determinant() <= 0.0 {
+            return Err(self.error(format!(
+                "rotation block is not a rotation (max |RᵀR − I| = {deviation:.2e}, det = {:.6}); \
+                 expected a rigid camera-to-world pose",
+                r.determinant()
+            )));
+        }
+        let translation = DVec3::new(rows[3], rows[7], rows[11]);
+        Ok(Pose::new(DQuat::from_mat3(&r), translation))
+    }
+
+    /// Checks the last row of a 4×4 matrix is `0 0 0 1`.
+    pub fn check_last_row(&self, row: &[f64]) -> Result<(), CoreError> {
+        let expected = [0.0, 0.0, 0.0, 1.0];
+        if row
+            .iter()
+            .zip(expected)
+            .any(|(v, e)| (v - e).abs() > LAST_ROW_TOLERANCE)
+        {
+            return Err(self.error(format!(
+                "last matrix row is {row:?}; expected 0 0 0 1 (a rigid 4x4 transform)"
+            )));
+        }
+        Ok(())
+    }
+}

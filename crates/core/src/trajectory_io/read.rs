@@ -1,0 +1,97 @@
+use std::path::Path;
+
+use super::detect::detect;
+use super::{euroc, kitti, replica, tum};
+use super::{ReadOptions, TimeSource, TrajectoryFile, TrajectoryFormat};
+use crate::{CoreError, Trajectory};
+
+/// Reads a trajectory file, detecting its format from the content unless `format` forces one.
+/// Replica frames are stamped at 20 Hz; KITTI poses get their frame index as timestamp
+/// ([`TimeSource::FrameIndex`]). See [`read_trajectory_with`] for the options.
+pub fn read_trajectory(
+    path: &Path,
+    format: Option<TrajectoryFormat>,
+) -> Result<TrajectoryFile, CoreError> {
+    read_trajectory_with(
+        path,
+        &ReadOptions {
+            format,
+            ..ReadOptions::default()
+        },
+    )
+}
+
+/// Reads a trajectory file with explicit options (forced format, Replica rate, KITTI times file).
+/// Every pose is a unit-quaternion rigid transform; a file without poses is an error.
+pub fn read_trajectory_with(
+    path: &Path,
+    options: &ReadOptions,
+) -> Result<TrajectoryFile, CoreError> {
+    let rate = options.replica_rate_hz;
+    if !(rate.is_finite() && rate > 0.0) {
+        return Err(CoreError::BadRate { hz: rate });
+    }
+    let text = read_text(path)?;
+    let format = match options.format {
+        Some(format) => format,
+        None => detect(path, &text)?,
+    };
+    let (trajectory, time_source) = match format {
+        TrajectoryFormat::Tum => (tum::parse(path, &text)?, TimeSource::File),
+        TrajectoryFormat::Euroc => (euroc::parse(path, &text)?, TimeSource::File),
+        TrajectoryFormat::Replica => (
+            replica::parse(path, &text, rate)?,
+            TimeSource::Rate { hz: rate },
+        ),
+        TrajectoryFormat::Kitti => read_kitti(path, &text, options.kitti_times.as_deref())?,
+    };
+    if trajectory.is_empty() {
+        return Err(CoreError::bad_file(
+            path,
+            "no poses (the file is empty or only comments)",
+        ));
+    }
+    Ok(TrajectoryFile {
+        format,
+        time_source,
+        trajectory,
+    })
+}
+
+fn read_kitti(
+    path: &Path,
+    text: &str,
+    times_path: Option<&Path>,
+) -> Result<(Trajectory, TimeSource), CoreError> {
+    let poses = kitti::parse(path, text)?;
+    let Some(times_path) = times_path else {
+        let indices = (0..poses.len()).map(|i| i as f64).collect();
+        return Ok((Trajectory::new(indices, poses), TimeSource::FrameIndex));
+    };
+    let times = kitti::parse_times(times_path, &read_text(times_path)?)?;
+    if times.len() != poses.len() {
+        return Err(CoreError::bad_file(
+            times_path,
+            format!(
+                "{} timestamps, but {} has {} poses; expected one timestamp per pose",
+                times.len(),
+                path.display(),
+                poses.len()
+            ),
+        ));
+    }
+    Ok((Trajectory::new(times, poses), TimeSource::File))
+}
+
+fn read_text(path: &Path) -> Result<String, CoreError> {
+    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
+    String::from_utf8(bytes).map_err(|e| {
+        CoreError::bad_file(
+            path,
+            format!(
+                "not a text file (invalid UTF-8 at byte {}); expected a trajectory in text form",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}

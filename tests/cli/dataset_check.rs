@@ -1,0 +1,63 @@
+//! Reading back what `rslam render` / `rslam perturb` wrote, for assertions.
+
+use std::path::Path;
+
+use rslam_core::dataset::{decode_depth_png, read_rgb, Manifest};
+use rslam_core::trajectory_io::{read_trajectory, TrajectoryFormat};
+use rslam_core::{DepthImage, Pose, RgbImage, Trajectory};
+
+/// Files in `dir` whose names start with `prefix`, sorted.
+pub fn files(dir: &Path, prefix: &str) -> Vec<std::path::PathBuf> {
+    let mut v: Vec<_> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with(prefix))
+        .collect();
+    v.sort();
+    v
+}
+
+pub fn manifest(root: &Path) -> Manifest {
+    Manifest::read(root).expect("rslam.json")
+}
+
+pub fn replica_trajectory(root: &Path) -> Trajectory {
+    read_trajectory(&root.join("traj.txt"), Some(TrajectoryFormat::Replica))
+        .expect("traj.txt")
+        .trajectory
+}
+
+pub fn tum_trajectory(root: &Path) -> Trajectory {
+    read_trajectory(&root.join("groundtruth.txt"), Some(TrajectoryFormat::Tum))
+        .expect("groundtruth.txt")
+        .trajectory
+}
+
+pub fn replica_depth(root: &Path, i: usize) -> DepthImage {
+    decode_depth_png(&root.join(format!("results/depth{i:06}.png")), 6553.5).expect("depth png")
+}
+
+pub fn replica_rgb(root: &Path, i: usize) -> RgbImage {
+    read_rgb(&root.join(format!("results/frame{i:06}.jpg"))).expect("frame jpg")
+}
+
+/// Non-comment lines of a text file.
+pub fn lines(path: &Path) -> Vec<String> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(str::to_string)
+        .collect()
+}
+
+/// Poses equal to within what a text file with 6 decimals (TUM) or full precision keeps.
+pub fn assert_poses_close(actual: &[Pose], expected: &[Pose], tolerance: f64) {
+    assert_eq!(actual.len(), expected.len(), "pose count");
+    for (i, (a, e)) in actual.iter().zip(expected).enumerate() {
+        let dt = (a.translation - e.translation).length();
+        // Twice the vector part of the relative quaternion: the angle, precise for small angles.
+        let dr = 2.0 * (a.rotation * e.rotation.inverse()).xyz().length();
+        assert!(dt < tolerance && dr < tolerance, "pose {i}: Δt {dt}, Δrot {dr} rad");
+    }
+}
