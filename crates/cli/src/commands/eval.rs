@@ -1,0 +1,181 @@
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context;
+use rslam_core::trajectory_io::{ReadOptions, TrajectoryFormat};
+use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
+use rslam_eval::{
+    plot_evaluation, read_and_evaluate, text_report, AlignMode, DeltaUnit, EvalOptions, Matching,
+    RpeOptions, DEFAULT_MAX_DIFF,
+};
+
+const DETAILS: &str = "\
+Numbers as evo 1.38.1 computes them (evo_ape / evo_rpe). Note the order: `rslam eval EST GT`; evo
+takes the ground truth first.
+
+Files: TUM (t tx ty tz qx qy qz qw), Replica traj.txt (16 numbers, row-major 4x4 camera-to-world;
+frame i at i / --rate), KITTI (12 numbers, row-major 3x4; matched by index unless --kitti-times) or
+EuRoC ground truth (t[ns],px,py,pz,qw,qx,qy,qz,...), detected from the content.
+
+Association (as evo): every pose of the trajectory with fewer poses (the estimate on a tie) takes the
+pose of the other with the nearest timestamp; kept if |dt| <= --max-diff (not one-to-one).
+ATE: Umeyama alignment on positions (--align), then |p_est - p_gt| per pose.
+RPE: pose pairs (i, j) chosen on the estimate (consecutive unless --all-pairs),
+E = (Q_i^-1 Q_j)^-1 (P_i^-1 P_j); translation |t_E| in m, rotation angle of R_E in degrees.
+
+SR (success rate of tracking) = L_est / L_gt: the path length of the whole estimate (multiplied by the
+Sim(3) scale with --align sim3) over the path length of the whole ground truth, from its first to its
+last timestamp. An estimate that stops early gets SR < 1. No reference tool computes SR; this is
+rslam's definition (spec metrics.md).
+
+--runs DIR --datasets DIR: evaluates DIR/<method>/<sequence>.txt (or DIR/<method>/<sequence>/<repeat>.txt)
+against the ground truth in DATASETS/<sequence>/traj.txt or groundtruth.txt. A sequence named
+<scene>__<setting> belongs to that setting (room0__fog-3), a bare <scene> is clean. Missing, empty,
+unreadable or unassociable estimates are failures (ATE = --failure-ate, SR = 0, marked F).
+Writes report.md, report.json, ate.csv, sr.csv, csr.csv, csr_curve.csv, welch.csv, runs.csv,
+csr.png and csr.svg into --out: ATE and SR per method x setting with mean/max (mean/min for SR), the
+survival upper bound (best method per setting, and its mean per category), CSR at 0.02/0.1/1.0 m and
+as curves (failures stay in the denominator and never count as successes), and Welch's t-test of
+ln ATE of each setting against clean per method, over scenes and repeats.";
+
+#[derive(clap::Args)]
+#[command(after_long_help = DETAILS)]
+pub struct EvalArgs {
+    /// Estimated trajectory.
+    #[arg(required_unless_present = "runs", conflicts_with = "runs")]
+    est: Option<PathBuf>,
+    /// Ground-truth trajectory.
+    #[arg(required_unless_present = "runs", conflicts_with = "runs")]
+    gt: Option<PathBuf>,
+    /// Force the file format instead of detecting it: tum, replica, kitti or euroc.
+    #[arg(long)]
+    format: Option<TrajectoryFormat>,
+    /// Frame rate of Replica traj.txt files (frame i gets timestamp i / rate), Hz.
+    #[arg(long, default_value_t = ReadOptions::DEFAULT_REPLICA_RATE_HZ)]
+    rate: f64,
+    /// KITTI times file (one timestamp in seconds per line) for KITTI pose files.
+    #[arg(long, value_name = "FILE")]
+    kitti_times: Option<PathBuf>,
+    /// Largest timestamp difference of an associated pair, seconds (inclusive).
+    #[arg(long, default_value_t = DEFAULT_MAX_DIFF)]
+    max_diff: f64,
+    /// Added to the estimate's timestamps before association, seconds.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    t_offset: f64,
+    /// Alignment of the estimate onto the ground truth: se3 (RGB-D), sim3 (monocular) or none.
+    #[arg(long, default_value_t = AlignMode::Se3)]
+    align: AlignMode,
+    /// RPE step, in --delta-unit.
+    #[arg(long, default_value_t = 1.0)]
+    delta: f64,
+    /// Unit of --delta: f (frames), m (metres travelled) or deg (degrees turned).
+    #[arg(long, default_value_t = DeltaUnit::Frames)]
+    delta_unit: DeltaUnit,
+    /// RPE over overlapping pairs from every pose instead of consecutive pairs.
+    #[arg(long)]
+    all_pairs: bool,
+    /// Print one JSON object instead of the report.
+    #[arg(long)]
+    json: bool,
+    /// Draw the top view of both trajectories and the per-pose error (.png or .svg).
+    #[arg(long, value_name = "FILE", conflicts_with = "runs")]
+    plot: Option<PathBuf>,
+    /// Aggregate many runs: DIR/<method>/<sequence>.txt.
+    #[arg(long, value_name = "DIR", requires = "datasets")]
+    runs: Option<PathBuf>,
+    /// Folder holding the datasets by sequence name (with --runs).
+    #[arg(long, value_name = "DIR", requires = "runs")]
+    datasets: Option<PathBuf>,
+    /// Where --runs writes its tables and curves.
+    #[arg(
+        long,
+        value_name = "DIR",
+        requires = "runs",
+        default_value = "rslam-eval-report"
+    )]
+    out: PathBuf,
+    /// ATE counted for a failed run (with --runs), metres.
+    #[arg(long, default_value_t = DEFAULT_FAILURE_ATE, requires = "runs")]
+    failure_ate: f64,
+}
+
+pub fn run(args: EvalArgs) -> anyhow::Result<ExitCode> {
+    let read = ReadOptions {
+        format: args.format,
+        replica_rate_hz: args.rate,
+        kitti_times: args.kitti_times.clone(),
+    };
+    let options = EvalOptions {
+        matching: Matching::Time {
+            max_diff: args.max_diff,
+            t_offset: args.t_offset,
+        },
+        align: args.align,
+        rpe: RpeOptions {
+            delta: args.delta,
+            delta_unit: args.delta_unit,
+            all_pairs: args.all_pairs,
+        },
+    };
+    match (&args.runs, &args.datasets, &args.est, &args.gt) {
+        (Some(runs), Some(datasets), _, _) => run_many(&args, runs, datasets, read, options),
+        (_, _, Some(est), Some(gt)) => run_one(&args, est, gt, &read, &options),
+        _ => anyhow::bail!("give EST and GT, or --runs DIR --datasets DIR"),
+    }
+}
+
+fn run_one(
+    args: &EvalArgs,
+    est: &Path,
+    gt: &Path,
+    read: &ReadOptions,
+    options: &EvalOptions,
+) -> anyhow::Result<ExitCode> {
+    let evaluation = read_and_evaluate(est, gt, read, options)
+        .with_context(|| format!("evaluating {} against {}", est.display(), gt.display()))?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&evaluation)?);
+    } else {
+        print!("{}", text_report(&evaluation));
+    }
+    if let Some(plot) = &args.plot {
+        plot_evaluation(plot, &evaluation)?;
+        eprintln!("plot written to {}", plot.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_many(
+    args: &EvalArgs,
+    runs: &Path,
+    datasets: &Path,
+    read: ReadOptions,
+    eval: EvalOptions,
+) -> anyhow::Result<ExitCode> {
+    let options = RunsOptions {
+        runs_dir: runs.to_path_buf(),
+        datasets_dir: datasets.to_path_buf(),
+        read,
+        eval,
+        failure_ate: args.failure_ate,
+        skip_dir: Some(args.out.clone()),
+    };
+    let (report, written) = evaluate_runs_into(&options, &args.out)
+        .with_context(|| format!("evaluating the runs in {}", runs.display()))?;
+    for path in &report.unmatched {
+        eprintln!(
+            "warning: ignored {} (no dataset of that name)",
+            path.display()
+        );
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", summary_text(&report));
+        println!("\nwritten:");
+        for path in written {
+            println!("  {}", path.display());
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,41 @@
+//! Trajectory evaluation, with the numbers of evo 1.38.1.
+//!
+//! Data flow for one run: two trajectory files → `rslam_core::trajectory_io` readers →
+//! [`associate`] (nearest timestamp, or index) → [`fit_alignment`] (Umeyama on positions:
+//! SE(3), Sim(3) or none) → ATE per pose, [`relative_pose_errors`] over the pairs of
+//! [`RpeOptions`], [`success_rate`] on the whole paths → [`Evaluation`] (statistics as evo
+//! prints them), shown by [`text_report`], serialised as JSON, drawn by [`plot_evaluation`].
+//!
+//! For many runs, [`runs`] walks `<runs>/<method>/<sequence>.txt`, finds each sequence's ground
+//! truth in the datasets folder, counts failures with the benchmark's convention and writes the
+//! tables (ATE, SR, CSR, survival upper bound, Welch's t-test) as Markdown, CSV and JSON.
+
+mod alignment;
+mod association;
+mod error;
+mod evaluate;
+mod plot;
+mod rpe;
+mod rpe_pairs;
+pub mod runs;
+mod statistics;
+mod success_rate;
+mod text_report;
+mod umeyama;
+
+#[cfg(test)]
+mod test_support;
+
+pub use alignment::{fit_alignment, AlignMode, Similarity};
+pub use association::{associate, Association, Matching, DEFAULT_MAX_DIFF};
+pub use error::EvalError;
+pub use evaluate::{
+    evaluate, evaluate_files, read_and_evaluate, EvalOptions, EvalSeries, Evaluation, PathLengths,
+};
+pub use plot::plot_evaluation;
+pub use rpe::{relative_pose_errors, DeltaUnit, RpeErrors, RpeOptions};
+pub use rpe_pairs::pose_pairs;
+pub use statistics::ErrorStatistics;
+pub use success_rate::{success_rate, SuccessRate};
+pub use text_report::text_report;
+pub use umeyama::umeyama;

@@ -1,0 +1,135 @@
+//! Evaluating every (method, sequence, repeat) run; a run that cannot be evaluated is a failure.
+
+use std::collections::HashSet;
+use std::path::PathBuf;
+
+use rslam_core::trajectory_io::{read_trajectory_with, TrajectoryFile};
+use serde::Serialize;
+
+use super::layout::{find_estimates, find_methods, find_sequences, find_unmatched, Sequence};
+use super::RunsOptions;
+use crate::{evaluate_files, EvalError};
+
+/// One run's result. A failed run carries the failure ATE, SR 0 and the reason.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunRecord {
+    pub method: String,
+    pub sequence: String,
+    pub scene: String,
+    pub setting: String,
+    /// Repeat name (file stem inside `<sequence>/`); `None` for `<sequence>.txt`.
+    pub repeat: Option<String>,
+    /// ATE rmse in metres, or the failure ATE.
+    pub ate: f64,
+    /// `None` when the ground truth does not move.
+    pub sr: Option<f64>,
+    pub rpe_trans: Option<f64>,
+    pub rpe_rot_deg: Option<f64>,
+    pub pairs: Option<usize>,
+    /// Why the run failed (missing or unreadable estimate, no association, …).
+    pub failure: Option<String>,
+}
+
+impl RunRecord {
+    pub fn failed(&self) -> bool {
+        self.failure.is_some()
+    }
+}
+
+/// Every run, and the estimate files that matched no dataset sequence.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CollectedRuns {
+    pub runs: Vec<RunRecord>,
+    pub unmatched: Vec<PathBuf>,
+}
+
+/// Evaluates every method on every sequence of the datasets folder. A broken ground truth is an
+/// error; a missing or broken estimate is a failed run.
+pub fn collect_runs(options: &RunsOptions) -> Result<CollectedRuns, EvalError> {
+    let sequences = find_sequences(&options.datasets_dir)?;
+    let methods = find_methods(&options.runs_dir, options.skip_dir.as_deref())?;
+    let names: HashSet<&str> = sequences.iter().map(|s| s.name.as_str()).collect();
+    let mut runs = Vec::new();
+    let mut unmatched = Vec::new();
+    for sequence in &sequences {
+        let gt = read_trajectory_with(&sequence.ground_truth, &options.read)?;
+        for (method, dir) in &methods {
+            let estimates = find_estimates(dir, &sequence.name)?;
+            if estimates.is_empty() {
+                let missing = dir.join(format!("{}.txt", sequence.name));
+                let reason = format!("{}: no estimate", missing.display());
+                runs.push(failed_run(
+                    method,
+                    sequence,
+                    None,
+                    reason,
+                    options.failure_ate,
+                ));
+            }
+            for estimate in estimates {
+                let outcome = read_trajectory_with(&estimate.path, &options.read)
+                    .map_err(EvalError::from)
+                    .and_then(|est: TrajectoryFile| evaluate_files(&est, &gt, &options.eval));
+                runs.push(match outcome {
+                    Ok(e) => RunRecord {
+                        ate: e.ate.rmse,
+                        sr: e.sr,
+                        rpe_trans: Some(e.rpe_trans.rmse),
+                        rpe_rot_deg: Some(e.rpe_rot_deg.rmse),
+                        pairs: Some(e.pairs),
+                        failure: None,
+                        ..identity(method, sequence, estimate.repeat)
+                    },
+                    Err(err) => {
+                        let reason = match err {
+                            EvalError::Core(_) => err.to_string(),
+                            _ => format!("{}: {err}", estimate.path.display()),
+                        };
+                        failed_run(
+                            method,
+                            sequence,
+                            estimate.repeat,
+                            reason,
+                            options.failure_ate,
+                        )
+                    }
+                });
+            }
+        }
+    }
+    for (_, dir) in &methods {
+        unmatched.extend(find_unmatched(dir, &names)?);
+    }
+    Ok(CollectedRuns { runs, unmatched })
+}
+
+fn identity(method: &str, sequence: &Sequence, repeat: Option<String>) -> RunRecord {
+    RunRecord {
+        method: method.to_string(),
+        sequence: sequence.name.clone(),
+        scene: sequence.scene.clone(),
+        setting: sequence.setting.clone(),
+        repeat,
+        ate: f64::NAN,
+        sr: None,
+        rpe_trans: None,
+        rpe_rot_deg: None,
+        pairs: None,
+        failure: None,
+    }
+}
+
+fn failed_run(
+    method: &str,
+    sequence: &Sequence,
+    repeat: Option<String>,
+    reason: String,
+    failure_ate: f64,
+) -> RunRecord {
+    RunRecord {
+        ate: failure_ate,
+        sr: Some(0.0),
+        failure: Some(reason),
+        ..identity(method, sequence, repeat)
+    }
+}

@@ -1,0 +1,81 @@
+//! Many runs at once: `<runs>/<method>/<sequence>.txt` estimates (or `<sequence>/<repeat>.txt`)
+//! against the ground truth of `<datasets>/<sequence>/`, aggregated into the benchmark's tables.
+//!
+//! Sequence names carry the setting: `<scene>__<setting>` (`room0__fog-3`), a bare `<scene>` is
+//! clean. A setting's category is its leading perturbation name (`fog-3-dynamic` → `fog`).
+//! A missing, empty, unreadable or unassociable estimate is a failed run: ATE = the failure ATE
+//! (1.0 m by default), SR = 0, marked F.
+
+mod collect;
+mod csr_plot;
+mod layout;
+mod naming;
+mod summary;
+mod welch;
+mod write;
+
+use std::path::{Path, PathBuf};
+
+use rslam_core::trajectory_io::ReadOptions;
+use serde::Serialize;
+
+pub use collect::{collect_runs, CollectedRuns, RunRecord};
+pub use layout::{find_estimates, find_methods, find_sequences, Estimate, Sequence};
+pub use naming::{category, scene_and_setting, CLEAN};
+pub use summary::{
+    csr, summarize, CategoryBound, CsrPoint, MethodSummary, RunsSummary, SettingCell, SettingTest,
+    SurvivalBound, CSR_THRESHOLDS,
+};
+pub use welch::{welch_t_test, WelchTest};
+pub use write::{summary_text, write_report};
+
+use crate::{EvalError, EvalOptions};
+
+/// The benchmark's convention for the ATE of a failed run, metres.
+pub const DEFAULT_FAILURE_ATE: f64 = 1.0;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunsOptions {
+    pub runs_dir: PathBuf,
+    pub datasets_dir: PathBuf,
+    pub read: ReadOptions,
+    pub eval: EvalOptions,
+    pub failure_ate: f64,
+    /// A folder inside `runs_dir` that is not a method (the report's own output).
+    pub skip_dir: Option<PathBuf>,
+}
+
+/// Every run and the tables over them; serialises to `report.json`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunsReport {
+    pub summary: RunsSummary,
+    pub runs: Vec<RunRecord>,
+    pub unmatched: Vec<PathBuf>,
+}
+
+/// Evaluates every run and aggregates them.
+pub fn evaluate_runs(options: &RunsOptions) -> Result<RunsReport, EvalError> {
+    if !(options.failure_ate.is_finite() && options.failure_ate > 0.0) {
+        return Err(EvalError::BadOption {
+            name: "failure-ate",
+            value: options.failure_ate.to_string(),
+            expected: "a positive number of metres",
+        });
+    }
+    let CollectedRuns { runs, unmatched } = collect_runs(options)?;
+    Ok(RunsReport {
+        summary: summarize(&runs, options.failure_ate),
+        runs,
+        unmatched,
+    })
+}
+
+/// Evaluates every run and writes the report files into `out`; returns the report and the paths.
+pub fn evaluate_runs_into(
+    options: &RunsOptions,
+    out: &Path,
+) -> Result<(RunsReport, Vec<PathBuf>), EvalError> {
+    let report = evaluate_runs(options)?;
+    let written = write_report(&report, out)?;
+    Ok((report, written))
+}

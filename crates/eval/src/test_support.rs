@@ -1,0 +1,47 @@
+//! Deterministic random fixtures for unit tests (SplitMix64; no global RNG).
+
+use glam::{DMat3, DQuat, DVec3};
+
+pub struct TestRng(u64);
+
+impl TestRng {
+    pub fn new(seed: u64) -> Self {
+        Self(seed)
+    }
+
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [-1, 1)³.
+    pub fn vec3(&mut self) -> DVec3 {
+        DVec3::new(self.unit(), self.unit(), self.unit()) * 2.0 - DVec3::ONE
+    }
+}
+
+pub fn random_rotation(rng: &mut TestRng) -> DMat3 {
+    DMat3::from_quat(random_quat(rng))
+}
+
+pub fn random_quat(rng: &mut TestRng) -> DQuat {
+    loop {
+        let q = DQuat::from_xyzw(rng.vec3().x, rng.vec3().y, rng.vec3().z, rng.vec3().x);
+        if q.length() > 0.1 {
+            return q.normalize();
+        }
+    }
+}
+
+/// Uniform noise in [-amplitude, amplitude)³.
+pub fn noise(rng: &mut TestRng, amplitude: f64) -> DVec3 {
+    rng.vec3() * amplitude
+}

@@ -1,0 +1,97 @@
+//! The console report of one evaluation, laid out like evo's (statistics sorted by name, the name
+//! right-aligned to 10 characters, a tab, the value with 6 decimals).
+
+use std::fmt::Write as _;
+
+use crate::alignment::AlignMode;
+use crate::association::Matching;
+use crate::statistics::ErrorStatistics;
+use crate::Evaluation;
+
+pub fn text_report(e: &Evaluation) -> String {
+    let mut out = String::new();
+    let alignment_line = match e.options.align {
+        AlignMode::Se3 => "(with SE(3) Umeyama alignment)",
+        AlignMode::Sim3 => "(with Sim(3) Umeyama alignment)",
+        AlignMode::None => "(not aligned)",
+    };
+    let matching = match e.options.matching {
+        Matching::Time { max_diff, t_offset } => {
+            format!("nearest timestamp within {max_diff} s, t-offset {t_offset} s")
+        }
+        Matching::Index => "matched by index: a file has no timestamps".to_string(),
+    };
+    let rpe = &e.options.rpe;
+    let rpe_title = format!(
+        "for delta = {} ({}) using {} pairs\n{alignment_line}",
+        rpe.delta,
+        rpe.delta_unit.long_name(),
+        if rpe.all_pairs { "all" } else { "consecutive" }
+    );
+    // Writing to a String cannot fail.
+    let _ = writeln!(
+        out,
+        "pairs\t{} of max. {} ({matching})\n",
+        e.pairs, e.max_pairs
+    );
+    section(
+        &mut out,
+        &format!("APE w.r.t. translation part (m)\n{alignment_line}"),
+        &e.ate,
+    );
+    section(
+        &mut out,
+        &format!("RPE w.r.t. translation part (m)\n{rpe_title}"),
+        &e.rpe_trans,
+    );
+    section(
+        &mut out,
+        &format!("RPE w.r.t. rotation angle in degrees (deg)\n{rpe_title}"),
+        &e.rpe_rot_deg,
+    );
+    let sr = e.sr.map_or_else(
+        || "n/a (the ground truth does not move)".to_string(),
+        |v| format!("{v:.6}"),
+    );
+    let _ = writeln!(
+        out,
+        "SR (success rate of tracking)\t{sr}\n  = estimate path {:.6} m{} / ground-truth path {:.6} m\n",
+        e.path_length.estimate,
+        if e.options.align == AlignMode::Sim3 { " (Sim(3)-scaled)" } else { "" },
+        e.path_length.ground_truth
+    );
+    let a = &e.alignment;
+    let _ = writeln!(out, "alignment (p_gt = scale * R * p_est + t)");
+    for (i, row) in a.rotation.transpose().to_cols_array_2d().iter().enumerate() {
+        let label = if i == 0 { "R" } else { "" };
+        let _ = writeln!(
+            out,
+            "{label:>11}\t{:>10.6} {:>10.6} {:>10.6}",
+            row[0], row[1], row[2]
+        );
+    }
+    let t = a.translation;
+    let _ = writeln!(
+        out,
+        "{:>11}\t{:>10.6} {:>10.6} {:>10.6}",
+        "t", t.x, t.y, t.z
+    );
+    let _ = writeln!(out, "{:>11}\t{:.9}", "scale", a.scale);
+    out
+}
+
+fn section(out: &mut String, title: &str, s: &ErrorStatistics) {
+    let _ = writeln!(out, "{title}\n({} values)\n", s.n);
+    for (name, value) in [
+        ("max", s.max),
+        ("mean", s.mean),
+        ("median", s.median),
+        ("min", s.min),
+        ("rmse", s.rmse),
+        ("sse", s.sse),
+        ("std", s.std),
+    ] {
+        let _ = writeln!(out, "{name:>10}\t{value:.6}");
+    }
+    out.push('\n');
+}

@@ -1,0 +1,212 @@
+//! `runs`: many estimates against many datasets, failures by the benchmark's convention.
+
+use std::path::Path;
+
+use glam::{DQuat, DVec3};
+use rslam_core::trajectory_io::{write_replica, write_tum, ReadOptions};
+use rslam_core::{Pose, Trajectory};
+use rslam_eval::runs::{evaluate_runs, write_report, RunsOptions, DEFAULT_FAILURE_ATE};
+use rslam_eval::EvalOptions;
+
+fn circle(n: usize, radius: f64) -> Trajectory {
+    let poses = (0..n)
+        .map(|i| {
+            let a = i as f64 * 0.05;
+            Pose::new(
+                DQuat::from_rotation_z(a),
+                DVec3::new(radius * a.cos(), radius * a.sin(), 0.1 * a.sin()),
+            )
+        })
+        .collect();
+    Trajectory::from_poses_at_rate(poses, 20.0)
+}
+
+/// The ground truth with every position displaced by `offset` along z (ATE = |offset| after
+/// SE(3) alignment only if the offset varies; a constant offset aligns away, so alternate it).
+fn jittered(gt: &Trajectory, amplitude: f64) -> Trajectory {
+    let poses = gt
+        .poses
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+            Pose::new(p.rotation, p.translation + DVec3::Z * amplitude * sign)
+        })
+        .collect();
+    Trajectory::new(gt.timestamps.clone(), poses)
+}
+
+fn mkdir(p: &Path) {
+    std::fs::create_dir_all(p).unwrap();
+}
+
+/// datasets: room0 (Replica layout) and room0__fog-3 (TUM layout), office0 and office0__fog-3;
+/// method "good" has all four (one as two repeats), method "bad" misses one and has one broken
+/// and one with stamps that match nothing.
+fn layout(root: &Path) -> RunsOptions {
+    let datasets = root.join("datasets");
+    let runs = root.join("runs");
+    let gt = circle(100, 1.0);
+    for seq in ["room0", "room0__fog-3", "office0", "office0__fog-3"] {
+        let dir = datasets.join(seq);
+        mkdir(&dir);
+        if seq.contains("fog") {
+            write_tum(&dir.join("groundtruth.txt"), &gt).unwrap();
+        } else {
+            write_replica(&dir.join("traj.txt"), &gt).unwrap();
+        }
+    }
+    mkdir(&datasets.join("not_a_dataset"));
+
+    let good = runs.join("good");
+    mkdir(&good.join("office0__fog-3"));
+    write_tum(&good.join("room0.txt"), &jittered(&gt, 0.001)).unwrap();
+    write_tum(&good.join("office0.txt"), &jittered(&gt, 0.003)).unwrap();
+    write_tum(&good.join("room0__fog-3.txt"), &jittered(&gt, 0.05)).unwrap();
+    write_tum(&good.join("office0__fog-3/1.txt"), &jittered(&gt, 0.01)).unwrap();
+    write_tum(&good.join("office0__fog-3/2.txt"), &jittered(&gt, 0.03)).unwrap();
+    write_tum(&good.join("kitchen.txt"), &gt).unwrap();
+
+    let bad = runs.join("bad");
+    mkdir(&bad);
+    write_tum(&bad.join("room0.txt"), &jittered(&gt, 0.002)).unwrap();
+    std::fs::write(
+        bad.join("office0.txt"),
+        "0 0 0 0 0 0 0 1\n1 0 0 x 0 0 0 1\n",
+    )
+    .unwrap();
+    let mut late = gt.clone();
+    late.timestamps.iter_mut().for_each(|t| *t += 1000.0);
+    write_tum(&bad.join("room0__fog-3.txt"), &late).unwrap();
+
+    RunsOptions {
+        runs_dir: runs,
+        datasets_dir: datasets,
+        read: ReadOptions::default(),
+        eval: EvalOptions::default(),
+        failure_ate: DEFAULT_FAILURE_ATE,
+        skip_dir: None,
+    }
+}
+
+#[test]
+fn aggregates_runs_with_failures_marked() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = layout(dir.path());
+    let report = evaluate_runs(&options).unwrap();
+    let s = &report.summary;
+    assert_eq!(s.settings, vec!["clean", "fog-3"]);
+    let names: Vec<&str> = s.methods.iter().map(|m| m.method.as_str()).collect();
+    assert_eq!(names, vec!["bad", "good"]);
+
+    // good: 5 runs (one sequence has two repeats), no failure.
+    let good = &s.methods[1];
+    assert_eq!((good.runs, good.failures), (5, 0));
+    assert!(
+        (good.cells[0].ate_mean - 0.002).abs() < 1e-6,
+        "{}",
+        good.cells[0].ate_mean
+    );
+    assert!((good.cells[1].ate_mean - (0.05 + 0.01 + 0.03) / 3.0).abs() < 1e-6);
+
+    // bad: room0 fine; office0 broken, room0__fog-3 unassociable, office0__fog-3 missing.
+    let bad = &s.methods[0];
+    assert_eq!((bad.runs, bad.failures), (4, 3));
+    assert!((bad.cells[0].ate_mean - (0.002 + 1.0) / 2.0).abs() < 1e-6);
+    assert_eq!(bad.cells[1].ate_mean, 1.0);
+    assert_eq!(bad.cells[1].sr_mean, Some(0.0));
+    assert_eq!(
+        bad.csr[2].csr, 25.0,
+        "failures never count as successes, even at 1 m"
+    );
+
+    let failures: Vec<&str> = report
+        .runs
+        .iter()
+        .filter_map(|r| r.failure.as_deref())
+        .collect();
+    assert!(
+        failures
+            .iter()
+            .any(|f| f.contains("office0.txt:2: field 4 'x' is not a number")),
+        "{failures:?}"
+    );
+    assert!(
+        failures
+            .iter()
+            .any(|f| f.contains("no matching timestamps")),
+        "{failures:?}"
+    );
+    assert!(
+        failures
+            .iter()
+            .any(|f| f.ends_with("office0__fog-3.txt: no estimate")),
+        "{failures:?}"
+    );
+    assert!(report
+        .unmatched
+        .iter()
+        .any(|p| p.ends_with("good/kitchen.txt")));
+
+    // Survival bound: the better method per setting.
+    assert!((s.survival.per_setting[0] - good.cells[0].ate_mean).abs() < 1e-12);
+    assert_eq!(s.t_tests.len(), 2);
+}
+
+#[test]
+fn writes_every_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = layout(dir.path());
+    let report = evaluate_runs(&options).unwrap();
+    let out = dir.path().join("report");
+    let written = write_report(&report, &out).unwrap();
+    let names: Vec<String> = written
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    for expected in [
+        "report.md",
+        "report.json",
+        "ate.csv",
+        "sr.csv",
+        "csr.csv",
+        "csr_curve.csv",
+        "welch.csv",
+        "runs.csv",
+        "csr.png",
+        "csr.svg",
+    ] {
+        assert!(
+            names.contains(&expected.to_string()),
+            "{expected} missing from {names:?}"
+        );
+        assert!(std::fs::metadata(out.join(expected)).unwrap().len() > 0);
+    }
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("| bad | 0.5010 (1F) | F |"), "{md}");
+    assert!(md.contains("| survival upper bound |"));
+    let ate_csv = std::fs::read_to_string(out.join("ate.csv")).unwrap();
+    assert!(
+        ate_csv.starts_with("method,clean,fog-3,mean,max\nbad,0.50099"),
+        "{ate_csv}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(json["summary"]["methods"][0]["failures"], 3);
+    let runs_csv = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    assert_eq!(runs_csv.lines().filter(|l| l.contains(",F,")).count(), 3);
+}
+
+#[test]
+fn missing_folders_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut options = layout(dir.path());
+    options.datasets_dir = dir.path().join("runs");
+    let err = evaluate_runs(&options).unwrap_err().to_string();
+    assert!(err.ends_with("no dataset folder holding traj.txt or groundtruth.txt; expected <datasets>/<sequence>/traj.txt (Replica) or .../groundtruth.txt (TUM)"), "{err}");
+    options.datasets_dir = dir.path().join("nope");
+    assert!(evaluate_runs(&options)
+        .unwrap_err()
+        .to_string()
+        .contains("nope"));
+}

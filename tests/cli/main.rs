@@ -1,0 +1,9 @@
+//! End-to-end tests of the `rslam` binary: one integration binary, one module per subcommand.
+
+mod dataset_check;
+mod eval;
+mod harness;
+mod list;
+mod motion;
+mod render;
+mod scene;
