@@ -58,6 +58,9 @@ pub fn assert_poses_close(actual: &[Pose], expected: &[Pose], tolerance: f64) {
         let dt = (a.translation - e.translation).length();
         // Twice the vector part of the relative quaternion: the angle, precise for small angles.
         let dr = 2.0 * (a.rotation * e.rotation.inverse()).xyz().length();
-        assert!(dt < tolerance && dr < tolerance, "pose {i}: Δt {dt}, Δrot {dr} rad");
+        assert!(
+            dt < tolerance && dr < tolerance,
+            "pose {i}: Δt {dt}, Δrot {dr} rad"
+        );
     }
 }

@@ -1,6 +1,6 @@
 //! A tiny harness: a temp dir, a command builder, and output that reads well on failure.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, Output};
 
 pub struct Workspace {
@@ -16,10 +16,6 @@ impl Workspace {
 
     pub fn path(&self, rel: &str) -> PathBuf {
         self.dir.path().join(rel)
-    }
-
-    pub fn root(&self) -> &Path {
-        self.dir.path()
     }
 
     pub fn write(&self, rel: &str, contents: &str) -> PathBuf {
@@ -71,7 +67,11 @@ impl Run {
 
     /// Asserts exit 0 and returns stdout.
     pub fn success(&self) -> String {
-        assert!(self.output.status.success(), "expected success:\n{}", self.describe());
+        assert!(
+            self.output.status.success(),
+            "expected success:\n{}",
+            self.describe()
+        );
         self.stdout()
     }
 
@@ -82,7 +82,11 @@ impl Run {
         for f in fragments {
             assert!(err.contains(f), "stderr lacks '{f}':\n{}", self.describe());
         }
-        assert!(!err.contains("panicked"), "panic instead of an error:\n{}", self.describe());
+        assert!(
+            !err.contains("panicked"),
+            "panic instead of an error:\n{}",
+            self.describe()
+        );
         err
     }
 }

@@ -3,9 +3,9 @@
 use std::time::Duration;
 
 use rslam_core::Intrinsics;
+use rslam_render::load_scene;
 use rslam_render::raster::depth_agreement;
 use rslam_render::raycast::RayCaster;
-use rslam_render::load_scene;
 
 use crate::dataset_check::*;
 use crate::harness::Workspace;
@@ -22,7 +22,11 @@ fn assert_depth_matches_oracle(depth: &rslam_core::DepthImage, pose: &rslam_core
     let scene = load_scene("room0").unwrap();
     let oracle = RayCaster::new(&scene).depth_image(pose, &small_camera());
     let quantised = rslam_core::DepthImage {
-        data: oracle.data.iter().map(|z| (z * (1.0 / step)).round() * step).collect(),
+        data: oracle
+            .data
+            .iter()
+            .map(|z| (z * (1.0 / step)).round() * step)
+            .collect(),
         ..oracle
     };
     let a = depth_agreement(depth, &quantised);
@@ -34,8 +38,18 @@ fn assert_depth_matches_oracle(depth: &rslam_core::DepthImage, pose: &rslam_core
 #[test]
 fn replica_layout_reads_back() {
     let ws = Workspace::new();
-    ws.rslam(&["render", "--scene", "room0", "--frames", "5", "--camera", SMALL_CAMERA, "--out", "ds"])
-        .success();
+    ws.rslam(&[
+        "render",
+        "--scene",
+        "room0",
+        "--frames",
+        "5",
+        "--camera",
+        SMALL_CAMERA,
+        "--out",
+        "ds",
+    ])
+    .success();
     let root = ws.path("ds");
     assert_eq!(files(&root.join("results"), "frame").len(), 5);
     assert_eq!(files(&root.join("results"), "depth").len(), 5);
@@ -47,7 +61,8 @@ fn replica_layout_reads_back() {
     assert_poses_close(&gt.poses, clean, 1e-9);
     assert_depth_matches_oracle(&replica_depth(&root, 3), &clean[3], 1.0 / 6553.5);
     let cam: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(root.join("cam_params.json")).unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string(root.join("cam_params.json")).unwrap())
+            .unwrap();
     assert_eq!(cam["camera"]["w"], 120);
     assert_eq!(cam["camera"]["scale"], 6553.5);
     let m = manifest(&root);
@@ -59,25 +74,63 @@ fn replica_layout_reads_back() {
 fn tum_layout_reads_back() {
     let ws = Workspace::new();
     ws.rslam(&[
-        "render", "--scene", "room0", "--frames", "4", "--camera", SMALL_CAMERA, "--format", "tum", "--rate", "30",
-        "--out", "ds",
+        "render",
+        "--scene",
+        "room0",
+        "--frames",
+        "4",
+        "--camera",
+        SMALL_CAMERA,
+        "--format",
+        "tum",
+        "--rate",
+        "30",
+        "--out",
+        "ds",
     ])
     .success();
     let root = ws.path("ds");
     let rgb_lines = lines(&root.join("rgb.txt"));
-    assert_eq!(rgb_lines, ["0.000000 rgb/0.000000.png", "0.033333 rgb/0.033333.png", "0.066667 rgb/0.066667.png", "0.100000 rgb/0.100000.png"]);
+    assert_eq!(
+        rgb_lines,
+        [
+            "0.000000 rgb/0.000000.png",
+            "0.033333 rgb/0.033333.png",
+            "0.066667 rgb/0.066667.png",
+            "0.100000 rgb/0.100000.png"
+        ]
+    );
     let raw_rgb_txt = std::fs::read_to_string(root.join("rgb.txt")).unwrap();
-    assert_eq!(raw_rgb_txt.lines().take_while(|l| l.starts_with('#')).count(), 3);
+    assert_eq!(
+        raw_rgb_txt
+            .lines()
+            .take_while(|l| l.starts_with('#'))
+            .count(),
+        3
+    );
     let assoc = std::fs::read_to_string(root.join("associations.txt")).unwrap();
-    assert_eq!(assoc.lines().next(), Some("0.000000 rgb/0.000000.png 0.000000 depth/0.000000.png"));
+    assert_eq!(
+        assoc.lines().next(),
+        Some("0.000000 rgb/0.000000.png 0.000000 depth/0.000000.png")
+    );
     assert!(!assoc.contains('#'), "ORB-SLAM3 reads associations raw");
     let gt = tum_trajectory(&root);
-    let clean = &load_scene("room0").unwrap().default_trajectory.unwrap().poses[..4];
+    let clean = &load_scene("room0")
+        .unwrap()
+        .default_trajectory
+        .unwrap()
+        .poses[..4];
     assert_poses_close(&gt.poses, clean, 1e-5);
-    let depth = rslam_core::dataset::decode_depth_png(&root.join("depth/0.066667.png"), 5000.0).unwrap();
+    let depth =
+        rslam_core::dataset::decode_depth_png(&root.join("depth/0.066667.png"), 5000.0).unwrap();
     assert_depth_matches_oracle(&depth, &clean[2], 1.0 / 5000.0);
     let yaml = std::fs::read_to_string(root.join("orbslam3.yaml")).unwrap();
-    for key in ["RGBD.DepthMapFactor: 5000.0", "Camera1.fx: 60.000000", "Camera.width: 120", "Viewer.ViewpointF"] {
+    for key in [
+        "RGBD.DepthMapFactor: 5000.0",
+        "Camera1.fx: 60.000000",
+        "Camera.width: 120",
+        "Viewer.ViewpointF",
+    ] {
         assert!(yaml.contains(key), "orbslam3.yaml lacks {key}");
     }
     assert!(ws.path("ds/rslam.json").exists());
@@ -86,20 +139,44 @@ fn tum_layout_reads_back() {
 #[test]
 fn trajectory_file_drives_the_camera() {
     let ws = Workspace::new();
-    ws.rslam(&["scene", "traj", "room0", "--out", "traj.txt"]).success();
+    ws.rslam(&["scene", "traj", "room0", "--out", "traj.txt"])
+        .success();
     let all = std::fs::read_to_string(ws.path("traj.txt")).unwrap();
     let lines: Vec<&str> = all.lines().skip(100).take(3).collect();
     ws.write("three.txt", &(lines.join("\n") + "\n"));
-    ws.rslam(&["render", "--scene", "room0", "--traj", "three.txt", "--camera", SMALL_CAMERA, "--out", "ds"]).success();
+    ws.rslam(&[
+        "render",
+        "--scene",
+        "room0",
+        "--traj",
+        "three.txt",
+        "--camera",
+        SMALL_CAMERA,
+        "--out",
+        "ds",
+    ])
+    .success();
     let gt = replica_trajectory(&ws.path("ds"));
-    let clean = &load_scene("room0").unwrap().default_trajectory.unwrap().poses[100..103];
+    let clean = &load_scene("room0")
+        .unwrap()
+        .default_trajectory
+        .unwrap()
+        .poses[100..103];
     assert_poses_close(&gt.poses, clean, 1e-9);
 }
 
 #[test]
 fn bad_input_is_a_one_line_error() {
     let ws = Workspace::new();
-    let run = |args: &[&str]| ws.rslam(&[&["render", "--out", "ds", "--camera", SMALL_CAMERA][..], args].concat());
+    let run = |args: &[&str]| {
+        ws.rslam(
+            &[
+                &["render", "--out", "ds", "--camera", SMALL_CAMERA][..],
+                args,
+            ]
+            .concat(),
+        )
+    };
     run(&["--scene", "nowhere.ply"]).fails_with(2, &["nowhere.ply"]);
     run(&["--scene", "kitchen9"]).fails_with(2, &["kitchen9", "room0", "office4"]);
     ws.write("mesh.stl", "solid x\n");
@@ -110,8 +187,12 @@ fn bad_input_is_a_one_line_error() {
     ws.write("bad.txt", "0 0 0 0 0 0 0 1\n0.1 0 0 zero 0 0 0 1\n");
     run(&["--scene", "room0", "--traj", "bad.txt"]).fails_with(2, &["bad.txt:2"]);
     run(&["--scene", "room0", "--frames", "999999"]).fails_with(2, &["--frames"]);
-    ws.rslam(&["render", "--scene", "room0", "--out", "ds", "--camera", "10,10"]).fails_with(2, &["camera"]);
-    run(&["--scene", "room0", "--perturb", "gausian_noise:3"]).fails_with(2, &["gausian_noise", "gaussian_noise"]);
+    ws.rslam(&[
+        "render", "--scene", "room0", "--out", "ds", "--camera", "10,10",
+    ])
+    .fails_with(2, &["camera"]);
+    run(&["--scene", "room0", "--perturb", "gausian_noise:3"])
+        .fails_with(2, &["gausian_noise", "gaussian_noise"]);
     run(&["--scene", "room0", "--perturb", "brightness:9"]).fails_with(2, &["brightness:9"]);
     assert!(!ws.path("ds/rslam.json").exists());
 }
@@ -120,7 +201,14 @@ fn bad_input_is_a_one_line_error() {
 fn interrupted_render_leaves_no_manifest() {
     let ws = Workspace::new();
     let child = std::process::Command::new(env!("CARGO_BIN_EXE_rslam"))
-        .args(["render", "--scene", "room0", "--camera", SMALL_CAMERA, "--out"])
+        .args([
+            "render",
+            "--scene",
+            "room0",
+            "--camera",
+            SMALL_CAMERA,
+            "--out",
+        ])
         .arg(ws.path("ds"))
         .stderr(std::process::Stdio::piped())
         .spawn()
@@ -133,10 +221,18 @@ fn interrupted_render_leaves_no_manifest() {
         }
         std::thread::sleep(Duration::from_millis(100));
     }
-    let status = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let status = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
     assert!(status.success());
     let out = child.wait_with_output().unwrap();
-    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(String::from_utf8_lossy(&out.stderr).contains("interrupted"));
     assert!(!ws.path("ds/rslam.json").exists());
 }

@@ -9,7 +9,11 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "rslam", version, about = "Robustness benchmarks for RGB-D SLAM: render, perturb, evaluate")]
+#[command(
+    name = "rslam",
+    version,
+    about = "Robustness benchmarks for RGB-D SLAM: render, perturb, evaluate"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -15,7 +15,10 @@ fn render_benches(c: &mut Criterion) {
     eprintln!("adapter: {}", ctx.describe());
     let scene = load_scene("room0").expect("room0");
     let poses = scene.default_trajectory.clone().expect("trajectory").poses;
-    for (label, k) in [("replica_1200x680", Intrinsics::REPLICA), ("tum_640x480", Intrinsics::TUM)] {
+    for (label, k) in [
+        ("replica_1200x680", Intrinsics::REPLICA),
+        ("tum_640x480", Intrinsics::TUM),
+    ] {
         let rasterizer = Rasterizer::new(&ctx, &scene, k).expect("rasterizer");
         let frame = FrameTextures::new(&ctx, k.width, k.height);
         let readback = FrameReadback::new(&ctx, k.width, k.height);

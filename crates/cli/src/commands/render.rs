@@ -51,7 +51,10 @@ pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
     let camera = Intrinsics::parse(&args.camera).context("--camera")?;
     let default_rate = if args.camera == "tum" { 30.0 } else { 20.0 };
     let rate_hz = args.rate.unwrap_or(default_rate);
-    anyhow::ensure!(rate_hz.is_finite() && rate_hz > 0.0, "--rate {rate_hz}: expected a positive number of Hz");
+    anyhow::ensure!(
+        rate_hz.is_finite() && rate_hz > 0.0,
+        "--rate {rate_hz}: expected a positive number of Hz"
+    );
     let job = RenderJob {
         scene: args.scene,
         out: args.out,

@@ -16,7 +16,11 @@ pub fn drive(
     sink: &FrameSink,
     with_depth: bool,
     what: &str,
-    mut record: impl FnMut(usize, &mut rslam_gpu::wgpu::CommandEncoder, &FrameTextures) -> anyhow::Result<()>,
+    mut record: impl FnMut(
+        usize,
+        &mut rslam_gpu::wgpu::CommandEncoder,
+        &FrameTextures,
+    ) -> anyhow::Result<()>,
 ) -> anyhow::Result<f64> {
     let k = sink.intrinsics();
     let mut ring = FrameRing::new(ctx, k.width, k.height, FRAMES_IN_FLIGHT);

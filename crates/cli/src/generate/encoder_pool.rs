@@ -45,7 +45,10 @@ impl EncoderPool {
     }
 
     /// Queues a job; fails with the first error any job has reported so far.
-    pub fn submit(&self, job: impl FnOnce() -> anyhow::Result<()> + Send + 'static) -> anyhow::Result<()> {
+    pub fn submit(
+        &self,
+        job: impl FnOnce() -> anyhow::Result<()> + Send + 'static,
+    ) -> anyhow::Result<()> {
         self.take_error()?;
         if let Some(sender) = &self.sender {
             sender
@@ -56,7 +59,12 @@ impl EncoderPool {
     }
 
     fn take_error(&self) -> anyhow::Result<()> {
-        match self.first_error.lock().unwrap_or_else(|p| p.into_inner()).take() {
+        match self
+            .first_error
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .take()
+        {
             Some(e) => Err(e),
             None => Ok(()),
         }

@@ -34,7 +34,11 @@ impl ManifestBuilder<'_> {
             .enumerate()
             .map(|(i, label)| {
                 // Image corruptions live on the colour frame, depth corruptions on the depth frame.
-                let sources = if i < image_items { &plan.rgb_source } else { &plan.depth_source };
+                let sources = if i < image_items {
+                    &plan.rgb_source
+                } else {
+                    &plan.depth_source
+                };
                 let per_frame = sources
                     .iter()
                     .map(|&s| {

@@ -1,14 +1,15 @@
 //! `rslam perturb`: corruptions applied to what is already on disk: a dataset (Replica or TUM
 //! layout), a folder of images, or one image.
 
+use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::sync_channel;
 
 use anyhow::Context;
 use rslam_core::dataset::{
-    decode_depth_png, read_dataset, read_rgb, write_rgb_like, DatasetWriter, ItemSeverities, Manifest,
-    SourceDataset,
+    decode_depth_png, read_dataset, read_rgb, write_rgb_like, DatasetWriter, ItemSeverities,
+    Manifest, SourceDataset,
 };
 use rslam_core::{DepthImage, Pose, RgbImage, Trajectory};
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
@@ -45,7 +46,11 @@ impl PerturbInput {
             );
             return Ok(Self::Image(path.to_path_buf()));
         }
-        anyhow::ensure!(path.is_dir(), "--input {}: no such file or folder", path.display());
+        anyhow::ensure!(
+            path.is_dir(),
+            "--input {}: no such file or folder",
+            path.display()
+        );
         if path.join("rgb.txt").is_file() || path.join("results").is_dir() {
             return Ok(Self::Dataset(path.to_path_buf()));
         }
@@ -85,7 +90,11 @@ fn image_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
         .filter(|p| p.is_file() && is_image(p))
         .collect();
     files.sort();
-    anyhow::ensure!(!files.is_empty(), "--input {}: no .png/.jpg images in this folder", dir.display());
+    anyhow::ensure!(
+        !files.is_empty(),
+        "--input {}: no .png/.jpg images in this folder",
+        dir.display()
+    );
     Ok(files)
 }
 
@@ -120,7 +129,13 @@ fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::R
         .rgb_source
         .iter()
         .enumerate()
-        .map(|(j, &s)| if restamp { t0 + j as f64 / rate } else { src.frames[s].rgb_time })
+        .map(|(j, &s)| {
+            if restamp {
+                t0 + j as f64 / rate
+            } else {
+                src.frames[s].rgb_time
+            }
+        })
         .collect();
     let plan = OutputPlan::new(
         stream.rgb_source,
@@ -146,21 +161,27 @@ fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::R
             }
         }
     });
-    let fps = drive(ctx, &sink, with_depth, "perturbing", |source, encoder, frame| {
-        let (color, depth) = rx.recv().context("frame decoder stopped")??;
-        anyhow::ensure!(
-            (color.width, color.height) == (k.width, k.height),
-            "{}: image is {}x{}, expected {}x{} like the first frame",
-            src.frames[source].rgb.display(),
-            color.width,
-            color.height,
-            k.width,
-            k.height
-        );
-        frame.upload(ctx, &color, depth.as_ref());
-        perturber.encode(ctx, encoder, frame, source as u32)?;
-        Ok(())
-    })?;
+    let fps = drive(
+        ctx,
+        &sink,
+        with_depth,
+        "perturbing",
+        |source, encoder, frame| {
+            let (color, depth) = rx.recv().context("frame decoder stopped")??;
+            anyhow::ensure!(
+                (color.width, color.height) == (k.width, k.height),
+                "{}: image is {}x{}, expected {}x{} like the first frame",
+                src.frames[source].rgb.display(),
+                color.width,
+                color.height,
+                k.width,
+                k.height
+            );
+            frame.upload(ctx, &color, depth.as_ref());
+            perturber.encode(ctx, encoder, frame, source as u32)?;
+            Ok(())
+        },
+    )?;
     drop(rx);
     let _ = decoder.join();
     let manifest = ManifestBuilder {
@@ -223,7 +244,12 @@ fn output_ground_truth(src: &SourceDataset, plan: &OutputPlan, restamp: bool) ->
 }
 
 /// Image inputs: each image perturbed as frame i of a sequence, written under its own name.
-fn perturb_images(ctx: &GpuContext, job: &PerturbJob, files: &[PathBuf], folder: bool) -> anyhow::Result<usize> {
+fn perturb_images(
+    ctx: &GpuContext,
+    job: &PerturbJob,
+    files: &[PathBuf],
+    folder: bool,
+) -> anyhow::Result<usize> {
     let spec = &job.perturb;
     if !spec.depth.is_empty() {
         anyhow::bail!("--perturb '{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)");
@@ -232,23 +258,23 @@ fn perturb_images(ctx: &GpuContext, job: &PerturbJob, files: &[PathBuf], folder:
         anyhow::bail!("--perturb '{spec}': fast and misalign act on RGB-D streams; use a dataset (Replica or TUM layout) as --input");
     }
     if folder {
-        std::fs::create_dir_all(&job.out).with_context(|| format!("--out {}", job.out.display()))?;
+        std::fs::create_dir_all(&job.out)
+            .with_context(|| format!("--out {}", job.out.display()))?;
         let _ = std::fs::remove_file(job.out.join(rslam_core::dataset::MANIFEST_FILE));
     }
-    let mut per_size: HashMap<(u32, u32), (Perturber, FrameTextures, FrameReadback)> = HashMap::new();
+    let mut per_size: HashMap<(u32, u32), (Perturber, FrameTextures, FrameReadback)> =
+        HashMap::new();
     let mut per_frame = vec![String::new(); spec.image.len()];
     for (i, file) in files.iter().enumerate() {
         let color = read_rgb(file)?;
         let size = (color.width, color.height);
-        if !per_size.contains_key(&size) {
-            let perturber = Perturber::new(ctx, spec, size.0, size.1, job.seed)?;
-            per_size.insert(
-                size,
-                (perturber, FrameTextures::new(ctx, size.0, size.1), FrameReadback::new(ctx, size.0, size.1)),
-            );
-        }
-        let Some((perturber, frame, readback)) = per_size.get_mut(&size) else {
-            unreachable!("inserted above")
+        let (perturber, frame, readback) = match per_size.entry(size) {
+            Entry::Occupied(entry) => entry.into_mut(),
+            Entry::Vacant(entry) => entry.insert((
+                Perturber::new(ctx, spec, size.0, size.1, job.seed)?,
+                FrameTextures::new(ctx, size.0, size.1),
+                FrameReadback::new(ctx, size.0, size.1),
+            )),
         };
         frame.upload(ctx, &color, None);
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -260,7 +286,8 @@ fn perturb_images(ctx: &GpuContext, job: &PerturbJob, files: &[PathBuf], folder:
             column.push(char::from(b'0' + item.severity));
         }
         let out = if folder {
-            job.out.join(file.file_name().context("image without a file name")?)
+            job.out
+                .join(file.file_name().context("image without a file name")?)
         } else {
             job.out.clone()
         };
@@ -272,7 +299,11 @@ fn perturb_images(ctx: &GpuContext, job: &PerturbJob, files: &[PathBuf], folder:
             tool: "rslam".into(),
             tool_version: env!("CARGO_PKG_VERSION").into(),
             command: job.command.clone(),
-            source: files.first().and_then(|f| f.parent()).map(|p| p.display().to_string()).unwrap_or_default(),
+            source: files
+                .first()
+                .and_then(|f| f.parent())
+                .map(|p| p.display().to_string())
+                .unwrap_or_default(),
             source_hash: String::new(),
             format: None,
             camera: None,

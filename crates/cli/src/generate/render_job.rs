@@ -8,8 +8,8 @@ use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::{PerturbSpec, Perturber};
 use rslam_render::{load_scene, Rasterizer};
 
-use super::manifest::ManifestBuilder;
 use super::drive::drive;
+use super::manifest::ManifestBuilder;
 use super::sink::{FrameSink, OutputPlan};
 
 /// Everything `rslam render` needs, validated.
@@ -38,7 +38,12 @@ fn camera_path(job: &RenderJob, scene_path: &Option<Trajectory>) -> anyhow::Resu
         None => scene_path
             .as_ref()
             .map(|t| t.poses.clone())
-            .with_context(|| format!("scene '{}' has no default trajectory: pass --traj FILE", job.scene))?,
+            .with_context(|| {
+                format!(
+                    "scene '{}' has no default trajectory: pass --traj FILE",
+                    job.scene
+                )
+            })?,
     };
     let count = match job.frames {
         Some(n) if n > poses.len() => anyhow::bail!(
@@ -49,7 +54,10 @@ fn camera_path(job: &RenderJob, scene_path: &Option<Trajectory>) -> anyhow::Resu
         Some(n) => n,
         None => poses.len(),
     };
-    Ok(Trajectory::from_poses_at_rate(poses[..count].to_vec(), job.rate_hz))
+    Ok(Trajectory::from_poses_at_rate(
+        poses[..count].to_vec(),
+        job.rate_hz,
+    ))
 }
 
 pub fn run_render(job: RenderJob) -> anyhow::Result<RenderReport> {
@@ -60,7 +68,12 @@ pub fn run_render(job: RenderJob) -> anyhow::Result<RenderReport> {
     let deviated = rslam_perturb::trajectory::deviate(&clean, &job.perturb, job.seed);
     let stream = rslam_perturb::stream::plan(deviated.len(), &job.perturb, job.seed);
     let rate = job.rate_hz;
-    let plan = OutputPlan::new(stream.rgb_source, stream.depth_source, |j| j as f64 / rate, |_| 0.0);
+    let plan = OutputPlan::new(
+        stream.rgb_source,
+        stream.depth_source,
+        |j| j as f64 / rate,
+        |_| 0.0,
+    );
     let k = job.camera;
     let rasterizer = Rasterizer::new(&ctx, &scene, k)?;
     let mut perturber = Perturber::new(&ctx, &job.perturb, k.width, k.height, job.seed)?;

@@ -25,14 +25,21 @@ impl OutputPlan {
         rgb_time: impl Fn(usize) -> f64,
         depth_offset: impl Fn(usize) -> f64,
     ) -> Self {
-        let time_of_source: std::collections::HashMap<usize, f64> =
-            rgb_source.iter().enumerate().map(|(j, &s)| (s, rgb_time(j))).collect();
+        let time_of_source: std::collections::HashMap<usize, f64> = rgb_source
+            .iter()
+            .enumerate()
+            .map(|(j, &s)| (s, rgb_time(j)))
+            .collect();
         let frames = (0..rgb_source.len())
             .map(|j| {
                 let d = depth_source[j];
                 OutputFrame {
                     rgb_time: rgb_time(j),
-                    depth_time: time_of_source.get(&d).copied().unwrap_or_else(|| rgb_time(j)) + depth_offset(d),
+                    depth_time: time_of_source
+                        .get(&d)
+                        .copied()
+                        .unwrap_or_else(|| rgb_time(j))
+                        + depth_offset(d),
                 }
             })
             .collect();
@@ -54,7 +61,12 @@ impl OutputPlan {
 
     /// Every source frame some output needs, ascending.
     pub fn needed_sources(&self) -> Vec<usize> {
-        let mut all: Vec<usize> = self.rgb_source.iter().chain(&self.depth_source).copied().collect();
+        let mut all: Vec<usize> = self
+            .rgb_source
+            .iter()
+            .chain(&self.depth_source)
+            .copied()
+            .collect();
         all.sort_unstable();
         all.dedup();
         all
@@ -86,18 +98,35 @@ impl FrameSink {
     }
 
     /// Queues the writes of source frame `source`; `depth` is `None` for image-only inputs.
-    pub fn accept(&self, source: usize, color: RgbImage, depth: Option<DepthImage>) -> anyhow::Result<()> {
+    pub fn accept(
+        &self,
+        source: usize,
+        color: RgbImage,
+        depth: Option<DepthImage>,
+    ) -> anyhow::Result<()> {
         let color = Arc::new(color);
-        for (j, _) in self.plan.rgb_source.iter().enumerate().filter(|(_, &s)| s == source) {
-            let (writer, color, time) = (self.writer.clone(), color.clone(), self.plan.frames[j].rgb_time);
-            self.pool.submit(move || Ok(writer.write_rgb(j, time, &color)?))?;
+        for (j, _) in self
+            .plan
+            .rgb_source
+            .iter()
+            .enumerate()
+            .filter(|(_, &s)| s == source)
+        {
+            let (writer, color, time) = (
+                self.writer.clone(),
+                color.clone(),
+                self.plan.frames[j].rgb_time,
+            );
+            self.pool
+                .submit(move || Ok(writer.write_rgb(j, time, &color)?))?;
         }
         let outputs: Vec<usize> = (0..self.plan.depth_source.len())
             .filter(|&j| self.plan.depth_source[j] == source)
             .collect();
         if let (Some(depth), Some(&first)) = (depth, outputs.first()) {
             let (writer, time) = (self.writer.clone(), self.plan.frames[first].depth_time);
-            self.pool.submit(move || Ok(writer.write_depth(&outputs, time, &depth)?))?;
+            self.pool
+                .submit(move || Ok(writer.write_depth(&outputs, time, &depth)?))?;
         }
         Ok(())
     }

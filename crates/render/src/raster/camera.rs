@@ -33,7 +33,9 @@ pub fn clip_from_camera(k: &Intrinsics) -> Mat4 {
         [0.0, 0.0, 0.0, NEAR],
         [0.0, 0.0, 1.0, 0.0],
     ];
-    let m = DMat4::from_cols_array_2d(&std::array::from_fn(|c| std::array::from_fn(|r| rows[r][c])));
+    let m = DMat4::from_cols_array_2d(&std::array::from_fn(|c| {
+        std::array::from_fn(|r| rows[r][c])
+    }));
     m.as_mat4()
 }
 

@@ -5,6 +5,6 @@ mod depth_agreement;
 mod rasterizer;
 mod texture_array;
 
-pub use depth_agreement::{depth_agreement, DepthAgreement};
 pub use camera::{clip_from_camera, CameraUniform, NEAR};
+pub use depth_agreement::{depth_agreement, DepthAgreement};
 pub use rasterizer::Rasterizer;

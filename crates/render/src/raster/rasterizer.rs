@@ -35,7 +35,11 @@ pub struct Rasterizer {
 }
 
 impl Rasterizer {
-    pub fn new(ctx: &GpuContext, scene: &Scene, intrinsics: Intrinsics) -> Result<Self, RenderError> {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &Scene,
+        intrinsics: Intrinsics,
+    ) -> Result<Self, RenderError> {
         let device = &ctx.device;
         let gpu_vertices: Vec<GpuVertex> = scene
             .mesh

@@ -21,7 +21,8 @@ fn resized(texture: &Texture, size: u32) -> Vec<u8> {
     if texture.width == size && texture.height == size {
         return texture.rgba.clone();
     }
-    let Some(image) = image::RgbaImage::from_raw(texture.width, texture.height, texture.rgba.clone())
+    let Some(image) =
+        image::RgbaImage::from_raw(texture.width, texture.height, texture.rgba.clone())
     else {
         return vec![255; (size * size * 4) as usize];
     };
@@ -36,8 +37,13 @@ fn half(rgba: &[u8], size: u32) -> Vec<u8> {
     for y in 0..h {
         for x in 0..h {
             for c in 0..4 {
-                let at = |xx: usize, yy: usize| rgba[((yy.min(s - 1)) * s + xx.min(s - 1)) * 4 + c] as u32;
-                let sum = at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) + at(2 * x + 1, 2 * y + 1);
+                let at = |xx: usize, yy: usize| {
+                    rgba[((yy.min(s - 1)) * s + xx.min(s - 1)) * 4 + c] as u32
+                };
+                let sum = at(2 * x, 2 * y)
+                    + at(2 * x + 1, 2 * y)
+                    + at(2 * x, 2 * y + 1)
+                    + at(2 * x + 1, 2 * y + 1);
                 out[(y * h + x) * 4 + c] = ((sum + 2) / 4) as u8;
             }
         }
@@ -45,7 +51,11 @@ fn half(rgba: &[u8], size: u32) -> Vec<u8> {
     out
 }
 
-pub fn upload(ctx: &GpuContext, scene_name: &str, textures: &[Texture]) -> Result<wgpu::Texture, RenderError> {
+pub fn upload(
+    ctx: &GpuContext,
+    scene_name: &str,
+    textures: &[Texture],
+) -> Result<wgpu::Texture, RenderError> {
     let limit = ctx.device.limits().max_texture_array_layers;
     if textures.len() as u64 > limit as u64 {
         return Err(RenderError::TooManyTextures {
@@ -124,7 +134,10 @@ mod tests {
 
     #[test]
     fn half_averages_2x2_blocks() {
-        let rgba: Vec<u8> = [0u8, 100, 200, 44].iter().flat_map(|&v| [v, v, v, 255]).collect();
+        let rgba: Vec<u8> = [0u8, 100, 200, 44]
+            .iter()
+            .flat_map(|&v| [v, v, v, 255])
+            .collect();
         assert_eq!(half(&rgba, 2), vec![86, 86, 86, 255]);
     }
 }

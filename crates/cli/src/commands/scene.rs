@@ -1,0 +1,68 @@
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Args, Subcommand};
+use rslam_render::load_scene;
+use rslam_render::scene::{export, BUILTIN_SCENES};
+
+#[derive(Args)]
+pub struct SceneArgs {
+    #[command(subcommand)]
+    command: SceneCommand,
+}
+
+#[derive(Subcommand)]
+enum SceneCommand {
+    /// Write a scene's ground-truth triangle mesh: world frame, metres, binary PLY with vertex
+    /// colours (textures baked to their mean colour).
+    Export {
+        /// Built-in scene (room0 … office4) or a mesh file (.ply, .gltf, .glb, .obj).
+        scene: String,
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Write a built-in scene's default trajectory as a Replica traj.txt (2000 poses, 20 Hz).
+    Traj {
+        /// Built-in scene (room0 … office4).
+        scene: String,
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// List the built-in scenes.
+    List,
+}
+
+pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
+    match args.command {
+        SceneCommand::Export { scene, out } => {
+            let loaded = load_scene(&scene)?;
+            export::write_ply(&loaded, &out)
+                .with_context(|| format!("exporting scene '{scene}'"))?;
+            println!(
+                "wrote {}: {} triangles, content hash {}",
+                out.display(),
+                loaded.mesh.triangle_count(),
+                loaded.content_hash()
+            );
+        }
+        SceneCommand::Traj { scene, out } => {
+            let loaded = load_scene(&scene)?;
+            let trajectory = loaded.default_trajectory.with_context(|| {
+                format!(
+                    "scene '{scene}' has no default trajectory: only the built-in scenes ({}) have one",
+                    BUILTIN_SCENES.join(", ")
+                )
+            })?;
+            rslam_core::trajectory_io::write_replica(&out, &trajectory)
+                .with_context(|| format!("writing the trajectory of scene '{scene}'"))?;
+            println!("wrote {}: {} poses", out.display(), trajectory.len());
+        }
+        SceneCommand::List => {
+            for name in BUILTIN_SCENES {
+                println!("{name}");
+            }
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,50 @@
+use std::path::PathBuf;
+
+/// Errors of rslam-render: each names the scene, file or value that was wrong.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(
+        "unknown scene '{name}': expected a built-in scene ({choices}) or a mesh file (.ply, .gltf, .glb, .obj)"
+    )]
+    UnknownScene { name: String, choices: String },
+    #[error("{path}: unsupported mesh format '{extension}': expected .ply, .gltf, .glb or .obj")]
+    UnsupportedFormat { path: PathBuf, extension: String },
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: {message}")]
+    BadMesh { path: PathBuf, message: String },
+    #[error("{path}: texture '{texture}': {message}")]
+    BadTexture {
+        path: PathBuf,
+        texture: String,
+        message: String,
+    },
+    #[error(transparent)]
+    Gpu(#[from] rslam_gpu::GpuError),
+    #[error("{name}: {count} textures exceed the GPU's limit of {limit} texture layers")]
+    TooManyTextures {
+        name: String,
+        count: usize,
+        limit: u32,
+    },
+}
+
+impl RenderError {
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        RenderError::Io {
+            path: path.into(),
+            source,
+        }
+    }
+
+    pub fn bad_mesh(path: impl Into<PathBuf>, message: impl Into<String>) -> Self {
+        RenderError::BadMesh {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+}

@@ -1,0 +1,14 @@
+//! Scenes and the wgpu rasterizer.
+//!
+//! Data flow: [`scene`] loads a built-in or user mesh into one [`Scene`]; the rasterizer uploads
+//! it once and renders sRGB colour and metric z-depth into the frame textures of `rslam-gpu`,
+//! where perturbations pick them up.
+
+mod error;
+pub mod raster;
+pub mod raycast;
+pub mod scene;
+
+pub use error::RenderError;
+pub use raster::Rasterizer;
+pub use scene::{load_scene, Mesh, Scene, Texture, Vertex};

@@ -1,0 +1,238 @@
+//! CPU ray-cast oracle: the reference the rasterizer's depth (and colour) is tested against, and
+//! the tool the built-in scenes' checks use to look through their default trajectories.
+//!
+//! Rays are traced through an obvhs BVH2 with a Möller–Trumbore test whose barycentric bounds are
+//! widened by [`EDGE_EPS`], so a ray through a shared edge never slips between two triangles.
+
+mod nearest;
+mod shading;
+
+use std::time::Duration;
+
+use glam::{DVec3, Vec3, Vec3A};
+use obvhs::bvh2::builder::build_bvh2_from_tris;
+use obvhs::bvh2::Bvh2;
+use obvhs::ray::{Ray, RayHit};
+use obvhs::triangle::Triangle;
+use obvhs::BvhBuildParams;
+use rayon::prelude::*;
+use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
+
+use crate::{Mesh, Scene, Texture};
+pub use nearest::SurfacePoint;
+use shading::Shading;
+
+/// Barycentric slack so rays through shared edges hit one of the two triangles.
+const EDGE_EPS: f32 = 1e-6;
+
+/// The closest intersection along a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Along the ray, in units of the direction vector given to [`RayCaster::cast`] (metres for a
+    /// unit direction; z-depth for a camera ray with unit z component).
+    pub distance: f32,
+    /// Index of the triangle (indices `3·triangle .. 3·triangle + 3` of the mesh).
+    pub triangle: u32,
+    /// Weights of the triangle's three vertices at the hit point (they sum to 1).
+    pub barycentrics: [f32; 3],
+}
+
+/// Colour and depth of one view, both ray-cast.
+pub struct RayCastFrame {
+    pub rgb: RgbImage,
+    pub depth: DepthImage,
+}
+
+pub struct RayCaster {
+    bvh: Bvh2,
+    triangles: Vec<Triangle>,
+    shading: Shading,
+}
+
+impl RayCaster {
+    /// Builds the BVH over the scene's triangles and the mip chains of its textures.
+    pub fn new(scene: &Scene) -> Self {
+        Self::build(&scene.mesh, &scene.textures)
+    }
+
+    /// Geometry only: colours are the vertex colours (every layer samples white).
+    pub fn from_mesh(mesh: &Mesh) -> Self {
+        Self::build(mesh, &[Texture::white()])
+    }
+
+    fn build(mesh: &Mesh, textures: &[Texture]) -> Self {
+        let p = |i: u32| Vec3A::from(mesh.vertices[i as usize].position);
+        let triangles: Vec<Triangle> = mesh
+            .indices
+            .chunks_exact(3)
+            .map(|t| Triangle {
+                v0: p(t[0]),
+                v1: p(t[1]),
+                v2: p(t[2]),
+            })
+            .collect();
+        let bvh = if triangles.is_empty() {
+            Bvh2::default()
+        } else {
+            build_bvh2_from_tris(
+                &triangles,
+                BvhBuildParams::fast_build(),
+                &mut Duration::default(),
+            )
+        };
+        Self {
+            bvh,
+            shading: Shading::new(mesh, textures, &triangles),
+            triangles,
+        }
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Closest hit of the ray `origin + t·dir`, `t > 0`; `dir` need not be unit length.
+    pub fn cast(&self, origin: Vec3, dir: Vec3) -> Option<Hit> {
+        self.cast_within(origin, dir, f32::INFINITY)
+    }
+
+    /// Closest hit with `0 < t ≤ max_distance` (in units of `dir`).
+    pub fn cast_within(&self, origin: Vec3, dir: Vec3, max_distance: f32) -> Option<Hit> {
+        if self.triangles.is_empty() || dir == Vec3::ZERO {
+            return None;
+        }
+        let ray = Ray::new(origin.into(), dir.into(), 0.0, max_distance);
+        let mut hit = RayHit::none();
+        let found = self.bvh.ray_traverse(ray, &mut hit, |ray, id| {
+            intersect(
+                &self.triangles[self.bvh.primitive_indices[id] as usize],
+                ray,
+            )
+        });
+        if !found {
+            return None;
+        }
+        let triangle = self.bvh.primitive_indices[hit.primitive_id as usize];
+        let tri = &self.triangles[triangle as usize];
+        let point = Vec3A::from(origin) + Vec3A::from(dir) * hit.t;
+        Some(Hit {
+            distance: hit.t,
+            triangle,
+            barycentrics: barycentrics(tri, point),
+        })
+    }
+
+    /// Geometric unit normal of a triangle (right-handed winding: counter-clockwise seen from the
+    /// side it points to).
+    pub fn triangle_normal(&self, triangle: u32) -> Vec3 {
+        self.triangles[triangle as usize].compute_normal().into()
+    }
+
+    /// Z-depth image of the view; pixel (x, y) looks along ((x−cx)/fx, (y−cy)/fy, 1) in camera
+    /// coordinates. Misses are 0.
+    pub fn depth_image(&self, world_from_camera: &Pose, k: &Intrinsics) -> DepthImage {
+        let mut depth = DepthImage::new(k.width, k.height);
+        depth
+            .data
+            .par_chunks_mut(k.width as usize)
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, z) in row.iter_mut().enumerate() {
+                    let (origin, dir) = camera_ray(world_from_camera, k, x, y);
+                    *z = self.cast(origin, dir).map_or(0.0, |h| h.distance);
+                }
+            });
+        depth
+    }
+
+    /// Colour and z-depth of the view. Textures are sampled at the mip level matching the pixel's
+    /// footprint, as a mipmapped rasterizer would; misses are black with depth 0.
+    pub fn render(&self, world_from_camera: &Pose, k: &Intrinsics) -> RayCastFrame {
+        let mut rgb = RgbImage::new(k.width, k.height);
+        let mut depth = DepthImage::new(k.width, k.height);
+        let w = k.width as usize;
+        let pixel_angle = 1.0 / k.fx.min(k.fy) as f32;
+        rgb.data
+            .par_chunks_mut(w * 3)
+            .zip(depth.data.par_chunks_mut(w))
+            .enumerate()
+            .for_each(|(y, (rgb_row, depth_row))| {
+                for x in 0..w {
+                    let (origin, dir) = camera_ray(world_from_camera, k, x, y);
+                    if let Some(hit) = self.cast(origin, dir) {
+                        depth_row[x] = hit.distance;
+                        let range = hit.distance * dir.length();
+                        let cos = self
+                            .triangle_normal(hit.triangle)
+                            .dot(dir.normalize())
+                            .abs();
+                        let footprint = range * pixel_angle / cos.max(0.1).sqrt();
+                        rgb_row[x * 3..x * 3 + 3].copy_from_slice(&self.color_at(&hit, footprint));
+                    }
+                }
+            });
+        RayCastFrame { rgb, depth }
+    }
+
+    /// sRGB colour at a hit: vertex colour × texture (products in linear light), the texture
+    /// sampled bilinearly at the mip level whose texels match `footprint` metres (0 = full
+    /// resolution).
+    pub fn color_at(&self, hit: &Hit, footprint: f32) -> [u8; 3] {
+        self.shading.color_at(hit, footprint)
+    }
+
+    /// The surface point nearest to `point` (`None` for an empty mesh).
+    pub fn nearest_surface(&self, point: Vec3) -> Option<SurfacePoint> {
+        nearest::nearest_surface(&self.bvh, &self.triangles, point.into())
+    }
+}
+
+/// World-space origin and direction (z component 1 in camera coordinates) of pixel (x, y).
+pub fn camera_ray(world_from_camera: &Pose, k: &Intrinsics, x: usize, y: usize) -> (Vec3, Vec3) {
+    let d = DVec3::new((x as f64 - k.cx) / k.fx, (y as f64 - k.cy) / k.fy, 1.0);
+    (
+        world_from_camera.translation.as_vec3(),
+        (world_from_camera.rotation * d).as_vec3(),
+    )
+}
+
+/// Möller–Trumbore with [`EDGE_EPS`] slack; `f32::INFINITY` on a miss, as obvhs expects.
+fn intersect(tri: &Triangle, ray: &Ray) -> f32 {
+    let e1 = tri.v1 - tri.v0;
+    let e2 = tri.v2 - tri.v0;
+    let p = ray.direction.cross(e2);
+    let det = e1.dot(p);
+    if det == 0.0 || !det.is_finite() {
+        return f32::INFINITY;
+    }
+    let inv = 1.0 / det;
+    let s = ray.origin - tri.v0;
+    let u = s.dot(p) * inv;
+    let q = s.cross(e1);
+    let v = ray.direction.dot(q) * inv;
+    if u < -EDGE_EPS || v < -EDGE_EPS || u + v > 1.0 + EDGE_EPS {
+        return f32::INFINITY;
+    }
+    let t = e2.dot(q) * inv;
+    if t > ray.tmin && t <= ray.tmax {
+        t
+    } else {
+        f32::INFINITY
+    }
+}
+
+fn barycentrics(tri: &Triangle, p: Vec3A) -> [f32; 3] {
+    let (e1, e2, ep) = (tri.v1 - tri.v0, tri.v2 - tri.v0, p - tri.v0);
+    let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (dp1, dp2) = (ep.dot(e1), ep.dot(e2));
+    let denom = d11 * d22 - d12 * d12;
+    if denom == 0.0 {
+        return [1.0, 0.0, 0.0];
+    }
+    let b1 = ((d22 * dp1 - d12 * dp2) / denom).clamp(0.0, 1.0);
+    let b2 = ((d11 * dp2 - d12 * dp1) / denom).clamp(0.0, 1.0 - b1);
+    [1.0 - b1 - b2, b1, b2]
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,199 @@
+//! glTF 2.0 / GLB reader: every triangle primitive of the default scene, node transforms applied,
+//! colour = base-colour factor × COLOR_0 (linear in glTF, stored as sRGB here) × base-colour texture.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use ::gltf::image::Format;
+use ::gltf::mesh::Mode;
+use glam::{Mat4, Vec3};
+
+use super::srgb::linear_to_srgb;
+use super::{Mesh, Texture, Vertex};
+use crate::RenderError;
+
+/// Reads the meshes and base-colour textures of a .gltf or .glb file.
+pub fn read_gltf(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
+    let (document, buffers, images) =
+        ::gltf::import(path).map_err(|e| RenderError::bad_mesh(path, e.to_string()))?;
+    let mut out = Collector {
+        path,
+        mesh: Mesh::default(),
+        textures: vec![Texture::white()],
+        layer_of_image: HashMap::new(),
+        buffers: &buffers,
+        images: &images,
+    };
+    let roots: Vec<::gltf::Node> = match document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        Some(scene) => scene.nodes().collect(),
+        None => document.nodes().collect(),
+    };
+    for node in roots {
+        out.node(&node, Mat4::IDENTITY)?;
+    }
+    Ok((out.mesh, out.textures))
+}
+
+struct Collector<'a> {
+    path: &'a Path,
+    mesh: Mesh,
+    textures: Vec<Texture>,
+    layer_of_image: HashMap<usize, u32>,
+    buffers: &'a [::gltf::buffer::Data],
+    images: &'a [::gltf::image::Data],
+}
+
+impl Collector<'_> {
+    fn node(&mut self, node: &::gltf::Node, parent: Mat4) -> Result<(), RenderError> {
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                self.primitive(&primitive, &world)?;
+            }
+        }
+        for child in node.children() {
+            self.node(&child, world)?;
+        }
+        Ok(())
+    }
+
+    fn primitive(
+        &mut self,
+        primitive: &::gltf::Primitive,
+        world: &Mat4,
+    ) -> Result<(), RenderError> {
+        let mode = primitive.mode();
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            return Ok(()); // points and lines have no surface to render
+        }
+        let reader = primitive.reader(|b| self.buffers.get(b.index()).map(|d| &d.0[..]));
+        let positions: Vec<[f32; 3]> = reader
+            .read_positions()
+            .ok_or_else(|| {
+                RenderError::bad_mesh(self.path, "a triangle primitive has no POSITION attribute")
+            })?
+            .collect();
+        let uvs: Vec<[f32; 2]> = reader
+            .read_tex_coords(0)
+            .map(|t| t.into_f32().collect())
+            .unwrap_or_default();
+        let colors: Vec<[f32; 4]> = reader
+            .read_colors(0)
+            .map(|c| c.into_rgba_f32().collect())
+            .unwrap_or_default();
+        let pbr = primitive.material().pbr_metallic_roughness();
+        let factor = pbr.base_color_factor();
+        let layer = match pbr.base_color_texture() {
+            Some(info) => self.layer(info.texture().source().index())?,
+            None => 0,
+        };
+        let base = self.mesh.vertices.len() as u32;
+        for (i, p) in positions.iter().enumerate() {
+            let c = colors.get(i).copied().unwrap_or([1.0; 4]);
+            let rgb: [u8; 3] = std::array::from_fn(|k| linear_to_srgb(c[k] * factor[k]));
+            self.mesh.vertices.push(Vertex {
+                position: world.transform_point3(Vec3::from(*p)).into(),
+                uv: uvs.get(i).copied().unwrap_or([0.0; 2]),
+                color: [rgb[0], rgb[1], rgb[2], 255],
+                layer,
+            });
+        }
+        let indices: Vec<u32> = match reader.read_indices() {
+            Some(idx) => idx.into_u32().collect(),
+            None => (0..positions.len() as u32).collect(),
+        };
+        if let Some(&bad) = indices.iter().find(|&&i| i as usize >= positions.len()) {
+            return Err(RenderError::bad_mesh(
+                self.path,
+                format!("index {bad} out of range for {} vertices", positions.len()),
+            ));
+        }
+        let flip = world.determinant() < 0.0;
+        let mut push = |a: u32, b: u32, c: u32| {
+            let (b, c) = if flip { (c, b) } else { (b, c) };
+            self.mesh
+                .indices
+                .extend_from_slice(&[base + a, base + b, base + c]);
+        };
+        match mode {
+            Mode::Triangles => indices.chunks_exact(3).for_each(|t| push(t[0], t[1], t[2])),
+            Mode::TriangleStrip => {
+                for k in 0..indices.len().saturating_sub(2) {
+                    let (a, b, c) = (indices[k], indices[k + 1], indices[k + 2]);
+                    if k % 2 == 0 {
+                        push(a, b, c)
+                    } else {
+                        push(b, a, c)
+                    }
+                }
+            }
+            _ => {
+                for k in 1..indices.len().saturating_sub(1) {
+                    push(indices[0], indices[k], indices[k + 1]);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn layer(&mut self, image: usize) -> Result<u32, RenderError> {
+        if let Some(&layer) = self.layer_of_image.get(&image) {
+            return Ok(layer);
+        }
+        let data = &self.images[image];
+        let texture = to_rgba8(data).ok_or_else(|| RenderError::BadTexture {
+            path: self.path.to_path_buf(),
+            texture: format!("image {image}"),
+            message: format!("unsupported pixel format {:?}", data.format),
+        })?;
+        self.textures.push(texture);
+        let layer = self.textures.len() as u32 - 1;
+        self.layer_of_image.insert(image, layer);
+        Ok(layer)
+    }
+}
+
+fn to_rgba8(data: &::gltf::image::Data) -> Option<Texture> {
+    let (channels, bytes_per_channel) = match data.format {
+        Format::R8 => (1, 1),
+        Format::R8G8 => (2, 1),
+        Format::R8G8B8 => (3, 1),
+        Format::R8G8B8A8 => (4, 1),
+        Format::R16 => (1, 2),
+        Format::R16G16 => (2, 2),
+        Format::R16G16B16 => (3, 2),
+        Format::R16G16B16A16 => (4, 2),
+        _ => return None,
+    };
+    let stride = channels * bytes_per_channel;
+    // 16-bit channels: keep the high byte (little-endian storage).
+    let channel = |px: &[u8], c: usize| px[c * bytes_per_channel + bytes_per_channel - 1];
+    let rgba = data
+        .pixels
+        .chunks_exact(stride)
+        .flat_map(|px| match channels {
+            1 | 2 => [channel(px, 0); 3].into_iter().chain([if channels == 2 {
+                channel(px, 1)
+            } else {
+                255
+            }]),
+            _ => [channel(px, 0), channel(px, 1), channel(px, 2)]
+                .into_iter()
+                .chain([if channels == 4 { channel(px, 3) } else { 255 }]),
+        })
+        .collect();
+    Some(Texture {
+        width: data.width,
+        height: data.height,
+        rgba,
+    })
+}
+
+#[cfg(test)]
+mod tests;

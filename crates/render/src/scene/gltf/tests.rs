@@ -1,0 +1,144 @@
+use super::*;
+use crate::load_scene;
+
+/// One triangle (positions, uvs, indices) in a little-endian buffer.
+fn triangle_buffer() -> Vec<u8> {
+    let mut b = Vec::new();
+    for p in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+        p.iter().for_each(|c| b.extend(c.to_le_bytes()));
+    }
+    for uv in [[0.0f32, 0.0], [1.0, 0.0], [0.0, 1.0]] {
+        uv.iter().for_each(|c| b.extend(c.to_le_bytes()));
+    }
+    for i in [0u16, 1, 2] {
+        b.extend(i.to_le_bytes());
+    }
+    b.extend([0, 0]); // pad to 4 bytes
+    b
+}
+
+fn document(buffer: &str, image: &str) -> String {
+    format!(
+        r#"{{
+  "asset": {{"version": "2.0"}},
+  "scene": 0,
+  "scenes": [{{"nodes": [0]}}],
+  "nodes": [{{"children": [1], "translation": [10, 0, 0]}}, {{"mesh": 0, "scale": [2, 2, 2]}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}, "indices": 2, "material": 0}}]}}],
+  "materials": [{{"pbrMetallicRoughness": {{"baseColorFactor": [1.0, 0.2158, 0.0, 1.0], "baseColorTexture": {{"index": 0}}}}}}],
+  "textures": [{{"source": 0}}],
+  "images": [{image}],
+  "buffers": [{buffer}],
+  "bufferViews": [
+    {{"buffer": 0, "byteOffset": 0, "byteLength": 36}},
+    {{"buffer": 0, "byteOffset": 36, "byteLength": 24}},
+    {{"buffer": 0, "byteOffset": 60, "byteLength": 6}}
+  ],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+    {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}},
+    {{"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}}
+  ]
+}}"#
+    )
+}
+
+fn png_2x1() -> Vec<u8> {
+    let img = image::RgbImage::from_raw(2, 1, vec![255, 0, 0, 0, 0, 255]).unwrap();
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png).unwrap();
+    bytes.into_inner()
+}
+
+fn check(mesh: &Mesh, textures: &[Texture]) {
+    assert_eq!(mesh.indices, vec![0, 1, 2]);
+    // Node transforms compose: scale 2, then translate 10 along x.
+    assert_eq!(mesh.vertices[1].position, [12.0, 0.0, 0.0]);
+    assert_eq!(mesh.vertices[2].position, [10.0, 2.0, 0.0]);
+    assert_eq!(mesh.vertices[1].uv, [1.0, 0.0]);
+    // Linear factor (1, 0.2158, 0) is sRGB (255, 128, 0).
+    assert_eq!(mesh.vertices[0].color, [255, 128, 0, 255]);
+    assert_eq!(mesh.vertices[0].layer, 1);
+    assert_eq!(textures.len(), 2);
+    assert_eq!(textures[1].rgba, vec![255, 0, 0, 255, 0, 0, 255, 255]);
+}
+
+#[test]
+fn reads_gltf_with_external_buffer_and_texture() {
+    let dir = tempfile::tempdir().unwrap();
+    let buffer = triangle_buffer();
+    std::fs::write(dir.path().join("tri.bin"), &buffer).unwrap();
+    std::fs::write(dir.path().join("tex.png"), png_2x1()).unwrap();
+    let json = document(
+        &format!(r#"{{"uri": "tri.bin", "byteLength": {}}}"#, buffer.len()),
+        r#"{"uri": "tex.png"}"#,
+    );
+    let path = dir.path().join("scene.gltf");
+    std::fs::write(&path, json).unwrap();
+    let (mesh, textures) = read_gltf(&path).unwrap();
+    check(&mesh, &textures);
+}
+
+#[test]
+fn reads_glb_with_embedded_buffer_and_texture() {
+    let mut bin = triangle_buffer();
+    let png = png_2x1();
+    let image_offset = bin.len();
+    bin.extend(&png);
+    bin.resize(bin.len() + (4 - bin.len() % 4) % 4, 0);
+    let mut json = document(
+        &format!(r#"{{"byteLength": {}}}"#, bin.len()),
+        r#"{"bufferView": 3, "mimeType": "image/png"}"#,
+    );
+    json = json.replace(
+        r#"{"buffer": 0, "byteOffset": 60, "byteLength": 6}"#,
+        &format!(r#"{{"buffer": 0, "byteOffset": 60, "byteLength": 6}}, {{"buffer": 0, "byteOffset": {image_offset}, "byteLength": {}}}"#, png.len()),
+    );
+    let mut json = json.into_bytes();
+    json.resize(json.len() + (4 - json.len() % 4) % 4, b' ');
+    let mut glb = Vec::new();
+    glb.extend(b"glTF");
+    glb.extend(2u32.to_le_bytes());
+    glb.extend(((12 + 8 + json.len() + 8 + bin.len()) as u32).to_le_bytes());
+    glb.extend((json.len() as u32).to_le_bytes());
+    glb.extend(0x4E4F_534Au32.to_le_bytes());
+    glb.extend(&json);
+    glb.extend((bin.len() as u32).to_le_bytes());
+    glb.extend(0x004E_4942u32.to_le_bytes());
+    glb.extend(&bin);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.glb");
+    std::fs::write(&path, &glb).unwrap();
+    let scene = load_scene(path.to_str().unwrap()).unwrap();
+    check(&scene.mesh, &scene.textures);
+
+    let cut = dir.path().join("cut.glb");
+    std::fs::write(&cut, &glb[..glb.len() / 2]).unwrap();
+    let err = load_scene(cut.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.starts_with(cut.to_str().unwrap()) && !err.contains('\n'),
+        "{err}"
+    );
+}
+
+#[test]
+fn broken_gltf_names_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("broken.gltf");
+    std::fs::write(&path, "{ not json").unwrap();
+    let err = load_scene(path.to_str().unwrap()).unwrap_err().to_string();
+    assert!(err.starts_with(path.to_str().unwrap()), "{err}");
+    let missing_buffer = dir.path().join("nobin.gltf");
+    std::fs::write(
+        &missing_buffer,
+        document(
+            r#"{"uri": "gone.bin", "byteLength": 68}"#,
+            r#"{"uri": "tex.png"}"#,
+        ),
+    )
+    .unwrap();
+    let err = load_scene(missing_buffer.to_str().unwrap())
+        .unwrap_err()
+        .to_string();
+    assert!(err.starts_with(missing_buffer.to_str().unwrap()), "{err}");
+}

@@ -1,0 +1,74 @@
+//! Scenes: one triangle mesh with baked, view-independent colour, plus the textures it samples.
+//! Built-in procedural scenes (`room0` … `office4`) and user meshes (PLY, glTF/GLB, OBJ) all load
+//! into the same [`Scene`]: [`load_scene`] picks the source from the name or file extension,
+//! [`export`] writes the ground-truth mesh as PLY.
+
+mod builtin;
+mod content_hash;
+pub mod export;
+mod gltf;
+mod load;
+mod obj;
+mod ply;
+pub(crate) mod srgb;
+
+pub use builtin::BUILTIN_SCENES;
+pub use load::load_scene;
+
+use rslam_core::Trajectory;
+
+/// One mesh vertex. Final surface colour = `color` (sRGB, baked lighting) × `textures[layer]` at `uv`
+/// (textures repeat outside [0,1]); both are decoded to linear light before the product.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vertex {
+    /// World coordinates, metres.
+    pub position: [f32; 3],
+    pub uv: [f32; 2],
+    /// sRGB, alpha ignored.
+    pub color: [u8; 4],
+    /// Index into [`Scene::textures`]; 0 is the 1×1 white texture.
+    pub layer: u32,
+}
+
+/// Indexed triangle list.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    pub vertices: Vec<Vertex>,
+    /// Three indices per triangle.
+    pub indices: Vec<u32>,
+}
+
+/// An RGBA8 sRGB texture, rows top to bottom (v = 0 at the top row).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Texture {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+}
+
+impl Texture {
+    pub fn white() -> Self {
+        Self {
+            width: 1,
+            height: 1,
+            rgba: vec![255; 4],
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Built-in name or the path it was loaded from.
+    pub name: String,
+    pub mesh: Mesh,
+    /// `textures[0]` is always [`Texture::white`].
+    pub textures: Vec<Texture>,
+    /// The built-in scenes' default camera path; `None` for user meshes.
+    pub default_trajectory: Option<Trajectory>,
+}
+
+impl Mesh {
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+}

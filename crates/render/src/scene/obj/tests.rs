@@ -1,0 +1,66 @@
+use crate::load_scene;
+
+const QUAD_OBJ: &str =
+    "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+                        usemtl painted\nf 1/1 2/2 3/3 4/4\n";
+
+#[test]
+fn reads_obj_with_material_colour_and_texture() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("quad.obj"), QUAD_OBJ).unwrap();
+    std::fs::write(
+        dir.path().join("quad.mtl"),
+        "newmtl painted\nKd 1.0 0.5 0.0\nmap_Kd tex/wood.png\n",
+    )
+    .unwrap();
+    std::fs::create_dir(dir.path().join("tex")).unwrap();
+    image::RgbImage::from_raw(1, 2, vec![10, 20, 30, 40, 50, 60])
+        .unwrap()
+        .save(dir.path().join("tex/wood.png"))
+        .unwrap();
+    let scene = load_scene(dir.path().join("quad.obj").to_str().unwrap()).unwrap();
+    assert_eq!(scene.mesh.triangle_count(), 2, "the quad is triangulated");
+    assert_eq!(scene.textures.len(), 2);
+    assert_eq!(
+        scene.textures[1].rgba,
+        vec![10, 20, 30, 255, 40, 50, 60, 255]
+    );
+    let v = &scene.mesh.vertices;
+    assert!(v
+        .iter()
+        .all(|v| v.layer == 1 && v.color == [255, 128, 0, 255]));
+    let corner = v.iter().find(|v| v.position == [0.0, 1.0, 0.0]).unwrap();
+    assert_eq!(corner.uv, [0.0, 0.0], "OBJ v = 1 is the top row");
+}
+
+#[test]
+fn obj_problems_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("quad.obj");
+    std::fs::write(&obj, QUAD_OBJ).unwrap();
+    // Material library missing.
+    let err = load_scene(obj.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.contains("quad.obj") && err.contains("material library"),
+        "{err}"
+    );
+    // Texture missing.
+    std::fs::write(
+        dir.path().join("quad.mtl"),
+        "newmtl painted\nmap_Kd nowhere.png\n",
+    )
+    .unwrap();
+    let err = load_scene(obj.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.contains("quad.obj") && err.contains("nowhere.png"),
+        "{err}"
+    );
+    // Garbage geometry.
+    let bad = dir.path().join("bad.obj");
+    std::fs::write(&bad, "v 0 0 zero\nf 1 2 3\n").unwrap();
+    let err = load_scene(bad.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.starts_with(bad.to_str().unwrap()) && !err.contains('\n'),
+        "{err}"
+    );
+}

@@ -1,0 +1,51 @@
+use crate::harness::Workspace;
+
+#[test]
+fn list_shows_every_group_with_parameters_per_severity() {
+    let out = Workspace::new().rslam(&["list"]).success();
+    for fragment in [
+        "Image corruptions",
+        "Depth corruptions",
+        "Trajectory deviations",
+        "Stream operations",
+        "gaussian_noise",
+        "σ=0.08 | σ=0.12 | σ=0.18 | σ=0.26 | σ=0.38",
+        "depth_range:0.42-10",
+        "[0.5, 3.8] m | [0.6, 3.6] m",
+        "@smooth",
+        "misalign:FRAMES[@dynamic]",
+    ] {
+        assert!(out.contains(fragment), "list lacks '{fragment}':\n{out}");
+    }
+}
+
+#[test]
+fn list_json_has_one_object_per_perturbation() {
+    let out = Workspace::new().rslam(&["list", "--json"]).success();
+    let entries: Vec<serde_json::Value> = serde_json::from_str(&out).expect("valid JSON");
+    let names: Vec<&str> = entries.iter().filter_map(|e| e["name"].as_str()).collect();
+    for name in [
+        "gaussian_noise",
+        "contrast",
+        "pixelate",
+        "depth_noise",
+        "depth_edge_erosion",
+        "rot",
+        "trans",
+        "fast",
+        "misalign",
+    ] {
+        assert_eq!(
+            names.iter().filter(|&&n| n == name).count(),
+            1,
+            "{name} in {names:?}"
+        );
+    }
+    let contrast = entries
+        .iter()
+        .find(|e| e["name"] == "contrast")
+        .expect("contrast");
+    assert_eq!(contrast["group"], "image");
+    assert_eq!(contrast["parameters"].as_array().map(|p| p.len()), Some(5));
+    assert_eq!(contrast["parameters"][4], "c=0.05");
+}
