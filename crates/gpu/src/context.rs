@@ -97,7 +97,10 @@ impl GpuContext {
     /// "NAME (TYPE, driver DRIVER)", for the log line that names the chosen adapter.
     pub fn describe(&self) -> String {
         let i = &self.adapter_info;
-        format!("{} ({:?}, {} {})", i.name, i.device_type, i.driver, i.driver_info)
+        format!(
+            "{} ({:?}, {} {})",
+            i.name, i.device_type, i.driver, i.driver_info
+        )
     }
 
     pub fn is_cpu(&self) -> bool {

@@ -44,7 +44,11 @@ impl FrameTextures {
         Self {
             width,
             height,
-            color: make("frame colour", Self::COLOR_FORMAT, &[Self::COLOR_SRGB_FORMAT]),
+            color: make(
+                "frame colour",
+                Self::COLOR_FORMAT,
+                &[Self::COLOR_SRGB_FORMAT],
+            ),
             depth: make("frame depth", Self::DEPTH_FORMAT, &[]),
         }
     }

@@ -93,9 +93,11 @@ impl FrameReadback {
         ctx.check()?;
         let row = (self.width * 4) as usize;
         let unpad = |buffer: &wgpu::Buffer| -> Result<Vec<u8>, GpuError> {
-            let view = buffer.get_mapped_range(..).map_err(|e| GpuError::Readback {
-                message: e.to_string(),
-            })?;
+            let view = buffer
+                .get_mapped_range(..)
+                .map_err(|e| GpuError::Readback {
+                    message: e.to_string(),
+                })?;
             let mut out = Vec::with_capacity(row * self.height as usize);
             for chunk in view.chunks(self.padded_row_bytes as usize) {
                 out.extend_from_slice(&chunk[..row]);

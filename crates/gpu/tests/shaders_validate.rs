@@ -32,14 +32,20 @@ fn every_shader_parses_and_validates() {
     let mut files = Vec::new();
     wgsl_files(&root, &root, &mut files);
     files.sort();
-    assert!(!files.is_empty(), "no shader found under {}", root.display());
+    assert!(
+        !files.is_empty(),
+        "no shader found under {}",
+        root.display()
+    );
 
     let embedded: Vec<&str> = rslam_gpu::shader::paths().collect();
     let lookup = |p: &str| std::fs::read_to_string(root.join(p)).ok();
     let mut failures = Vec::new();
     for file in &files {
         if !embedded.contains(&file.as_str()) {
-            failures.push(format!("{file}: on disk but not embedded (rebuild rslam-gpu)"));
+            failures.push(format!(
+                "{file}: on disk but not embedded (rebuild rslam-gpu)"
+            ));
             continue;
         }
         let result = rslam_gpu::shader::resolve(file, &lookup)
@@ -49,5 +55,11 @@ fn every_shader_parses_and_validates() {
             failures.push(format!("{file}:\n{message}"));
         }
     }
-    assert!(failures.is_empty(), "{} of {} shaders failed:\n{}", failures.len(), files.len(), failures.join("\n\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} shaders failed:\n{}",
+        failures.len(),
+        files.len(),
+        failures.join("\n\n")
+    );
 }

@@ -27,7 +27,9 @@ fn axis_values(name: &str, deviation: &Deviation, seed: u64, index: usize, time:
     let sigma = deviation.sigma;
     if !deviation.smooth {
         let key = RngKey::new(seed, name, index as u32, PURPOSE_IID);
-        return DVec3::from_array(std::array::from_fn(|axis| sigma * key.normal_f64([axis as u32, 0, 0, 0])));
+        return DVec3::from_array(std::array::from_fn(|axis| {
+            sigma * key.normal_f64([axis as u32, 0, 0, 0])
+        }));
     }
     let amplitude = sigma * (2.0 / SMOOTH_TONES as f64).sqrt();
     DVec3::from_array(std::array::from_fn(|axis| {
@@ -36,7 +38,8 @@ fn axis_values(name: &str, deviation: &Deviation, seed: u64, index: usize, time:
                 // Frame 0 of the key: the tones are fixed for the whole sequence.
                 let key = RngKey::new(seed, name, 0, PURPOSE_TONE);
                 let f = SMOOTH_BAND_HZ.0
-                    + (SMOOTH_BAND_HZ.1 - SMOOTH_BAND_HZ.0) * key.uniform_f64([axis as u32, tone, 0, 0]);
+                    + (SMOOTH_BAND_HZ.1 - SMOOTH_BAND_HZ.0)
+                        * key.uniform_f64([axis as u32, tone, 0, 0]);
                 let phase = std::f64::consts::TAU * key.uniform_f64([axis as u32, tone, 1, 0]);
                 amplitude * (std::f64::consts::TAU * f * time + phase).sin()
             })
@@ -55,7 +58,9 @@ pub fn deviate(clean: &Trajectory, spec: &PerturbSpec, seed: u64) -> Trajectory 
             let mut out = *pose;
             if let Some(rot) = &spec.rotation {
                 let a = axis_values("rot", rot, seed, i, time) * std::f64::consts::PI / 180.0;
-                let delta = DQuat::from_rotation_x(a.x) * DQuat::from_rotation_y(a.y) * DQuat::from_rotation_z(a.z);
+                let delta = DQuat::from_rotation_x(a.x)
+                    * DQuat::from_rotation_y(a.y)
+                    * DQuat::from_rotation_z(a.z);
                 out = Pose::new(pose.rotation * delta, out.translation);
             }
             if let Some(trans) = &spec.translation {
@@ -76,7 +81,12 @@ mod tests {
 
     fn straight_line(n: usize) -> Trajectory {
         let poses = (0..n)
-            .map(|i| Pose::new(DQuat::from_rotation_z(0.01 * i as f64), DVec3::new(0.02 * i as f64, 0.0, 1.5)))
+            .map(|i| {
+                Pose::new(
+                    DQuat::from_rotation_z(0.01 * i as f64),
+                    DVec3::new(0.02 * i as f64, 0.0, 1.5),
+                )
+            })
             .collect();
         Trajectory::from_poses_at_rate(poses, 20.0)
     }
@@ -103,7 +113,10 @@ mod tests {
 
     fn assert_sigma(values: &[f64], sigma: f64, what: &str) {
         let s = std(values);
-        assert!((s - sigma).abs() < SIGMA_TOLERANCE * sigma, "{what}: sample std {s} vs σ {sigma}");
+        assert!(
+            (s - sigma).abs() < SIGMA_TOLERANCE * sigma,
+            "{what}: sample std {s} vs σ {sigma}"
+        );
     }
 
     #[test]
@@ -124,11 +137,17 @@ mod tests {
     fn smooth_deviation_is_temporally_correlated_and_iid_is_not() {
         let clean = straight_line(2000);
         let lag1 = |spec: &str| {
-            let (_, offsets) = deviations(&clean, &deviate(&clean, &PerturbSpec::parse(spec).unwrap(), 1));
+            let (_, offsets) = deviations(
+                &clean,
+                &deviate(&clean, &PerturbSpec::parse(spec).unwrap(), 1),
+            );
             let x = &offsets[0];
             let mean = x.iter().sum::<f64>() / x.len() as f64;
             let var: f64 = x.iter().map(|v| (v - mean).powi(2)).sum();
-            x.windows(2).map(|w| (w[0] - mean) * (w[1] - mean)).sum::<f64>() / var
+            x.windows(2)
+                .map(|w| (w[0] - mean) * (w[1] - mean))
+                .sum::<f64>()
+                / var
         };
         assert!(lag1("trans:0.05@smooth") > 0.8);
         assert!(lag1("trans:0.05").abs() < 0.1);
@@ -140,6 +159,9 @@ mod tests {
         let spec = PerturbSpec::parse("rot:1,trans:0.0125").unwrap();
         assert_eq!(deviate(&clean, &spec, 5), deviate(&clean, &spec, 5));
         assert_ne!(deviate(&clean, &spec, 5), deviate(&clean, &spec, 6));
-        assert_eq!(deviate(&clean, &PerturbSpec::parse("fog:3").unwrap(), 5), clean);
+        assert_eq!(
+            deviate(&clean, &PerturbSpec::parse("brightness:3").unwrap(), 5),
+            clean
+        );
     }
 }

@@ -53,12 +53,7 @@ pub fn encode_depth_png(depth: &DepthImage, scale: f64) -> Result<Vec<u8>, CoreE
     let native: &[u8] = bytemuck::cast_slice(&samples);
     let mut out = Vec::new();
     png_encoder(&mut out)
-        .write_image(
-            native,
-            depth.width,
-            depth.height,
-            ExtendedColorType::L16,
-        )
+        .write_image(native, depth.width, depth.height, ExtendedColorType::L16)
         .map_err(|e| encode_failed("depth PNG", e))?;
     Ok(out)
 }
@@ -138,7 +133,11 @@ mod tests {
         std::fs::write(&path, encode_depth_png(&depth, 6553.5).unwrap()).unwrap();
         let back = decode_depth_png(&path, 6553.5).unwrap();
         let raw = image::open(&path).unwrap().into_luma16();
-        assert_eq!(raw.get_pixel(1, 0).0[0], (1.23456f64 * 6553.5).round() as u16, "stored value");
+        assert_eq!(
+            raw.get_pixel(1, 0).0[0],
+            (1.23456f64 * 6553.5).round() as u16,
+            "stored value"
+        );
         assert_eq!(back.data[0], 0.0);
         assert!((back.data[1] - 1.23456).abs() <= 0.5 / 6553.5 + 1e-6);
         assert!(

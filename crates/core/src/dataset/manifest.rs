@@ -69,7 +69,11 @@ fn write_compact_pretty(value: &serde_json::Value, indent: usize, out: &mut Stri
         Value::Object(map) if !map.is_empty() => {
             out.push_str("{\n");
             for (i, (key, v)) in map.iter().enumerate() {
-                out.push_str(&format!("{}{}: ", pad(indent + 1), Value::String(key.clone())));
+                out.push_str(&format!(
+                    "{}{}: ",
+                    pad(indent + 1),
+                    Value::String(key.clone())
+                ));
                 write_compact_pretty(v, indent + 1, out);
                 out.push_str(if i + 1 < map.len() { ",\n" } else { "\n" });
             }
@@ -98,6 +102,9 @@ mod tests {
         let mut text = String::new();
         write_compact_pretty(&value, 0, &mut text);
         assert!(text.contains("\"a\": [1,2,3]"), "{text}");
-        assert_eq!(serde_json::from_str::<serde_json::Value>(&text).unwrap(), value);
+        assert_eq!(
+            serde_json::from_str::<serde_json::Value>(&text).unwrap(),
+            value
+        );
     }
 }
