@@ -1,0 +1,26 @@
+use rslam_gpu::GpuError;
+
+/// Errors of the perturbation crate.
+#[derive(Debug, thiserror::Error)]
+pub enum PerturbError {
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// A malformed or unknown item of a `--perturb` spec string.
+    #[error("--perturb item '{item}': {message}")]
+    Spec { item: String, message: String },
+    /// A perturbation that cannot run on these frames (e.g. a frame too small for it).
+    #[error("perturbation '{name}': {message}")]
+    Unsupported { name: String, message: String },
+    /// A stream or trajectory operation given input it cannot work on.
+    #[error("{operation}: {message}")]
+    Stream { operation: String, message: String },
+}
+
+impl PerturbError {
+    pub fn spec(item: impl Into<String>, message: impl Into<String>) -> Self {
+        Self::Spec {
+            item: item.into(),
+            message: message.into(),
+        }
+    }
+}

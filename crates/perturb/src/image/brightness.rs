@@ -1,0 +1,65 @@
+//! brightness: V += ΔV in HSV, as imagecorruptions' `brightness` (skimage rgb2hsv → clip → hsv2rgb).
+
+use super::color_pass::{KeyedParams, PointwisePass};
+use super::hsv::{hsv_to_rgb, rgb_to_hsv};
+use crate::image_f32::RgbF32;
+use crate::perturbation::{CatalogueEntry, Group};
+
+const NAME: &str = "brightness";
+const SHADER: &str = "perturb/image/brightness.wgsl";
+
+/// ΔV per severity (perturbations.md §3, imagecorruptions `brightness`).
+pub const DELTA_V: [f32; 5] = [0.1, 0.2, 0.3, 0.4, 0.5];
+
+pub const ENTRY: CatalogueEntry = CatalogueEntry {
+    name: NAME,
+    group: Group::Image,
+    description: "brightens: adds ΔV to the HSV value channel (clipped to 1)",
+    parameters: |s| format!("ΔV={}", DELTA_V[s as usize - 1]),
+    build: |kit| {
+        PointwisePass::boxed(kit, SHADER, |key| KeyedParams {
+            key: [0; 4],
+            values: [DELTA_V[key.level()], 0.0, 0.0, 0.0],
+        })
+    },
+    explicit: None,
+};
+
+/// CPU twin of `brightness.wgsl`.
+pub fn twin(image: &RgbF32, severity: u8) -> RgbF32 {
+    let delta = DELTA_V[severity as usize - 1];
+    image.map(|p| {
+        let [h, s, v] = rgb_to_hsv(p);
+        hsv_to_rgb([h, s, (v + delta).clamp(0.0, 1.0)])
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing;
+
+    #[test]
+    fn gpu_matches_twin_at_every_severity() {
+        let clean = testing::test_image(96, 64);
+        for severity in 1..=5 {
+            let gpu = testing::run_color(&ENTRY, severity, 0, &clean);
+            let cpu = twin(&RgbF32::from_rgb8(&clean), severity).to_rgb8();
+            testing::assert_close(&gpu, &cpu, 1, &format!("brightness-{severity}"));
+        }
+    }
+
+    #[test]
+    fn brightness_raises_value_by_delta() {
+        // Pure grey 0.2 → V = 0.2 + 0.3 at severity 3, hue and saturation stay 0.
+        let grey = RgbF32 {
+            width: 1,
+            height: 1,
+            data: vec![[0.2; 3]],
+        };
+        let out = twin(&grey, 3).data[0];
+        for c in out {
+            assert!((c - 0.5).abs() < 1e-6, "{out:?}");
+        }
+    }
+}

@@ -1,0 +1,91 @@
+//! The common shape of a per-pixel colour corruption: copy the frame's colour to scratch, run one
+//! shader that reads the copy and writes the frame, with a uniform block of parameters.
+
+use bytemuck::{Pod, Zeroable};
+use rslam_gpu::FrameTextures;
+
+use crate::perturbation::{view, FrameKey, GpuPerturbation, Kit};
+use crate::PerturbError;
+
+/// One pass `source (scratch colour) → frame colour` with parameters `P` at binding 2;
+/// bindings: 0 source `texture_2d<f32>`, 1 output `texture_storage_2d<rgba8unorm, write>`,
+/// 2 `var<uniform>` of `P`, then any `extra` resources at 3, 4, ….
+pub struct ColorPass {
+    pipeline: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    label: &'static str,
+}
+
+impl ColorPass {
+    pub fn new<P: Pod>(kit: &Kit, shader: &'static str) -> Result<Self, PerturbError> {
+        Ok(Self {
+            pipeline: kit.pipeline(shader)?,
+            params: kit.uniform_buffer::<P>(shader),
+            label: shader,
+        })
+    }
+
+    pub fn encode<P: Pod>(
+        &self,
+        kit: &Kit,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        params: &P,
+        extra: &[wgpu::BindingResource],
+    ) {
+        kit.write_uniform(&self.params, params);
+        kit.copy_color_to_scratch(encoder, frame);
+        let source = view(&kit.scratch.color);
+        let output = frame.color_view();
+        let mut resources = vec![
+            wgpu::BindingResource::TextureView(&source),
+            wgpu::BindingResource::TextureView(&output),
+            self.params.as_entire_binding(),
+        ];
+        resources.extend_from_slice(extra);
+        let bind_group = kit.bind_group(&self.pipeline, self.label, &resources);
+        kit.dispatch(encoder, &self.pipeline, &bind_group, self.label);
+    }
+}
+
+/// The uniform block of the per-pixel corruptions, WGSL
+/// `struct Params { key: vec4<u32>, values: vec4<f32> }`: an RNG key and up to four parameters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct KeyedParams {
+    pub key: [u32; 4],
+    pub values: [f32; 4],
+}
+
+/// A per-pixel corruption whose parameters are a function of the frame key only.
+pub struct PointwisePass {
+    pass: ColorPass,
+    params: fn(&FrameKey) -> KeyedParams,
+}
+
+impl PointwisePass {
+    pub fn boxed(
+        kit: &Kit,
+        shader: &'static str,
+        params: fn(&FrameKey) -> KeyedParams,
+    ) -> Result<Box<dyn GpuPerturbation>, PerturbError> {
+        Ok(Box::new(Self {
+            pass: ColorPass::new::<KeyedParams>(kit, shader)?,
+            params,
+        }))
+    }
+}
+
+impl GpuPerturbation for PointwisePass {
+    fn encode(
+        &mut self,
+        kit: &Kit,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        key: &FrameKey,
+    ) -> Result<(), PerturbError> {
+        self.pass
+            .encode(kit, encoder, frame, &(self.params)(key), &[]);
+        Ok(())
+    }
+}

@@ -1,0 +1,179 @@
+//! gaussian_blur: a separable Gaussian with edges replicated, as imagecorruptions' `gaussian_blur`
+//! (scikit-image `gaussian`, i.e. SciPy `gaussian_filter`, mode 'nearest', truncate 4).
+//! The two passes ([`GaussianPasses`]) also serve glass_blur.
+
+use rslam_gpu::FrameTextures;
+
+use super::kernels::{gaussian_half_kernel, store_truncated, symmetric_filter};
+use super::kernels::{symmetric_runs, Axis, Edge, Kernel1dUniform};
+use super::textures::float4_frame_texture;
+use crate::image_f32::RgbF32;
+use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::PerturbError;
+
+const NAME: &str = "gaussian_blur";
+
+/// σ in pixels per severity (perturbations.md §3, imagecorruptions `gaussian_blur`).
+pub const SIGMA: [f64; 5] = [1.0, 2.0, 3.0, 4.0, 6.0];
+
+/// Pixels per invocation in the passes (runs, see `filter.wgsl`).
+const RUN: u32 = 8;
+
+/// SciPy's default truncation: radius = int(4σ + 0.5).
+const TRUNCATE: f64 = 4.0;
+
+pub const ENTRY: CatalogueEntry = CatalogueEntry {
+    name: NAME,
+    group: Group::Image,
+    description: "Gaussian blur (σ px, radius 4σ, edges replicated), separable",
+    parameters: |s| format!("σ={}px", SIGMA[s as usize - 1]),
+    build: |kit| Ok(Box::new(GaussianBlur::new(kit)?)),
+    explicit: None,
+};
+
+/// The two passes of a separable Gaussian: rows into an f32 texture, then columns into an
+/// `Rgba8Unorm` target, truncated to 8 bits.
+pub(crate) struct GaussianPasses {
+    rows: wgpu::ComputePipeline,
+    columns: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    intermediate: wgpu::Texture,
+}
+
+impl GaussianPasses {
+    pub fn new(kit: &Kit) -> Result<Self, PerturbError> {
+        Ok(Self {
+            rows: kit.pipeline("perturb/image/gaussian_blur_rows.wgsl")?,
+            columns: kit.pipeline("perturb/image/gaussian_blur.wgsl")?,
+            params: kit.uniform_buffer::<Kernel1dUniform>("gaussian blur weights"),
+            intermediate: float4_frame_texture(kit, "gaussian blur rows"),
+        })
+    }
+
+    /// Sets σ for every [`GaussianPasses::encode`] of this frame.
+    pub fn set_sigma(&self, kit: &Kit, name: &str, sigma: f64) -> Result<(), PerturbError> {
+        let half = gaussian_half_kernel(sigma, TRUNCATE);
+        let params = symmetric_runs(&half, Edge::Replicate).ok_or_else(|| PerturbError::Unsupported {
+            name: name.into(),
+            message: format!("σ={sigma} needs a kernel longer than the shaders take"),
+        })?;
+        kit.write_uniform(&self.params, &params);
+        Ok(())
+    }
+
+    /// Blurs `source` into `target` (which must differ from `source`).
+    pub fn encode(
+        &self,
+        kit: &Kit,
+        encoder: &mut wgpu::CommandEncoder,
+        source: &wgpu::TextureView,
+        target: &wgpu::TextureView,
+    ) {
+        let intermediate = view(&self.intermediate);
+        let rows = kit.bind_group(
+            &self.rows,
+            "gaussian blur rows",
+            &[
+                wgpu::BindingResource::TextureView(source),
+                wgpu::BindingResource::TextureView(&intermediate),
+                self.params.as_entire_binding(),
+            ],
+        );
+        let (w, h) = (kit.width, kit.height);
+        let label = "gaussian blur rows";
+        kit.dispatch_grid(encoder, &self.rows, &rows, label, w.div_ceil(RUN), h);
+        let columns = kit.bind_group(
+            &self.columns,
+            "gaussian blur columns",
+            &[
+                wgpu::BindingResource::TextureView(&intermediate),
+                wgpu::BindingResource::TextureView(target),
+                self.params.as_entire_binding(),
+            ],
+        );
+        let label = "gaussian blur columns";
+        kit.dispatch_grid(encoder, &self.columns, &columns, label, w, h.div_ceil(RUN));
+    }
+}
+
+struct GaussianBlur {
+    passes: GaussianPasses,
+}
+
+impl GaussianBlur {
+    fn new(kit: &Kit) -> Result<Self, PerturbError> {
+        Ok(Self {
+            passes: GaussianPasses::new(kit)?,
+        })
+    }
+}
+
+impl GpuPerturbation for GaussianBlur {
+    fn encode(
+        &mut self,
+        kit: &Kit,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        key: &FrameKey,
+    ) -> Result<(), PerturbError> {
+        self.passes.set_sigma(kit, NAME, SIGMA[key.level()])?;
+        kit.copy_color_to_scratch(encoder, frame);
+        let source = view(&kit.scratch.color);
+        self.passes
+            .encode(kit, encoder, &source, &frame.color_view());
+        Ok(())
+    }
+}
+
+/// CPU twin of [`GaussianPasses`]: rows then columns, edges replicated, truncated to 8 bits.
+pub fn blur_twin(image: &RgbF32, sigma: f64) -> RgbF32 {
+    let half = gaussian_half_kernel(sigma, TRUNCATE);
+    let (w, h) = (image.width, image.height);
+    let rows = symmetric_filter(&image.data, w, h, &half, Axis::Rows, Edge::Replicate);
+    let columns = symmetric_filter(&rows, w, h, &half, Axis::Columns, Edge::Replicate);
+    RgbF32 {
+        width: w,
+        height: h,
+        data: columns
+            .into_iter()
+            .map(|p| p.map(store_truncated))
+            .collect(),
+    }
+}
+
+/// CPU twin of `gaussian_blur` at `severity`.
+pub fn twin(image: &RgbF32, severity: u8) -> RgbF32 {
+    blur_twin(image, SIGMA[severity as usize - 1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing;
+
+    #[test]
+    fn gpu_matches_twin_at_every_severity() {
+        let clean = testing::test_image(96, 64);
+        for severity in 1..=5 {
+            let gpu = testing::run_color(&ENTRY, severity, 0, &clean);
+            let cpu = twin(&RgbF32::from_rgb8(&clean), severity).to_rgb8();
+            testing::assert_close(&gpu, &cpu, 1, &format!("gaussian_blur-{severity}"));
+        }
+    }
+
+    #[test]
+    fn flat_regions_keep_their_level_and_edges_spread() {
+        // A vertical step 40 → 200: far from it the levels stay exact (no truncation loss), at
+        // the step the blur passes through the mean, symmetric about it.
+        let mut image = RgbF32::new(64, 8);
+        for (i, p) in image.data.iter_mut().enumerate() {
+            *p = [if i % 64 < 32 { 40.0 } else { 200.0 } / 255.0; 3];
+        }
+        let out = twin(&image, 2).to_rgb8();
+        let at = |x: usize| out.data[3 * x];
+        assert_eq!((at(0), at(20), at(44), at(63)), (40, 40, 200, 200));
+        let mid = (at(31) as i32 + at(32) as i32) / 2;
+        assert!((mid - 120).abs() <= 1, "{} {}", at(31), at(32));
+        assert!(at(28) > 40 && at(35) < 200);
+    }
+}

@@ -1,0 +1,81 @@
+//! gaussian_noise: x + N(0, σ) per pixel and channel (imagecorruptions `gaussian_noise`).
+
+use super::color_pass::{KeyedParams, PointwisePass};
+use crate::image_f32::RgbF32;
+use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+
+const NAME: &str = "gaussian_noise";
+const SHADER: &str = "perturb/image/gaussian_noise.wgsl";
+const PURPOSE_NOISE: u32 = 0;
+
+/// σ per severity (perturbations.md §3, imagecorruptions `gaussian_noise`).
+pub const SIGMA: [f32; 5] = [0.08, 0.12, 0.18, 0.26, 0.38];
+
+pub const ENTRY: CatalogueEntry = CatalogueEntry {
+    name: NAME,
+    group: Group::Image,
+    description: "additive white Gaussian noise, independent per pixel and channel",
+    parameters: |s| format!("σ={}", SIGMA[s as usize - 1]),
+    build: |kit| {
+        PointwisePass::boxed(kit, SHADER, |key| KeyedParams {
+            key: key.rng(NAME, PURPOSE_NOISE).0,
+            values: [SIGMA[key.level()], 0.0, 0.0, 0.0],
+        })
+    },
+    explicit: None,
+};
+
+/// CPU twin of `gaussian_noise.wgsl`.
+pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
+    let rng = key.rng(NAME, PURPOSE_NOISE);
+    let sigma = SIGMA[key.level()];
+    let mut out = image.clone();
+    for y in 0..image.height {
+        for x in 0..image.width {
+            let n = rng.normal3([x, y, 0, 0]);
+            let i = image.index(x, y);
+            out.data[i] = std::array::from_fn(|c| image.data[i][c] + sigma * n[c]);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing;
+
+    #[test]
+    fn gpu_matches_twin() {
+        let clean = testing::test_image(96, 64);
+        for severity in [1, 3, 5] {
+            let key = testing::key(5, severity);
+            let gpu = testing::run_color(&ENTRY, severity, 5, &clean);
+            let cpu = twin(&RgbF32::from_rgb8(&clean), &key).to_rgb8();
+            testing::assert_close(&gpu, &cpu, 1, &format!("gaussian_noise-{severity}"));
+        }
+    }
+
+    #[test]
+    fn noise_has_the_severity_sigma() {
+        let grey = testing::uniform_image(256, 256, 128);
+        for severity in 1..=5 {
+            let out = testing::run_color(&ENTRY, severity, 1, &grey);
+            let (mean, std) = testing::level_stats(&testing::clipped_normal_levels(
+                128.0 / 255.0,
+                SIGMA[severity as usize - 1] as f64,
+            ));
+            testing::assert_stats(
+                testing::stats(&out),
+                mean,
+                std,
+                &format!("severity {severity}"),
+            );
+        }
+    }
+
+    #[test]
+    fn seeded() {
+        testing::assert_seeded(&ENTRY, 3);
+    }
+}

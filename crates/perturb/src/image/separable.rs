@@ -1,0 +1,69 @@
+//! The generic separable filter in runs (`filter_rows.wgsl`, `filter_columns.wgsl`): four f32
+//! channels, replicated or reflected edges, a kernel per direction. Used for the smoothing of
+//! spatter's noise and mud mask and of elastic_transform's displacement fields.
+
+use super::kernels::{gaussian_half_kernel, symmetric_runs, Edge, Kernel1dUniform};
+use crate::perturbation::Kit;
+use crate::PerturbError;
+
+/// Pixels per invocation of the passes.
+const RUN: u32 = 8;
+
+pub(crate) struct SeparableFilter {
+    rows: wgpu::ComputePipeline,
+    columns: wgpu::ComputePipeline,
+    row_kernel: wgpu::Buffer,
+    column_kernel: wgpu::Buffer,
+}
+
+/// A Gaussian kernel (SciPy radius int(truncate·σ + 0.5)) in the runs layout.
+pub(crate) fn gaussian_runs(
+    name: &str,
+    sigma: f64,
+    truncate: f64,
+    edge: Edge,
+) -> Result<Kernel1dUniform, PerturbError> {
+    symmetric_runs(&gaussian_half_kernel(sigma, truncate), edge).ok_or_else(|| {
+        PerturbError::Unsupported {
+            name: name.into(),
+            message: format!("σ={sigma:.2} px needs a longer kernel than the filter shaders take"),
+        }
+    })
+}
+
+impl SeparableFilter {
+    pub fn new(kit: &Kit) -> Result<Self, PerturbError> {
+        Ok(Self {
+            rows: kit.pipeline("perturb/image/filter_rows.wgsl")?,
+            columns: kit.pipeline("perturb/image/filter_columns.wgsl")?,
+            row_kernel: kit.uniform_buffer::<Kernel1dUniform>("separable row kernel"),
+            column_kernel: kit.uniform_buffer::<Kernel1dUniform>("separable column kernel"),
+        })
+    }
+
+    /// Sets the kernels for every [`SeparableFilter::encode`] of this frame.
+    pub fn set_kernels(&self, kit: &Kit, rows: &Kernel1dUniform, columns: &Kernel1dUniform) {
+        kit.write_uniform(&self.row_kernel, rows);
+        kit.write_uniform(&self.column_kernel, columns);
+    }
+
+    /// `source` → rows → `intermediate` (Rgba32Float) → columns → `target` (Rgba32Float).
+    pub fn encode(
+        &self,
+        kit: &Kit,
+        encoder: &mut wgpu::CommandEncoder,
+        source: &wgpu::TextureView,
+        intermediate: &wgpu::TextureView,
+        target: &wgpu::TextureView,
+    ) {
+        use wgpu::BindingResource::TextureView as T;
+        let (w, h) = (kit.width, kit.height);
+        let rows = [T(source), T(intermediate), self.row_kernel.as_entire_binding()];
+        let rows = kit.bind_group(&self.rows, "filter rows", &rows);
+        kit.dispatch_grid(encoder, &self.rows, &rows, "filter rows", w.div_ceil(RUN), h);
+        let columns = [T(intermediate), T(target), self.column_kernel.as_entire_binding()];
+        let columns = kit.bind_group(&self.columns, "filter columns", &columns);
+        let label = "filter columns";
+        kit.dispatch_grid(encoder, &self.columns, &columns, label, w, h.div_ceil(RUN));
+    }
+}

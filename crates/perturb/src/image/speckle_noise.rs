@@ -1,0 +1,86 @@
+//! speckle_noise: x + x·N(0, σ) per pixel and channel (imagecorruptions `speckle_noise`).
+
+use super::color_pass::{KeyedParams, PointwisePass};
+use crate::image_f32::RgbF32;
+use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+
+const NAME: &str = "speckle_noise";
+const SHADER: &str = "perturb/image/speckle_noise.wgsl";
+const PURPOSE_NOISE: u32 = 0;
+
+/// σ per severity (perturbations.md §3, imagecorruptions `speckle_noise`).
+pub const SIGMA: [f32; 5] = [0.15, 0.20, 0.35, 0.45, 0.60];
+
+pub const ENTRY: CatalogueEntry = CatalogueEntry {
+    name: NAME,
+    group: Group::Image,
+    description: "multiplicative Gaussian noise x·(1 + N(0,σ)), per pixel and channel",
+    parameters: |s| format!("σ={}", SIGMA[s as usize - 1]),
+    build: |kit| {
+        PointwisePass::boxed(kit, SHADER, |key| KeyedParams {
+            key: key.rng(NAME, PURPOSE_NOISE).0,
+            values: [SIGMA[key.level()], 0.0, 0.0, 0.0],
+        })
+    },
+    explicit: None,
+};
+
+/// CPU twin of `speckle_noise.wgsl`.
+pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
+    let rng = key.rng(NAME, PURPOSE_NOISE);
+    let sigma = SIGMA[key.level()];
+    let mut out = image.clone();
+    for y in 0..image.height {
+        for x in 0..image.width {
+            let n = rng.normal3([x, y, 0, 0]);
+            let i = image.index(x, y);
+            out.data[i] = std::array::from_fn(|c| {
+                let v = image.data[i][c];
+                v + v * sigma * n[c]
+            });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing;
+
+    #[test]
+    fn gpu_matches_twin() {
+        let clean = testing::test_image(96, 64);
+        for severity in [1, 3, 5] {
+            let key = testing::key(5, severity);
+            let gpu = testing::run_color(&ENTRY, severity, 5, &clean);
+            let cpu = twin(&RgbF32::from_rgb8(&clean), &key).to_rgb8();
+            testing::assert_close(&gpu, &cpu, 1, &format!("speckle_noise-{severity}"));
+        }
+    }
+
+    #[test]
+    fn noise_scales_with_the_value() {
+        // On grey x the law is x + N(0, x·σ); black stays black.
+        let x = 100.0 / 255.0;
+        let grey = testing::uniform_image(256, 256, 100);
+        for severity in 1..=5 {
+            let out = testing::run_color(&ENTRY, severity, 1, &grey);
+            let sigma = x * SIGMA[severity as usize - 1] as f64;
+            let (mean, std) = testing::level_stats(&testing::clipped_normal_levels(x, sigma));
+            testing::assert_stats(
+                testing::stats(&out),
+                mean,
+                std,
+                &format!("severity {severity}"),
+            );
+        }
+        let black = testing::uniform_image(32, 32, 0);
+        assert_eq!(testing::run_color(&ENTRY, 5, 1, &black), black);
+    }
+
+    #[test]
+    fn seeded() {
+        testing::assert_seeded(&ENTRY, 3);
+    }
+}

@@ -1,0 +1,36 @@
+//! Perturbations of RGB-D sequences: the catalogue, the spec parser, GPU compute passes, and the
+//! trajectory and stream operations.
+//!
+//! Data flow: a `--perturb` string is parsed into a [`PerturbSpec`]. Trajectory items (`rot`,
+//! `trans`) deviate the poses before rendering ([`trajectory`]). The renderer leaves each frame
+//! in [`rslam_gpu::FrameTextures`]; a [`Perturber`] records the spec's image corruptions and then
+//! its depth corruptions into the frame's command encoder, each one a [`GpuPerturbation`] from the
+//! [`CATALOGUE`] transforming the textures in place, and reports the severity each got. Stream
+//! items (`fast`, `misalign`) choose which rendered frames are written ([`stream`]). Randomness
+//! comes from one counter-based hash keyed by (seed, perturbation, frame, purpose) ([`rng`]),
+//! the same in Rust and WGSL. Every shader has a CPU twin next to it, the oracle of its tests.
+
+mod catalogue;
+pub mod depth;
+mod error;
+pub mod image;
+pub mod image_f32;
+mod listing;
+mod perturbation;
+mod perturber;
+pub mod reduce;
+pub mod rng;
+mod spec;
+pub mod stream;
+#[cfg(test)]
+pub(crate) mod testing;
+pub mod trajectory;
+
+pub use catalogue::{find, names, CATALOGUE};
+pub use error::PerturbError;
+pub use listing::{listing, ListEntry};
+pub use perturbation::{
+    view, CatalogueEntry, ExplicitForm, FrameKey, GpuPerturbation, Group, Kit, Scratch, WORKGROUP,
+};
+pub use perturber::{dynamic_severity, FrameSeverities, ItemSeverity, Perturber};
+pub use spec::{all_names, parse_severity, Deviation, FrameItem, Level, Misalign, PerturbSpec};

@@ -1,0 +1,106 @@
+//! What `rslam list` shows: every catalogue entry and every trajectory and stream item, with
+//! its parameters at each severity and one line on what it does.
+
+use serde::Serialize;
+
+use crate::trajectory::{SMOOTH_BAND_HZ, SMOOTH_TONES};
+use crate::{Group, CATALOGUE};
+
+/// One row of `rslam list`.
+#[derive(Clone, Debug, Serialize)]
+pub struct ListEntry {
+    pub name: &'static str,
+    /// "image", "depth", "trajectory" or "stream".
+    pub group: &'static str,
+    /// How to write it in a spec.
+    pub syntax: String,
+    pub description: String,
+    /// Parameters at severities 1..=5; empty for trajectory and stream items.
+    pub parameters: Vec<String>,
+}
+
+/// Every perturbation: image, then depth corruptions (catalogue order), then trajectory and
+/// stream items.
+pub fn listing() -> Vec<ListEntry> {
+    let mut entries: Vec<ListEntry> = CATALOGUE
+        .iter()
+        .map(|e| {
+            let mut syntax = format!("{}:1-5[@dynamic]", e.name);
+            if let Some(form) = &e.explicit {
+                syntax.push_str(&format!(" | {}", form.syntax));
+            }
+            ListEntry {
+                name: e.name,
+                group: match e.group {
+                    Group::Image => "image",
+                    Group::Depth => "depth",
+                },
+                syntax,
+                description: e.description.to_string(),
+                parameters: e.parameter_table().to_vec(),
+            }
+        })
+        .collect();
+    entries.sort_by_key(|e| e.group != "image");
+    let smooth = format!(
+        "@smooth: temporally correlated instead, per axis a sum of {SMOOTH_TONES} sinusoids with \
+         frequencies uniform in {}-{} Hz and random phases, same marginal σ",
+        SMOOTH_BAND_HZ.0, SMOOTH_BAND_HZ.1
+    );
+    let sequence = [
+        (
+            "rot",
+            "trajectory",
+            "rot:DEGREES[@smooth]",
+            format!("R' = R·Rx·Ry·Rz, per-axis angles ~ N(0, D°), each pose independently (benchmark: 1, 3, 5); {smooth}"),
+        ),
+        (
+            "trans",
+            "trajectory",
+            "trans:METRES[@smooth]",
+            format!("t' = t + Δt, Δt ~ N(0, M) per world axis, each pose independently (benchmark: 0.0125, 0.025, 0.05); {smooth}"),
+        ),
+        (
+            "fast",
+            "stream",
+            "fast:K",
+            "keeps frames 0, K, 2K, … re-stamped at the sensor rate: the camera moves K× faster (benchmark: 2, 4, 8)".to_string(),
+        ),
+        (
+            "misalign",
+            "stream",
+            "misalign:FRAMES[@dynamic]",
+            "depth lags colour: RGB frame i pairs with depth frame max(0, i−D); @dynamic: D_i uniform in {D−1, D, D+1} per frame (benchmark: 5, 10, 20)".to_string(),
+        ),
+    ];
+    entries.extend(
+        sequence
+            .into_iter()
+            .map(|(name, group, syntax, description)| ListEntry {
+                name,
+                group,
+                syntax: syntax.to_string(),
+                description,
+                parameters: Vec::new(),
+            }),
+    );
+    entries
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lists_every_spec_name_once() {
+        let names: Vec<&str> = listing().iter().map(|e| e.name).collect();
+        assert_eq!(names.len(), crate::all_names().len());
+        for name in crate::all_names() {
+            assert_eq!(names.iter().filter(|&&n| n == name).count(), 1, "{name}");
+        }
+        assert!(listing()
+            .iter()
+            .filter(|e| e.group == "image" || e.group == "depth")
+            .all(|e| e.parameters.len() == 5));
+    }
+}

@@ -1,0 +1,306 @@
+//! The contract every GPU perturbation implements, and the kit of shared GPU resources they use.
+
+use bytemuck::Pod;
+use rslam_gpu::{FrameTextures, GpuContext};
+use serde::Serialize;
+
+use crate::rng::RngKey;
+use crate::PerturbError;
+
+/// Which frame texture a perturbation transforms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Group {
+    Image,
+    Depth,
+}
+
+/// An explicit parameter form, e.g. `depth_range:0.42-10`, besides the severity levels.
+pub struct ExplicitForm {
+    /// The syntax shown in errors and in `rslam list`, e.g. "MIN-MAX (metres)".
+    pub syntax: &'static str,
+    /// Parses the text after the colon into the values the perturbation reads from
+    /// [`FrameKey::explicit`]; the error says what was expected.
+    pub parse: fn(&str) -> Result<Vec<f64>, String>,
+    /// The canonical text of parsed values (`parse(format(v)) == v`).
+    pub format: fn(&[f64]) -> String,
+}
+
+/// One line of the catalogue: everything `rslam list`, the spec parser and the viewer need.
+pub struct CatalogueEntry {
+    /// The id used in spec strings and the WGSL file name.
+    pub name: &'static str,
+    pub group: Group,
+    /// One line on what it does, for `rslam list`.
+    pub description: &'static str,
+    /// Human-readable parameters at severity 1..=5.
+    pub parameters: fn(severity: u8) -> String,
+    /// Builds pipelines, buffers and any private textures, once.
+    pub build: fn(&Kit) -> Result<Box<dyn GpuPerturbation>, PerturbError>,
+    /// An explicit parameter form, where the perturbation has one.
+    pub explicit: Option<ExplicitForm>,
+}
+
+impl CatalogueEntry {
+    /// `parameters` for severities 1..=5.
+    pub fn parameter_table(&self) -> [String; 5] {
+        std::array::from_fn(|i| (self.parameters)(i as u8 + 1))
+    }
+}
+
+/// What a perturbation needs to know about the frame it is applied to.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameKey<'a> {
+    pub seed: u64,
+    pub frame: u32,
+    /// 1..=5; frames whose severity is 0 are never handed to a perturbation. For an explicit
+    /// parameter form it is 5 and [`FrameKey::explicit`] holds the values.
+    pub severity: u8,
+    pub explicit: Option<&'a [f64]>,
+}
+
+impl FrameKey<'_> {
+    /// Index into a 5-entry severity table.
+    pub fn level(&self) -> usize {
+        (self.severity.clamp(1, 5) - 1) as usize
+    }
+
+    /// The key of this frame's random stream for `purpose` of perturbation `name`.
+    pub fn rng(&self, name: &str, purpose: u32) -> RngKey {
+        RngKey::new(self.seed, name, self.frame, purpose)
+    }
+}
+
+/// A GPU perturbation, built once for a frame size and applied frame after frame.
+pub trait GpuPerturbation: Send {
+    /// Records passes that transform `frame.color` (image group) or `frame.depth` (depth group)
+    /// in place. Per-frame parameters go through uniform buffers written with
+    /// `queue.write_buffer` here: each frame is its own submission, so the writes land in order.
+    fn encode(
+        &mut self,
+        kit: &Kit,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        key: &FrameKey,
+    ) -> Result<(), PerturbError>;
+}
+
+/// Textures shared by all perturbations of one [`crate::Perturber`], allocated once. Passes run
+/// one after the other, so any perturbation may overwrite any scratch texture.
+pub struct Scratch {
+    /// `Rgba8Unorm`: the copy of `frame.color` a pass reads while writing `frame.color`.
+    pub color: wgpu::Texture,
+    /// Two `Rgba16Float` textures (filterable) for multi-pass work, e.g. separable blurs.
+    pub float4: [wgpu::Texture; 2],
+    /// Two `R32Float` textures for single-channel layers (noise, masks, edge maps).
+    pub float1: [wgpu::Texture; 2],
+    /// Bilinear, clamp-to-edge.
+    pub linear_clamp: wgpu::Sampler,
+}
+
+impl Scratch {
+    pub fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
+        let texture = |label, format| {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            })
+        };
+        use wgpu::TextureFormat as F;
+        Self {
+            color: texture("scratch colour", F::Rgba8Unorm),
+            float4: [
+                texture("scratch float4 a", F::Rgba16Float),
+                texture("scratch float4 b", F::Rgba16Float),
+            ],
+            float1: [
+                texture("scratch float1 a", F::R32Float),
+                texture("scratch float1 b", F::R32Float),
+            ],
+            linear_clamp: ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("linear clamp"),
+                address_mode_u: wgpu::AddressMode::ClampToEdge,
+                address_mode_v: wgpu::AddressMode::ClampToEdge,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
+        }
+    }
+}
+
+/// Side of the square workgroups every perturbation shader declares: `@workgroup_size(8, 8)`.
+pub const WORKGROUP: u32 = 8;
+
+/// The context, the frame size and the shared scratch, with the helpers passes need.
+pub struct Kit<'a> {
+    pub ctx: &'a GpuContext,
+    pub width: u32,
+    pub height: u32,
+    pub scratch: &'a Scratch,
+}
+
+impl Kit<'_> {
+    /// A compute pipeline from `shaders/<path>`, entry point `main`.
+    pub fn pipeline(&self, path: &str) -> Result<wgpu::ComputePipeline, PerturbError> {
+        Ok(self.ctx.compute_pipeline(path)?)
+    }
+
+    /// A compute pipeline from `shaders/<path>` with a named entry point.
+    pub fn pipeline_entry(
+        &self,
+        path: &str,
+        entry: &str,
+    ) -> Result<wgpu::ComputePipeline, PerturbError> {
+        Ok(self.ctx.compute_pipeline_entry(path, entry)?)
+    }
+
+    /// A uniform buffer sized for `T`, written per frame with [`Kit::write_uniform`].
+    pub fn uniform_buffer<T: Pod>(&self, label: &str) -> wgpu::Buffer {
+        self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: std::mem::size_of::<T>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    pub fn write_uniform<T: Pod>(&self, buffer: &wgpu::Buffer, value: &T) {
+        self.ctx
+            .queue
+            .write_buffer(buffer, 0, bytemuck::bytes_of(value));
+    }
+
+    /// A storage buffer of `size` bytes that stays on the GPU (reductions, counters).
+    pub fn storage_buffer(&self, label: &str, size: u64) -> wgpu::Buffer {
+        self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// A bind group for group 0 of `pipeline`, binding `resources[i]` at binding `i`.
+    pub fn bind_group(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        label: &str,
+        resources: &[wgpu::BindingResource],
+    ) -> wgpu::BindGroup {
+        let numbered: Vec<(u32, wgpu::BindingResource)> = resources
+            .iter()
+            .enumerate()
+            .map(|(i, resource)| (i as u32, resource.clone()))
+            .collect();
+        self.bind_group_at(pipeline, label, &numbered)
+    }
+
+    /// A bind group for group 0 of `pipeline` with explicit binding numbers, for entry points
+    /// that use only some of their shader's bindings.
+    pub fn bind_group_at(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        label: &str,
+        resources: &[(u32, wgpu::BindingResource)],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry> = resources
+            .iter()
+            .map(|(binding, resource)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: resource.clone(),
+            })
+            .collect();
+        self.ctx
+            .device
+            .create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &entries,
+            })
+    }
+
+    /// Copies `frame.color` into `scratch.color`, for a pass that reads it while writing the frame.
+    pub fn copy_color_to_scratch(&self, encoder: &mut wgpu::CommandEncoder, frame: &FrameTextures) {
+        encoder.copy_texture_to_texture(
+            frame.color.as_image_copy(),
+            self.scratch.color.as_image_copy(),
+            frame.size(),
+        );
+    }
+
+    /// One compute pass covering the frame with 8×8 workgroups.
+    pub fn dispatch(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::ComputePipeline,
+        bind_group: &wgpu::BindGroup,
+        label: &str,
+    ) {
+        self.dispatch_grid(
+            encoder,
+            pipeline,
+            bind_group,
+            label,
+            self.width,
+            self.height,
+        );
+    }
+
+    /// One compute pass covering a `width`×`height` grid with 8×8 workgroups.
+    pub fn dispatch_grid(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::ComputePipeline,
+        bind_group: &wgpu::BindGroup,
+        label: &str,
+        width: u32,
+        height: u32,
+    ) {
+        self.dispatch_workgroups(
+            encoder,
+            pipeline,
+            bind_group,
+            label,
+            [width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1],
+        );
+    }
+
+    /// One compute pass with an explicit workgroup count.
+    pub fn dispatch_workgroups(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::ComputePipeline,
+        bind_group: &wgpu::BindGroup,
+        label: &str,
+        workgroups: [u32; 3],
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(label),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups(workgroups[0], workgroups[1], workgroups[2]);
+    }
+}
+
+/// A view of a whole texture, for bind groups.
+pub fn view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&Default::default())
+}

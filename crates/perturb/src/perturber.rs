@@ -1,0 +1,251 @@
+//! Applies a spec's image and depth corruptions to frames on the GPU.
+
+use rslam_gpu::{FrameTextures, GpuContext};
+use serde::Serialize;
+
+use crate::perturbation::{FrameKey, GpuPerturbation, Kit, Scratch};
+use crate::rng::RngKey;
+use crate::spec::{Level, PerturbSpec};
+use crate::{catalogue, PerturbError};
+
+/// Purpose of the draw that picks a frame's severity in `@dynamic` mode.
+const PURPOSE_DYNAMIC_SEVERITY: u32 = 0xD1_0000;
+
+/// The severity `name` gets on `frame` in `@dynamic` mode: uniform in {0, 1, …, max}.
+pub fn dynamic_severity(seed: u64, name: &str, frame: u32, max: u8) -> u8 {
+    let u = RngKey::new(seed, name, frame, PURPOSE_DYNAMIC_SEVERITY).uniform_f64([0; 4]);
+    ((u * (max as f64 + 1.0)) as u8).min(max)
+}
+
+/// The severity one item received on one frame (0 = the frame was left clean by it; explicit
+/// parameter forms report 5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct ItemSeverity {
+    pub name: &'static str,
+    pub severity: u8,
+}
+
+/// What one frame received, for the manifest.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct FrameSeverities {
+    pub frame: u32,
+    pub items: Vec<ItemSeverity>,
+}
+
+struct Item {
+    name: &'static str,
+    level: Level,
+    perturbation: Box<dyn GpuPerturbation>,
+}
+
+/// Every image and depth corruption of a spec, built once for one frame size and seed.
+pub struct Perturber {
+    width: u32,
+    height: u32,
+    seed: u64,
+    scratch: Scratch,
+    items: Vec<Item>,
+}
+
+impl Perturber {
+    /// Builds pipelines and buffers for every image and depth item of `spec` (trajectory and
+    /// stream items are not frame operations and are ignored here).
+    pub fn new(
+        ctx: &GpuContext,
+        spec: &PerturbSpec,
+        width: u32,
+        height: u32,
+        seed: u64,
+    ) -> Result<Self, PerturbError> {
+        let scratch = Scratch::new(ctx, width, height);
+        let kit = Kit {
+            ctx,
+            width,
+            height,
+            scratch: &scratch,
+        };
+        let mut items = Vec::new();
+        for item in spec.frame_items() {
+            let entry = catalogue::find(&item.name).ok_or_else(|| {
+                PerturbError::spec(
+                    &item.name,
+                    format!("unknown perturbation; valid: {}", catalogue::names()),
+                )
+            })?;
+            items.push(Item {
+                name: entry.name,
+                level: item.level.clone(),
+                perturbation: (entry.build)(&kit)?,
+            });
+        }
+        ctx.check()?;
+        Ok(Self {
+            width,
+            height,
+            seed,
+            scratch,
+            items,
+        })
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// The severity every item gets on `frame` (pure: no GPU work).
+    pub fn severities(&self, frame: u32) -> FrameSeverities {
+        let items = self
+            .items
+            .iter()
+            .map(|item| ItemSeverity {
+                name: item.name,
+                severity: match item.level {
+                    Level::Severity {
+                        severity,
+                        dynamic: false,
+                    } => severity,
+                    Level::Severity {
+                        severity,
+                        dynamic: true,
+                    } => dynamic_severity(self.seed, item.name, frame, severity),
+                    Level::Explicit { .. } => 5,
+                },
+            })
+            .collect();
+        FrameSeverities { frame, items }
+    }
+
+    /// Records every item's passes for frame `frame_index` into `encoder` (image items, then
+    /// depth items, in spec order), skipping items whose severity on this frame is 0.
+    pub fn encode(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        frame_index: u32,
+    ) -> Result<FrameSeverities, PerturbError> {
+        if (frame.width, frame.height) != (self.width, self.height) {
+            return Err(PerturbError::Unsupported {
+                name: "perturber".into(),
+                message: format!(
+                    "built for {}x{} frames, given {}x{}",
+                    self.width, self.height, frame.width, frame.height
+                ),
+            });
+        }
+        let severities = self.severities(frame_index);
+        let kit = Kit {
+            ctx,
+            width: self.width,
+            height: self.height,
+            scratch: &self.scratch,
+        };
+        for (item, got) in self.items.iter_mut().zip(&severities.items) {
+            if got.severity == 0 {
+                continue;
+            }
+            let explicit = match &item.level {
+                Level::Explicit { values } => Some(values.as_slice()),
+                Level::Severity { .. } => None,
+            };
+            let key = FrameKey {
+                seed: self.seed,
+                frame: frame_index,
+                severity: got.severity,
+                explicit,
+            };
+            item.perturbation.encode(&kit, encoder, frame, &key)?;
+        }
+        Ok(severities)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use rslam_gpu::FrameReadback;
+
+    use super::*;
+    use crate::image::brightness;
+    use crate::image_f32::RgbF32;
+    use crate::testing;
+
+    #[test]
+    fn dynamic_severities_are_uniform_over_zero_to_max() {
+        let frames = 6000u32;
+        let mut histogram = [0u32; 6];
+        for frame in 0..frames {
+            histogram[dynamic_severity(4, "fog", frame, 5) as usize] += 1;
+        }
+        let p = 1.0 / 6.0;
+        let expected = frames as f64 * p;
+        let tol = 5.0 * (frames as f64 * p * (1.0 - p)).sqrt();
+        for (s, &n) in histogram.iter().enumerate() {
+            assert!(
+                (n as f64 - expected).abs() < tol,
+                "severity {s}: {histogram:?}"
+            );
+        }
+        assert!((0..100).all(|f| dynamic_severity(4, "fog", f, 2) <= 2));
+    }
+
+    /// Frames run through the perturber get what `severities` reports: a clean image on
+    /// severity 0, the corruption at the drawn severity otherwise, depth items after image items.
+    #[test]
+    fn encode_applies_the_reported_severities_in_order() {
+        let ctx = testing::context();
+        let (w, h) = (64, 48);
+        let spec = PerturbSpec::parse("brightness:5@dynamic,depth_range:0.42-3").unwrap();
+        let mut perturber = Perturber::new(ctx, &spec, w, h, 9).unwrap();
+        let clean = testing::test_image(w, h);
+        let depth = testing::test_depth(w, h);
+        let frame = FrameTextures::new(ctx, w, h);
+        let readback = FrameReadback::new(ctx, w, h);
+        let mut seen = [false; 6];
+        for index in 0..40 {
+            frame.upload(ctx, &clean, Some(&depth));
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            let got = perturber.encode(ctx, &mut encoder, &frame, index).unwrap();
+            readback.encode_copy(&mut encoder, &frame);
+            let (color, out_depth) = readback
+                .read(ctx, ctx.queue.submit([encoder.finish()]))
+                .unwrap();
+            assert_eq!(got, perturber.severities(index));
+            let severity = got.items[0].severity;
+            assert_eq!(
+                got.items[1],
+                ItemSeverity {
+                    name: "depth_range",
+                    severity: 5
+                }
+            );
+            seen[severity as usize] = true;
+            let expected = match severity {
+                0 => clean.clone(),
+                s => brightness::twin(&RgbF32::from_rgb8(&clean), s).to_rgb8(),
+            };
+            testing::assert_close(&color, &expected, 1, &format!("perturber-frame{index}"));
+            assert!(out_depth
+                .data
+                .iter()
+                .all(|&z| z == 0.0 || (0.42..=3.0).contains(&z)));
+        }
+        assert!(
+            seen.iter().all(|&s| s),
+            "40 frames drew every severity: {seen:?}"
+        );
+    }
+
+    #[test]
+    fn wrong_frame_size_is_an_error() {
+        let ctx = testing::context();
+        let spec = PerturbSpec::parse("contrast:1").unwrap();
+        let mut perturber = Perturber::new(ctx, &spec, 32, 32, 0).unwrap();
+        let frame = FrameTextures::new(ctx, 40, 32);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let e = perturber
+            .encode(ctx, &mut encoder, &frame, 0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("32x32") && e.contains("40x32"), "{e}");
+    }
+}

@@ -1,0 +1,132 @@
+use super::*;
+
+fn err(text: &str) -> String {
+    PerturbSpec::parse(text).unwrap_err().to_string()
+}
+
+#[test]
+fn parses_every_item_kind_into_its_group() {
+    let spec = PerturbSpec::parse(
+        "gaussian_noise:2,depth_missing:5,rot:1,trans:0.025@smooth,fast:2,misalign:10@dynamic,brightness:high@dynamic,depth_range:0.42-10",
+    )
+    .unwrap();
+    let names: Vec<&str> = spec.image.iter().map(|i| i.name.as_str()).collect();
+    assert_eq!(names, ["gaussian_noise", "brightness"]);
+    assert_eq!(
+        spec.image[1].level,
+        Level::Severity {
+            severity: 5,
+            dynamic: true
+        }
+    );
+    assert_eq!(
+        spec.depth[0].level,
+        Level::Severity {
+            severity: 5,
+            dynamic: false
+        }
+    );
+    assert_eq!(
+        spec.depth[1].level,
+        Level::Explicit {
+            values: vec![0.42, 10.0]
+        }
+    );
+    assert_eq!(
+        spec.rotation,
+        Some(Deviation {
+            sigma: 1.0,
+            smooth: false
+        })
+    );
+    assert_eq!(
+        spec.translation,
+        Some(Deviation {
+            sigma: 0.025,
+            smooth: true
+        })
+    );
+    assert_eq!(spec.fast, Some(2));
+    assert_eq!(
+        spec.misalign,
+        Some(Misalign {
+            frames: 10,
+            dynamic: true
+        })
+    );
+    assert!(spec.needs_scene());
+}
+
+#[test]
+fn aliases_map_to_severities() {
+    for (alias, severity) in [("low", 1), ("mid", 3), ("high", 5), ("4", 4)] {
+        let spec = PerturbSpec::parse(&format!("contrast:{alias}")).unwrap();
+        assert_eq!(
+            spec.image[0].level,
+            Level::Severity {
+                severity,
+                dynamic: false
+            }
+        );
+    }
+}
+
+#[test]
+fn display_is_canonical_and_round_trips() {
+    let spec = PerturbSpec::parse(
+        " misalign:5 , depth_range:0.42-10,pixelate:mid@static,rot:3@smooth,gaussian_noise:1@dynamic,fast:4,trans:0.05",
+    )
+    .unwrap();
+    let text = spec.to_string();
+    assert_eq!(
+        text,
+        "rot:3@smooth,trans:0.05,pixelate:3,gaussian_noise:1@dynamic,depth_range:0.42-10,fast:4,misalign:5"
+    );
+    assert_eq!(PerturbSpec::parse(&text).unwrap(), spec);
+    let json = serde_json::to_string(&spec).unwrap();
+    assert_eq!(serde_json::from_str::<PerturbSpec>(&json).unwrap(), spec);
+}
+
+#[test]
+fn bad_items_are_named_with_the_valid_choices() {
+    let e = err("fgo:3");
+    assert!(
+        e.contains("'fgo:3'") && e.contains("gaussian_noise") && e.contains("misalign"),
+        "{e}"
+    );
+    let e = err("brightness:6");
+    assert!(
+        e.contains("'brightness:6'") && e.contains("1-5") && e.contains("low/mid/high"),
+        "{e}"
+    );
+    let e = err("brightness:3@sometimes");
+    assert!(e.contains("@dynamic"), "{e}");
+    let e = err("depth_range:5-1");
+    assert!(
+        e.contains("MIN < MAX") && e.contains("depth_range:0.42-10"),
+        "{e}"
+    );
+    let e = err("depth_range:0.4-3@dynamic");
+    assert!(e.contains("no mode"), "{e}");
+    assert!(err("brightness").contains("NAME:VALUE"));
+    assert!(err("brightness:1,,fast:2").contains("empty item"));
+    assert!(err("").contains("empty item"));
+    assert!(err("fast:0").contains("K ≥ 1"));
+    assert!(err("fast:2@dynamic").contains("no mode"));
+    assert!(err("rot:-1").contains("degrees"));
+    assert!(err("trans:x").contains("metres"));
+    assert!(err("rot:1@dynamic").contains("@smooth"));
+    assert!(err("misalign:2.5").contains("whole number"));
+    assert!(err("brightness:1,brightness:2").contains("twice"));
+}
+
+#[test]
+fn every_catalogue_entry_parses_at_every_severity() {
+    for name in all_names() {
+        if crate::find(name).is_some() {
+            for severity in 1..=5 {
+                PerturbSpec::parse(&format!("{name}:{severity}@dynamic")).unwrap();
+            }
+        }
+    }
+}

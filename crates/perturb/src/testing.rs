@@ -1,0 +1,342 @@
+//! Shared test helpers: one GPU context, deterministic test frames, running one catalogue entry
+//! on a frame and reading it back, and comparisons that write images to look at on failure.
+
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+use rslam_core::{DepthImage, RgbImage};
+use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
+
+use crate::perturbation::{CatalogueEntry, FrameKey, Kit, Scratch};
+
+/// The process-wide context. No adapter is a failure, never a skip.
+pub fn context() -> &'static GpuContext {
+    static CONTEXT: OnceLock<GpuContext> = OnceLock::new();
+    CONTEXT.get_or_init(|| {
+        GpuContext::new(&AdapterChoice::default())
+            .unwrap_or_else(|e| panic!("GPU tests need an adapter (lavapipe is fine): {e}"))
+    })
+}
+
+/// Builds `entry` for the frame size, applies it once with `key` and reads the frame back.
+pub fn run_frame(
+    entry: &CatalogueEntry,
+    key: &FrameKey,
+    color: &RgbImage,
+    depth: Option<&DepthImage>,
+) -> (RgbImage, DepthImage) {
+    let ctx = context();
+    let (width, height) = (color.width, color.height);
+    let scratch = Scratch::new(ctx, width, height);
+    let kit = Kit {
+        ctx,
+        width,
+        height,
+        scratch: &scratch,
+    };
+    let mut perturbation =
+        (entry.build)(&kit).unwrap_or_else(|e| panic!("building {}: {e}", entry.name));
+    let frame = FrameTextures::new(ctx, width, height);
+    frame.upload(ctx, color, depth);
+    let readback = FrameReadback::new(ctx, width, height);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    perturbation
+        .encode(&kit, &mut encoder, &frame, key)
+        .unwrap_or_else(|e| panic!("encoding {}: {e}", entry.name));
+    readback.encode_copy(&mut encoder, &frame);
+    let submission = ctx.queue.submit([encoder.finish()]);
+    readback
+        .read(ctx, submission)
+        .unwrap_or_else(|e| panic!("running {}: {e}", entry.name))
+}
+
+/// A key for frame 0 at `severity`.
+pub fn key(seed: u64, severity: u8) -> FrameKey<'static> {
+    FrameKey {
+        seed,
+        frame: 0,
+        severity,
+        explicit: None,
+    }
+}
+
+/// Runs an image corruption on `color` (frame 0) and returns the corrupted colour.
+pub fn run_color(entry: &CatalogueEntry, severity: u8, seed: u64, color: &RgbImage) -> RgbImage {
+    run_frame(entry, &key(seed, severity), color, None).0
+}
+
+/// Runs a depth corruption on `depth` (frame 0, black colour) and returns the corrupted depth.
+pub fn run_depth(entry: &CatalogueEntry, key: &FrameKey, depth: &DepthImage) -> DepthImage {
+    let color = RgbImage::new(depth.width, depth.height);
+    run_frame(entry, key, &color, Some(depth)).1
+}
+
+/// A deterministic photo-like test image: smooth shading, hard edges, saturated and grey
+/// regions, fine texture, pure black and white.
+pub fn test_image(width: u32, height: u32) -> RgbImage {
+    let mut image = RgbImage::new(width, height);
+    let (w, h) = (width as f32, height as f32);
+    for y in 0..height {
+        for x in 0..width {
+            let (u, v) = (x as f32 / w, y as f32 / h);
+            let mut c = [
+                0.15 + 0.7 * u,
+                0.25 + 0.5 * v,
+                0.5 + 0.4 * (6.0 * u + 3.0 * v).sin(),
+            ];
+            let (dx, dy) = (u - 0.35, v - 0.45);
+            if dx * dx + dy * dy < 0.04 {
+                c = [0.9, 0.15, 0.1];
+            }
+            if u > 0.6 && u < 0.85 && v > 0.2 && v < 0.7 {
+                let check = ((x / 3) + (y / 3)) % 2 == 0;
+                c = if check {
+                    [0.8, 0.8, 0.75]
+                } else {
+                    [0.1, 0.1, 0.2]
+                };
+            }
+            if v > 0.85 {
+                c = if u < 0.5 { [0.0; 3] } else { [1.0; 3] };
+            }
+            let i = (y as usize * width as usize + x as usize) * 3;
+            for (k, value) in c.iter().enumerate() {
+                image.data[i + k] = (value.clamp(0.0, 1.0) * 255.0).round() as u8;
+            }
+        }
+    }
+    image
+}
+
+/// A deterministic depth frame: a slanted floor, a box in front of a wall (depth steps), and a
+/// band of invalid (0) pixels.
+pub fn test_depth(width: u32, height: u32) -> DepthImage {
+    let mut depth = DepthImage::new(width, height);
+    for y in 0..height {
+        for x in 0..width {
+            let (u, v) = (x as f32 / width as f32, y as f32 / height as f32);
+            let mut z = if v > 0.6 {
+                1.0 + 3.0 * (1.0 - v)
+            } else {
+                4.0 + 0.5 * u
+            };
+            if (0.3..0.55).contains(&u) && (0.25..0.7).contains(&v) {
+                z = 1.8;
+            }
+            if (0.05..0.15).contains(&u) && v < 0.3 {
+                z = 0.0;
+            }
+            depth.data[y as usize * width as usize + x as usize] = z;
+        }
+    }
+    depth
+}
+
+fn failure_dir() -> PathBuf {
+    let dir = std::env::temp_dir().join("rslam-perturb-tests");
+    let _ = std::fs::create_dir_all(&dir);
+    dir
+}
+
+fn save_rgb(image: &RgbImage, path: &PathBuf) {
+    let buffer = image::RgbImage::from_raw(image.width, image.height, image.data.clone());
+    if let Some(buffer) = buffer {
+        let _ = buffer.save(path);
+    }
+}
+
+/// Asserts every channel of `actual` is within `tolerance` levels of `expected`; on failure
+/// writes `<name>-actual.png`, `<name>-expected.png` and `<name>-diff.png` (diff ×32).
+pub fn assert_close(actual: &RgbImage, expected: &RgbImage, tolerance: u8, name: &str) {
+    assert_eq!(
+        (actual.width, actual.height),
+        (expected.width, expected.height)
+    );
+    let diffs: Vec<u8> = actual
+        .data
+        .iter()
+        .zip(&expected.data)
+        .map(|(a, b)| a.abs_diff(*b))
+        .collect();
+    let worst = diffs.iter().copied().max().unwrap_or(0);
+    if worst <= tolerance {
+        return;
+    }
+    let bad = diffs.iter().filter(|&&d| d > tolerance).count();
+    let first = diffs.iter().position(|&d| d > tolerance).unwrap_or(0);
+    let (pixel, channel) = (first / 3, first % 3);
+    let (x, y) = (pixel as u32 % actual.width, pixel as u32 / actual.width);
+    let dir = failure_dir();
+    save_rgb(actual, &dir.join(format!("{name}-actual.png")));
+    save_rgb(expected, &dir.join(format!("{name}-expected.png")));
+    let diff_image = RgbImage {
+        width: actual.width,
+        height: actual.height,
+        data: diffs.iter().map(|d| d.saturating_mul(32)).collect(),
+    };
+    save_rgb(&diff_image, &dir.join(format!("{name}-diff.png")));
+    panic!(
+        "{name}: {bad} values differ by more than {tolerance} (worst {worst}); first at \
+         ({x}, {y}) channel {channel}: actual {} expected {}; images in {}",
+        actual.data[first],
+        expected.data[first],
+        dir.display()
+    );
+}
+
+/// Asserts two depth frames agree within `tolerance` metres, and have the same invalid pixels.
+pub fn assert_depth_close(actual: &DepthImage, expected: &DepthImage, tolerance: f32, name: &str) {
+    assert_eq!(
+        (actual.width, actual.height),
+        (expected.width, expected.height)
+    );
+    let mut bad = Vec::new();
+    for (i, (a, e)) in actual.data.iter().zip(&expected.data).enumerate() {
+        let validity_differs = (*a == 0.0) != (*e == 0.0);
+        if validity_differs || (a - e).abs() > tolerance {
+            bad.push((i, *a, *e));
+        }
+    }
+    if let Some(&(i, a, e)) = bad.first() {
+        let (x, y) = (i as u32 % actual.width, i as u32 / actual.width);
+        panic!(
+            "{name}: {} depth values differ (tolerance {tolerance} m); first at ({x}, {y}): \
+             actual {a} expected {e}",
+            bad.len()
+        );
+    }
+}
+
+/// Every pixel the same grey level.
+pub fn uniform_image(width: u32, height: u32, level: u8) -> RgbImage {
+    RgbImage {
+        width,
+        height,
+        data: vec![level; width as usize * height as usize * 3],
+    }
+}
+
+/// Mean and standard deviation of all channel values, in [0, 1] units.
+#[derive(Clone, Copy, Debug)]
+pub struct Stats {
+    pub mean: f64,
+    pub std: f64,
+    pub count: usize,
+}
+
+pub fn stats(image: &RgbImage) -> Stats {
+    let count = image.data.len();
+    let mean = image.data.iter().map(|&v| v as f64 / 255.0).sum::<f64>() / count as f64;
+    let var = image
+        .data
+        .iter()
+        .map(|&v| (v as f64 / 255.0 - mean).powi(2))
+        .sum::<f64>()
+        / count as f64;
+    Stats {
+        mean,
+        std: var.sqrt(),
+        count,
+    }
+}
+
+/// Mean and std of an 8-bit output level given its probabilities (index = level).
+pub fn level_stats(probabilities: &[f64; 256]) -> (f64, f64) {
+    let mean: f64 = (0..256).map(|k| probabilities[k] * k as f64 / 255.0).sum();
+    let var: f64 = (0..256)
+        .map(|k| probabilities[k] * (k as f64 / 255.0 - mean).powi(2))
+        .sum();
+    (mean, var.sqrt())
+}
+
+/// Asserts sample statistics agree with the expected law within 5 standard errors
+/// (mean: σ/√n; std: σ/√(2n), which holds for laws not far from normal; plus 1e-4 slack).
+pub fn assert_stats(got: Stats, expected_mean: f64, expected_std: f64, what: &str) {
+    let n = got.count as f64;
+    let mean_tol = 5.0 * expected_std / n.sqrt() + 1e-4;
+    let std_tol = 5.0 * expected_std / (2.0 * n).sqrt() + 1e-4;
+    assert!(
+        (got.mean - expected_mean).abs() < mean_tol,
+        "{what}: mean {:.5}, expected {expected_mean:.5} ± {mean_tol:.5}",
+        got.mean
+    );
+    assert!(
+        (got.std - expected_std).abs() < std_tol,
+        "{what}: std {:.5}, expected {expected_std:.5} ± {std_tol:.5}",
+        got.std
+    );
+}
+
+/// Same seed → byte-identical output; another seed or another frame → different output.
+pub fn assert_seeded(entry: &CatalogueEntry, severity: u8) {
+    let clean = test_image(64, 48);
+    let run = |seed, frame| {
+        let key = FrameKey {
+            seed,
+            frame,
+            severity,
+            explicit: None,
+        };
+        run_frame(entry, &key, &clean, Some(&test_depth(64, 48)))
+    };
+    let (a_color, a_depth) = run(11, 0);
+    let (b_color, b_depth) = run(11, 0);
+    assert!(
+        a_color == b_color && a_depth == b_depth,
+        "{}: same seed, different output",
+        entry.name
+    );
+    let (c_color, c_depth) = run(12, 0);
+    assert!(
+        a_color != c_color || a_depth != c_depth,
+        "{}: another seed, same output",
+        entry.name
+    );
+    let (d_color, d_depth) = run(11, 1);
+    assert!(
+        a_color != d_color || a_depth != d_depth,
+        "{}: another frame, same output",
+        entry.name
+    );
+}
+
+/// Like [`assert_close`] but lets a `max_fraction` of values differ more (stochastic passes
+/// whose GPU transcendentals may tip a rare rejection-sampling decision the other way).
+pub fn assert_mostly_close(
+    actual: &RgbImage,
+    expected: &RgbImage,
+    tolerance: u8,
+    max_fraction: f64,
+    name: &str,
+) {
+    let bad = actual
+        .data
+        .iter()
+        .zip(&expected.data)
+        .filter(|(a, b)| a.abs_diff(**b) > tolerance)
+        .count();
+    if bad as f64 > max_fraction * actual.data.len() as f64 {
+        assert_close(actual, expected, tolerance, name);
+    }
+}
+
+/// Probabilities of each 8-bit level of trunc8(clip(x + N(0, σ), 0, 1)).
+pub fn clipped_normal_levels(x: f64, sigma: f64) -> [f64; 256] {
+    use statrs::distribution::{ContinuousCDF, Normal};
+    let normal = Normal::new(x, sigma).expect("σ > 0");
+    let mut p = [0.0; 256];
+    for (k, pk) in p.iter_mut().enumerate() {
+        let low = if k == 0 {
+            f64::NEG_INFINITY
+        } else {
+            k as f64 / 255.0
+        };
+        let high = if k == 255 {
+            f64::INFINITY
+        } else {
+            (k + 1) as f64 / 255.0
+        };
+        *pk = normal.cdf(high) - normal.cdf(low);
+    }
+    p
+}

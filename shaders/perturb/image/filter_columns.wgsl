@@ -1,0 +1,97 @@
+// A separable filter's vertical pass in runs of 8 pixels per invocation (see filter.wgsl), on
+// all four channels, into an f32 texture. Edges as filter_rows.wgsl.
+#include "perturb/image/filter.wgsl"
+
+@group(0) @binding(0) var source: texture_2d<f32>;
+@group(0) @binding(1) var output: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(2) var<uniform> kernel: Kernel1d;
+
+fn edge_index(i: i32, n: i32) -> i32 {
+    let reflected = select(select(i, 2 * n - 1 - i, i >= n), -1 - i, i < 0);
+    return clamp(select(i, reflected, kernel.edge == 1), 0, n - 1);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = vec2<i32>(textureDimensions(source));
+    let first = i32(id.y) * 8 - kernel.radius;
+    let fixed = i32(id.x);
+    let origin = i32(id.y) * 8;
+    if (fixed >= size.x || origin >= size.y) {
+        return;
+    }
+    var s0 = vec4<f32>(0.0);
+    var s1 = vec4<f32>(0.0);
+    var s2 = vec4<f32>(0.0);
+    var s3 = vec4<f32>(0.0);
+    var s4 = vec4<f32>(0.0);
+    var s5 = vec4<f32>(0.0);
+    var s6 = vec4<f32>(0.0);
+    var s7 = vec4<f32>(0.0);
+    for (var j = 0; j < kernel.count; j += 8) {
+        let v0 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 0, size.y)), 0);
+        let v1 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 1, size.y)), 0);
+        let v2 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 2, size.y)), 0);
+        let v3 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 3, size.y)), 0);
+        let v4 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 4, size.y)), 0);
+        let v5 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 5, size.y)), 0);
+        let v6 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 6, size.y)), 0);
+        let v7 = textureLoad(source, vec2<i32>(fixed, edge_index(first + j + 7, size.y)), 0);
+        s0 += kernel.taps[j + 8].x * v0 + kernel.taps[j + 9].x * v1
+            + kernel.taps[j + 10].x * v2 + kernel.taps[j + 11].x * v3
+            + kernel.taps[j + 12].x * v4 + kernel.taps[j + 13].x * v5
+            + kernel.taps[j + 14].x * v6 + kernel.taps[j + 15].x * v7;
+        s1 += kernel.taps[j + 7].x * v0 + kernel.taps[j + 8].x * v1
+            + kernel.taps[j + 9].x * v2 + kernel.taps[j + 10].x * v3
+            + kernel.taps[j + 11].x * v4 + kernel.taps[j + 12].x * v5
+            + kernel.taps[j + 13].x * v6 + kernel.taps[j + 14].x * v7;
+        s2 += kernel.taps[j + 6].x * v0 + kernel.taps[j + 7].x * v1
+            + kernel.taps[j + 8].x * v2 + kernel.taps[j + 9].x * v3
+            + kernel.taps[j + 10].x * v4 + kernel.taps[j + 11].x * v5
+            + kernel.taps[j + 12].x * v6 + kernel.taps[j + 13].x * v7;
+        s3 += kernel.taps[j + 5].x * v0 + kernel.taps[j + 6].x * v1
+            + kernel.taps[j + 7].x * v2 + kernel.taps[j + 8].x * v3
+            + kernel.taps[j + 9].x * v4 + kernel.taps[j + 10].x * v5
+            + kernel.taps[j + 11].x * v6 + kernel.taps[j + 12].x * v7;
+        s4 += kernel.taps[j + 4].x * v0 + kernel.taps[j + 5].x * v1
+            + kernel.taps[j + 6].x * v2 + kernel.taps[j + 7].x * v3
+            + kernel.taps[j + 8].x * v4 + kernel.taps[j + 9].x * v5
+            + kernel.taps[j + 10].x * v6 + kernel.taps[j + 11].x * v7;
+        s5 += kernel.taps[j + 3].x * v0 + kernel.taps[j + 4].x * v1
+            + kernel.taps[j + 5].x * v2 + kernel.taps[j + 6].x * v3
+            + kernel.taps[j + 7].x * v4 + kernel.taps[j + 8].x * v5
+            + kernel.taps[j + 9].x * v6 + kernel.taps[j + 10].x * v7;
+        s6 += kernel.taps[j + 2].x * v0 + kernel.taps[j + 3].x * v1
+            + kernel.taps[j + 4].x * v2 + kernel.taps[j + 5].x * v3
+            + kernel.taps[j + 6].x * v4 + kernel.taps[j + 7].x * v5
+            + kernel.taps[j + 8].x * v6 + kernel.taps[j + 9].x * v7;
+        s7 += kernel.taps[j + 1].x * v0 + kernel.taps[j + 2].x * v1
+            + kernel.taps[j + 3].x * v2 + kernel.taps[j + 4].x * v3
+            + kernel.taps[j + 5].x * v4 + kernel.taps[j + 6].x * v5
+            + kernel.taps[j + 7].x * v6 + kernel.taps[j + 8].x * v7;
+    }
+    if (origin + 0 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 0), s0);
+    }
+    if (origin + 1 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 1), s1);
+    }
+    if (origin + 2 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 2), s2);
+    }
+    if (origin + 3 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 3), s3);
+    }
+    if (origin + 4 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 4), s4);
+    }
+    if (origin + 5 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 5), s5);
+    }
+    if (origin + 6 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 6), s6);
+    }
+    if (origin + 7 < size.y) {
+        textureStore(output, vec2<i32>(fixed, origin + 7), s7);
+    }
+}
