@@ -1,13 +1,14 @@
 // defocus_blur, pass 2 of 2: imagecorruptions' anti-aliased disk kernel (OpenCV filter2D,
 // BORDER_REFLECT_101) applied exactly, as a sum of centred row boxes: every kernel row is
 // symmetric, so it is a sum of boxes [-k, k] with weights a, each box one difference of the
-// running sums of pass 1. Boxes are built on the CPU from the kernel.
+// running sums of pass 1. Boxes are built on the CPU from the kernel. Each invocation writes a
+// run of 8 pixels of a row (one box parameter read per 8 outputs; see filter.wgsl).
 #include "common/color.wgsl"
 #include "perturb/image/filter.wgsl"
 
 struct Boxes {
     radius: i32,
-    // a multiple of 8, padded with zero-weight boxes
+    // number of boxes
     count: i32,
     // 1/2 x the kernel's sum: the running sums are of (I - 1/2).
     offset: f32,
@@ -24,29 +25,66 @@ fn reflect101(i: i32, n: i32) -> i32 {
     return (n - 1) - abs((n - 1) - abs(i));
 }
 
-fn box_sum(b: i32, p: vec2<i32>, height: i32) -> vec3<f32> {
-    let box = params.boxes[b];
-    let y = reflect101(p.y + i32(box.x), height);
-    let k = i32(box.y);
-    // Columns x-k..=x+k of the image are prefix columns x-k+R+1 ..= x+k+R+1.
-    let right = textureLoad(prefix, vec2<i32>(p.x + k + params.radius + 1, y), 0).rgb;
-    let left = textureLoad(prefix, vec2<i32>(p.x - k + params.radius, y), 0).rgb;
-    return box.z * (right - left);
+fn box_sum(y: i32, right: i32, left: i32) -> vec3<f32> {
+    return textureLoad(prefix, vec2<i32>(right, y), 0).rgb - textureLoad(prefix, vec2<i32>(left, y), 0).rgb;
 }
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<i32>(textureDimensions(output));
-    let p = vec2<i32>(id.xy);
-    if (p.x >= size.x || p.y >= size.y) {
+    let x0 = i32(id.x) * 8;
+    let y = i32(id.y);
+    if (x0 >= size.x || y >= size.y) {
         return;
     }
-    var sum = vec3<f32>(params.offset);
-    for (var b = 0; b < params.count; b += 8) {
-        sum += box_sum(b, p, size.y) + box_sum(b + 1, p, size.y);
-        sum += box_sum(b + 2, p, size.y) + box_sum(b + 3, p, size.y);
-        sum += box_sum(b + 4, p, size.y) + box_sum(b + 5, p, size.y);
-        sum += box_sum(b + 6, p, size.y) + box_sum(b + 7, p, size.y);
+    // Prefix columns past the image's right edge exist (the texture is wider), so runs that
+    // overhang the image read valid memory; their outputs are not stored.
+    var s0 = vec3<f32>(params.offset);
+    var s1 = vec3<f32>(params.offset);
+    var s2 = vec3<f32>(params.offset);
+    var s3 = vec3<f32>(params.offset);
+    var s4 = vec3<f32>(params.offset);
+    var s5 = vec3<f32>(params.offset);
+    var s6 = vec3<f32>(params.offset);
+    var s7 = vec3<f32>(params.offset);
+    for (var b = 0; b < params.count; b++) {
+        let box = params.boxes[b];
+        let row = reflect101(y + i32(box.x), size.y);
+        let k = i32(box.y);
+        // Columns x-k..=x+k of the image are prefix columns x-k+R+1 ..= x+k+R+1.
+        let right = x0 + k + params.radius + 1;
+        let left = x0 - k + params.radius;
+        s0 += box.z * box_sum(row, right + 0, left + 0);
+        s1 += box.z * box_sum(row, right + 1, left + 1);
+        s2 += box.z * box_sum(row, right + 2, left + 2);
+        s3 += box.z * box_sum(row, right + 3, left + 3);
+        s4 += box.z * box_sum(row, right + 4, left + 4);
+        s5 += box.z * box_sum(row, right + 5, left + 5);
+        s6 += box.z * box_sum(row, right + 6, left + 6);
+        s7 += box.z * box_sum(row, right + 7, left + 7);
     }
-    textureStore(output, p, vec4<f32>(truncate8(sum + SUM_EPSILON), 1.0));
+    if (x0 + 0 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 0, y), vec4<f32>(truncate8(s0 + SUM_EPSILON), 1.0));
+    }
+    if (x0 + 1 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 1, y), vec4<f32>(truncate8(s1 + SUM_EPSILON), 1.0));
+    }
+    if (x0 + 2 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 2, y), vec4<f32>(truncate8(s2 + SUM_EPSILON), 1.0));
+    }
+    if (x0 + 3 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 3, y), vec4<f32>(truncate8(s3 + SUM_EPSILON), 1.0));
+    }
+    if (x0 + 4 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 4, y), vec4<f32>(truncate8(s4 + SUM_EPSILON), 1.0));
+    }
+    if (x0 + 5 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 5, y), vec4<f32>(truncate8(s5 + SUM_EPSILON), 1.0));
+    }
+    if (x0 + 6 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 6, y), vec4<f32>(truncate8(s6 + SUM_EPSILON), 1.0));
+    }
+    if (x0 + 7 < size.x) {
+        textureStore(output, vec2<i32>(x0 + 7, y), vec4<f32>(truncate8(s7 + SUM_EPSILON), 1.0));
+    }
 }

@@ -1,6 +1,8 @@
 // snow, pass 2 of 2: motion-blur the snow layer along the frame's angle (line taps, edges of the
 // zoomed layer replicated), round it to 8 bits, lighten the image toward max(x, 1.5 gray + 0.5)
 // by (1 - blend) and add the layer and the layer rotated by 180 degrees (imagecorruptions `snow`).
+// Each invocation writes a run of 8 pixels of a row; the rotated layer's run is the mirrored run
+// of the mirrored row.
 #include "common/color.wgsl"
 #include "perturb/image/filter.wgsl"
 
@@ -17,31 +19,90 @@ struct Snow {
 @group(0) @binding(3) var layer: texture_2d<f32>;
 @group(0) @binding(4) var<uniform> line: LineKernel;
 
-fn tap(k: i32, p: vec2<i32>) -> f32 {
-    let t = line.taps[k];
-    let q = clamp(p + vec2<i32>(t.xy), vec2<i32>(0), snow.zoomed - 1);
-    return t.z * textureLoad(layer, q, 0).x;
+fn flake(x: i32, y: i32) -> f32 {
+    return textureLoad(layer, vec2<i32>(clamp(x, 0, snow.zoomed.x - 1), y), 0).x;
 }
 
-fn blurred(p: vec2<i32>) -> f32 {
-    var sum = 0.0;
-    for (var k = 0; k < line.count; k += 8) {
-        sum += tap(k, p) + tap(k + 1, p) + tap(k + 2, p) + tap(k + 3, p);
-        sum += tap(k + 4, p) + tap(k + 5, p) + tap(k + 6, p) + tap(k + 7, p);
-    }
-    return round(sum * 255.0) / 255.0;
+fn composite(p: vec2<i32>, direct: f32, rotated: f32) {
+    let x = textureLoad(source, p, 0).rgb;
+    let gray = dot(x, vec3<f32>(0.299, 0.587, 0.114));
+    let lightened = snow.blend * x + (1.0 - snow.blend) * max(x, vec3<f32>(gray * 1.5 + 0.5));
+    let flakes = round(direct * 255.0) / 255.0 + round(rotated * 255.0) / 255.0;
+    textureStore(output, p, vec4<f32>(truncate8(lightened + flakes), 1.0));
 }
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<i32>(textureDimensions(source));
-    let p = vec2<i32>(id.xy);
-    if (p.x >= size.x || p.y >= size.y) {
+    let x0 = i32(id.x) * 8;
+    let y = i32(id.y);
+    if (x0 >= size.x || y >= size.y) {
         return;
     }
-    let x = textureLoad(source, p, 0).rgb;
-    let gray = dot(x, vec3<f32>(0.299, 0.587, 0.114));
-    let lightened = snow.blend * x + (1.0 - snow.blend) * max(x, vec3<f32>(gray * 1.5 + 0.5));
-    let flakes = blurred(p) + blurred(size - 1 - p);
-    textureStore(output, p, vec4<f32>(truncate8(lightened + flakes), 1.0));
+    // Pixel (x0 + o, y) adds the layer at (x0 + o, y) and at (W - 1 - x0 - o, H - 1 - y).
+    let mirrored_x = size.x - 1 - x0;
+    let mirrored_y = size.y - 1 - y;
+    var d0 = 0.0;
+    var r0 = 0.0;
+    var d1 = 0.0;
+    var r1 = 0.0;
+    var d2 = 0.0;
+    var r2 = 0.0;
+    var d3 = 0.0;
+    var r3 = 0.0;
+    var d4 = 0.0;
+    var r4 = 0.0;
+    var d5 = 0.0;
+    var r5 = 0.0;
+    var d6 = 0.0;
+    var r6 = 0.0;
+    var d7 = 0.0;
+    var r7 = 0.0;
+    for (var k = 0; k < line.count; k++) {
+        let t = line.taps[k];
+        let row = clamp(y + i32(t.y), 0, snow.zoomed.y - 1);
+        let mirrored_row = clamp(mirrored_y + i32(t.y), 0, snow.zoomed.y - 1);
+        let x = x0 + i32(t.x);
+        let mx = mirrored_x + i32(t.x);
+        d0 += t.z * flake(x + 0, row);
+        r0 += t.z * flake(mx - 0, mirrored_row);
+        d1 += t.z * flake(x + 1, row);
+        r1 += t.z * flake(mx - 1, mirrored_row);
+        d2 += t.z * flake(x + 2, row);
+        r2 += t.z * flake(mx - 2, mirrored_row);
+        d3 += t.z * flake(x + 3, row);
+        r3 += t.z * flake(mx - 3, mirrored_row);
+        d4 += t.z * flake(x + 4, row);
+        r4 += t.z * flake(mx - 4, mirrored_row);
+        d5 += t.z * flake(x + 5, row);
+        r5 += t.z * flake(mx - 5, mirrored_row);
+        d6 += t.z * flake(x + 6, row);
+        r6 += t.z * flake(mx - 6, mirrored_row);
+        d7 += t.z * flake(x + 7, row);
+        r7 += t.z * flake(mx - 7, mirrored_row);
+    }
+    if (x0 + 0 < size.x) {
+        composite(vec2<i32>(x0 + 0, y), d0, r0);
+    }
+    if (x0 + 1 < size.x) {
+        composite(vec2<i32>(x0 + 1, y), d1, r1);
+    }
+    if (x0 + 2 < size.x) {
+        composite(vec2<i32>(x0 + 2, y), d2, r2);
+    }
+    if (x0 + 3 < size.x) {
+        composite(vec2<i32>(x0 + 3, y), d3, r3);
+    }
+    if (x0 + 4 < size.x) {
+        composite(vec2<i32>(x0 + 4, y), d4, r4);
+    }
+    if (x0 + 5 < size.x) {
+        composite(vec2<i32>(x0 + 5, y), d5, r5);
+    }
+    if (x0 + 6 < size.x) {
+        composite(vec2<i32>(x0 + 6, y), d6, r6);
+    }
+    if (x0 + 7 < size.x) {
+        composite(vec2<i32>(x0 + 7, y), d7, r7);
+    }
 }

@@ -19,6 +19,30 @@ fn unpack(seed: u32) -> vec2<i32> {
     return vec2<i32>(i32(seed & 0xffffu), i32(seed >> 16u));
 }
 
+// The best of the current seed and the one found at p + offset (nearer wins; ties keep the
+// current one). Candidates are written out below: loops cost more than the work on lavapipe.
+struct Candidate {
+    seed: u32,
+    distance: f32,
+}
+
+fn consider(best: Candidate, p: vec2<i32>, offset: vec2<i32>, size: vec2<i32>) -> Candidate {
+    let q = p + jump.step * offset;
+    if (any(q < vec2<i32>(0)) || any(q >= size)) {
+        return best;
+    }
+    let seed = textureLoad(source, q, 0).x;
+    if (seed == NONE) {
+        return best;
+    }
+    let d = vec2<f32>(unpack(seed) - p);
+    let distance = dot(d, d);
+    if (distance < best.distance) {
+        return Candidate(seed, distance);
+    }
+    return best;
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<i32>(textureDimensions(source));
@@ -26,29 +50,20 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (p.x >= size.x || p.y >= size.y) {
         return;
     }
-    var best = textureLoad(source, p, 0).x;
-    var best_distance = 1e30;
-    if (best != NONE) {
-        let d = vec2<f32>(unpack(best) - p);
-        best_distance = dot(d, d);
+    let own = textureLoad(source, p, 0).x;
+    var best = Candidate(own, 1e30);
+    if (own != NONE) {
+        let d = vec2<f32>(unpack(own) - p);
+        best.distance = dot(d, d);
     }
-    for (var dy = -1; dy <= 1; dy++) {
-        for (var dx = -1; dx <= 1; dx++) {
-            let q = p + jump.step * vec2<i32>(dx, dy);
-            if (any(q < vec2<i32>(0)) || any(q >= size)) {
-                continue;
-            }
-            let seed = textureLoad(source, q, 0).x;
-            if (seed == NONE) {
-                continue;
-            }
-            let d = vec2<f32>(unpack(seed) - p);
-            let distance = dot(d, d);
-            if (distance < best_distance) {
-                best = seed;
-                best_distance = distance;
-            }
-        }
-    }
-    textureStore(output, p, vec4<u32>(best, 0u, 0u, 0u));
+    best = consider(best, p, vec2<i32>(-1, -1), size);
+    best = consider(best, p, vec2<i32>(0, -1), size);
+    best = consider(best, p, vec2<i32>(1, -1), size);
+    best = consider(best, p, vec2<i32>(-1, 0), size);
+    best = consider(best, p, vec2<i32>(0, 0), size);
+    best = consider(best, p, vec2<i32>(1, 0), size);
+    best = consider(best, p, vec2<i32>(-1, 1), size);
+    best = consider(best, p, vec2<i32>(0, 1), size);
+    best = consider(best, p, vec2<i32>(1, 1), size);
+    textureStore(output, p, vec4<u32>(best.seed, 0u, 0u, 0u));
 }

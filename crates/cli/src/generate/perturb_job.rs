@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::mpsc::sync_channel;
 
 use anyhow::Context;
+use rayon::prelude::*;
 use rslam_core::dataset::{
     decode_depth_png, read_dataset, read_rgb, write_rgb_like, DatasetWriter, ItemSeverities,
     Manifest, SourceDataset,
@@ -22,6 +23,8 @@ use super::sink::{FrameSink, OutputPlan};
 /// Largest |Δt| at which a ground-truth pose stands for a frame when re-stamping (TUM's 100 Hz
 /// motion capture has one within 5 ms of every frame).
 const GT_MATCH_MAX_DIFF_S: f64 = 0.02;
+/// Frames decoded together, in parallel, ahead of the GPU.
+const DECODE_AHEAD: usize = 4;
 
 pub enum PerturbInput {
     Dataset(PathBuf),
@@ -148,16 +151,19 @@ fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::R
     let writer = DatasetWriter::create(&job.out, src.format, k)?;
     let sink = FrameSink::new(writer, plan);
     let with_depth = src.frames.iter().all(|f| f.depth.is_some());
-    let (tx, rx) = sync_channel::<anyhow::Result<(RgbImage, Option<DepthImage>)>>(4);
+    let (tx, rx) = sync_channel::<anyhow::Result<(RgbImage, Option<DepthImage>)>>(DECODE_AHEAD);
     let sources = sink.plan().needed_sources();
     let frames = src.frames.clone();
     let scale = src.format.depth_scale();
+    // Frames are decoded a few at a time in parallel, ahead of the GPU, and delivered in order.
     let decoder = std::thread::spawn(move || {
-        for s in sources {
-            let decoded = decode_frame(&frames[s], scale);
-            let failed = decoded.is_err();
-            if tx.send(decoded).is_err() || failed {
-                break;
+        for chunk in sources.chunks(DECODE_AHEAD) {
+            let decoded: Vec<_> = chunk.par_iter().map(|&s| decode_frame(&frames[s], scale)).collect();
+            for frame in decoded {
+                let failed = frame.is_err();
+                if tx.send(frame).is_err() || failed {
+                    return;
+                }
             }
         }
     });

@@ -175,7 +175,7 @@ fn box_params(severity: u8) -> Result<BoxParams, PerturbError> {
     let mass: f32 = boxes.iter().map(|b| b.a * (2 * b.k + 1) as f32).sum();
     Ok(BoxParams {
         radius: kernel.radius as i32,
-        count: boxes.len().next_multiple_of(8) as i32,
+        count: boxes.len() as i32,
         offset: 0.5 * mass,
         _pad: 0.0,
         boxes: packed,
@@ -206,7 +206,7 @@ impl DefocusBlur {
                 kit,
                 "defocus running sums",
                 wgpu::TextureFormat::Rgba32Float,
-                kit.width + 2 * widest + 1,
+                kit.width + 2 * widest + 1 + 8,
                 kit.height,
             ),
         })
@@ -250,7 +250,15 @@ impl GpuPerturbation for DefocusBlur {
                 self.box_params.as_entire_binding(),
             ],
         );
-        kit.dispatch(encoder, &self.boxes, &boxes, "defocus boxes");
+        let runs = kit.width.div_ceil(8);
+        kit.dispatch_grid(
+            encoder,
+            &self.boxes,
+            &boxes,
+            "defocus boxes",
+            runs,
+            kit.height,
+        );
         Ok(())
     }
 }

@@ -121,7 +121,8 @@ impl GpuPerturbation for ElasticTransform {
             ],
         );
         kit.dispatch(encoder, &self.noise_pipeline, &bind_group, "elastic noise");
-        self.smooth.encode(kit, encoder, &fields, &intermediate, &fields);
+        self.smooth
+            .encode(kit, encoder, &fields, &intermediate, &fields);
         let warp = Warp {
             alpha: ALPHA[key.level()],
             _pad: [0.0; 3],

@@ -53,10 +53,11 @@ impl GaussianPasses {
     /// Sets σ for every [`GaussianPasses::encode`] of this frame.
     pub fn set_sigma(&self, kit: &Kit, name: &str, sigma: f64) -> Result<(), PerturbError> {
         let half = gaussian_half_kernel(sigma, TRUNCATE);
-        let params = symmetric_runs(&half, Edge::Replicate).ok_or_else(|| PerturbError::Unsupported {
-            name: name.into(),
-            message: format!("σ={sigma} needs a kernel longer than the shaders take"),
-        })?;
+        let params =
+            symmetric_runs(&half, Edge::Replicate).ok_or_else(|| PerturbError::Unsupported {
+                name: name.into(),
+                message: format!("σ={sigma} needs a kernel longer than the shaders take"),
+            })?;
         kit.write_uniform(&self.params, &params);
         Ok(())
     }

@@ -52,8 +52,7 @@ pub fn gaussian_half_kernel(sigma: f64, truncate: f64) -> Vec<f32> {
 /// Taps a [`Kernel1dUniform`] holds.
 pub const KERNEL_1D_TAPS: usize = 256;
 
-/// The uniform `Kernel1d` of `shaders/perturb/image/filter.wgsl`: the weights at offsets
-/// −radius..=radius, zero-padded to a multiple of 8 (the shaders' loops take 8 taps at a time).
+/// The uniform `Kernel1d` of `shaders/perturb/image/filter.wgsl`, built by [`symmetric_runs`].
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Kernel1dUniform {
@@ -63,29 +62,6 @@ pub struct Kernel1dUniform {
     edge: i32,
     _pad: i32,
     taps: [[f32; 4]; KERNEL_1D_TAPS],
-}
-
-impl Kernel1dUniform {
-    /// From the half kernel of a symmetric filter; `None` when it has more than
-    /// [`KERNEL_1D_TAPS`] taps after padding.
-    pub fn symmetric(half: &[f32]) -> Option<Self> {
-        let radius = half.len() - 1;
-        let count = (2 * radius + 1).next_multiple_of(8);
-        if count > KERNEL_1D_TAPS {
-            return None;
-        }
-        let mut taps = [[0.0; 4]; KERNEL_1D_TAPS];
-        for (k, tap) in taps.iter_mut().take(2 * radius + 1).enumerate() {
-            tap[0] = half[k.abs_diff(radius)];
-        }
-        Some(Self {
-            radius: radius as i32,
-            count: count as i32,
-            edge: 0,
-            _pad: 0,
-            taps,
-        })
-    }
 }
 
 /// One tap of imagecorruptions' motion-blur line kernel: the output at (x, y) adds
@@ -146,9 +122,9 @@ pub struct LineKernelUniform {
 }
 
 impl LineKernelUniform {
-    /// `None` when there are more than [`LINE_TAPS`] taps after padding to a multiple of 8.
+    /// `None` when there are more than [`LINE_TAPS`] taps.
     pub fn new(taps: &[LineTap]) -> Option<Self> {
-        let count = taps.len().next_multiple_of(8);
+        let count = taps.len();
         if count > LINE_TAPS {
             return None;
         }
@@ -164,8 +140,8 @@ impl LineKernelUniform {
     }
 }
 
-/// The uniform `Kernel1d` laid out for runs of 8 outputs (see `filter.wgsl`): the weight at
-/// offset t in slot t + radius + 8, `count` covering 2·radius + 8 source pixels. `edge` is read
+/// The uniform `Kernel1d` for runs of 8 outputs (see `filter.wgsl`): the weight at offset t in
+/// slot t + radius + 8, `count` covering 2·radius + 8 source pixels. `edge` is read
 /// by `filter_rows.wgsl` / `filter_columns.wgsl` (replicate or reflect).
 pub fn symmetric_runs(half: &[f32], edge: Edge) -> Option<Kernel1dUniform> {
     let radius = half.len() - 1;
@@ -279,35 +255,6 @@ pub fn symmetric_filter<T: Sample>(
     out
 }
 
-/// The value an `Rgba16Float` texture stores for `v` (round to nearest even, as the GPU
-/// converts), so that twins can mirror passes that go through half-float scratch textures.
-pub fn to_f16_precision(v: f32) -> f32 {
-    let bits = v.to_bits();
-    let exponent = ((bits >> 23) & 0xff) as i32 - 127;
-    if v == 0.0 || !v.is_finite() || exponent > 15 {
-        return v;
-    }
-    // Mantissa bits kept: 10 for normal halves, fewer below 2^-14 (subnormal halves).
-    let kept = if exponent >= -14 {
-        10
-    } else {
-        10 - (-14 - exponent)
-    };
-    if kept < 0 {
-        return 0.0f32.copysign(v);
-    }
-    let drop = 23 - kept as u32;
-    let half_ulp = 1u32 << (drop - 1);
-    let mask = (1u32 << drop) - 1;
-    let rest = bits & mask;
-    let mut kept_bits = bits & !mask;
-    let odd = (bits >> drop) & 1;
-    if rest > half_ulp || (rest == half_ulp && odd == 1) {
-        kept_bits += 1 << drop;
-    }
-    f32::from_bits(kept_bits)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -353,16 +300,6 @@ mod tests {
             .all(|(i, t)| t.dx == 0 && t.dy == i as i32));
         // A kernel longer than the image stops at the border, as imagecorruptions' does.
         assert_eq!(motion_line_taps(10, 3.0, 0.0, 8, 64).len(), 8);
-    }
-
-    #[test]
-    fn half_float_rounding_matches_ieee() {
-        assert_eq!(to_f16_precision(1.0), 1.0);
-        // 1 + 2^-11 is a tie between 1 and 1 + 2^-10: rounds to even (1.0).
-        assert_eq!(to_f16_precision(1.0 + 1.0 / 2048.0), 1.0);
-        assert_eq!(to_f16_precision(1.0 + 3.0 / 2048.0), 1.0 + 2.0 / 1024.0);
-        assert_eq!(to_f16_precision(0.1), 0.099_975_586);
-        assert_eq!(to_f16_precision(-0.1), -0.099_975_586);
     }
 
     #[test]

@@ -58,10 +58,25 @@ impl SeparableFilter {
     ) {
         use wgpu::BindingResource::TextureView as T;
         let (w, h) = (kit.width, kit.height);
-        let rows = [T(source), T(intermediate), self.row_kernel.as_entire_binding()];
+        let rows = [
+            T(source),
+            T(intermediate),
+            self.row_kernel.as_entire_binding(),
+        ];
         let rows = kit.bind_group(&self.rows, "filter rows", &rows);
-        kit.dispatch_grid(encoder, &self.rows, &rows, "filter rows", w.div_ceil(RUN), h);
-        let columns = [T(intermediate), T(target), self.column_kernel.as_entire_binding()];
+        kit.dispatch_grid(
+            encoder,
+            &self.rows,
+            &rows,
+            "filter rows",
+            w.div_ceil(RUN),
+            h,
+        );
+        let columns = [
+            T(intermediate),
+            T(target),
+            self.column_kernel.as_entire_binding(),
+        ];
         let columns = kit.bind_group(&self.columns, "filter columns", &columns);
         let label = "filter columns";
         kit.dispatch_grid(encoder, &self.columns, &columns, label, w, h.div_ceil(RUN));

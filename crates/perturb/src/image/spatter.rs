@@ -112,6 +112,7 @@ struct Pipelines {
     jump: wgpu::ComputePipeline,
     distance: wgpu::ComputePipeline,
     equalize: wgpu::ComputePipeline,
+    lut: wgpu::ComputePipeline,
     emboss: wgpu::ComputePipeline,
     shade: wgpu::ComputePipeline,
 }
@@ -124,7 +125,7 @@ struct Spatter {
     /// The noise blur and the mud mask blur (each with its own kernel uniforms).
     liquid_blur: SeparableFilter,
     mask_blur: SeparableFilter,
-    /// r32float: [noise / embossed, edges / distance / shade]
+    /// r32float: [noise / equalised / shade, edges / distance / embossed]
     planes: [wgpu::Texture; 2],
     /// rgba32float: [blur rows, blurred noise / blurred mask, liquid layer + mud mask]
     layers: [wgpu::Texture; 3],
@@ -151,6 +152,7 @@ impl Spatter {
             jump: image_pipeline(kit, "jump")?,
             distance: image_pipeline(kit, "distance")?,
             equalize: image_pipeline(kit, "equalize")?,
+            lut: image_pipeline(kit, "lut")?,
             emboss: image_pipeline(kit, "emboss")?,
             shade: image_pipeline(kit, "shade")?,
         };
@@ -191,7 +193,7 @@ impl Spatter {
         })
     }
 
-    /// Passes 5–16: shading from the liquid layer's edges, then the turquoise composite.
+    /// Passes 5–17: shading from the liquid layer's edges, then the turquoise composite.
     fn encode_water(
         &self,
         kit: &Kit,
@@ -201,7 +203,7 @@ impl Spatter {
     ) {
         use wgpu::BindingResource::TextureView as T;
         let p = &self.pipelines;
-        let [embossed, work] = self.planes.each_ref().map(view);
+        let [spare, work] = self.planes.each_ref().map(view);
         let liquid = view(&self.layers[2]);
         let seeds = self.seeds.each_ref().map(view);
         let edges = kit.bind_group(&p.edges, "spatter edges", &[T(&liquid), T(&work)]);
@@ -225,14 +227,22 @@ impl Spatter {
             self.lut.as_entire_binding(),
         ];
         let equalize = kit.bind_group(&p.equalize, "spatter equalize", &resources);
-        kit.dispatch_workgroups(encoder, &p.equalize, &equalize, "spatter equalize", [1, 1, 1]);
-        let resources = [T(&work), T(&embossed), self.lut.as_entire_binding()];
-        let emboss = kit.bind_group(&p.emboss, "spatter emboss", &resources);
+        kit.dispatch_workgroups(
+            encoder,
+            &p.equalize,
+            &equalize,
+            "spatter equalize",
+            [1, 1, 1],
+        );
+        let resources = [T(&work), T(&spare), self.lut.as_entire_binding()];
+        let lut = kit.bind_group(&p.lut, "spatter lut", &resources);
+        kit.dispatch(encoder, &p.lut, &lut, "spatter lut");
+        let emboss = kit.bind_group(&p.emboss, "spatter emboss", &[T(&spare), T(&work)]);
         kit.dispatch(encoder, &p.emboss, &emboss, "spatter emboss");
         let resources = [
-            T(&embossed),
-            T(&liquid),
             T(&work),
+            T(&liquid),
+            T(&spare),
             self.maximum.as_entire_binding(),
         ];
         let shade = kit.bind_group(&p.shade, "spatter shade", &resources);
@@ -242,7 +252,7 @@ impl Spatter {
             intensity,
             _pad: [0.0; 3],
         };
-        let extra = [T(&work), self.maximum.as_entire_binding()];
+        let extra = [T(&spare), self.maximum.as_entire_binding()];
         self.water.encode(kit, encoder, frame, &params, &extra);
     }
 }
@@ -287,11 +297,13 @@ impl GpuPerturbation for Spatter {
             Liquid::Mud => {
                 let mask = gaussian_runs(NAME, intensity as f64, TRUNCATE, Edge::Replicate)?;
                 self.mask_blur.set_kernels(kit, &mask, &mask);
-                self.mask_blur.encode(kit, encoder, &liquid, &rows, &blurred);
+                self.mask_blur
+                    .encode(kit, encoder, &liquid, &rows, &blurred);
                 let params = Mud {
                     color: [MUD_COLOR[0], MUD_COLOR[1], MUD_COLOR[2], 0.0],
                 };
-                self.mud.encode(kit, encoder, frame, &params, &[T(&blurred)]);
+                self.mud
+                    .encode(kit, encoder, frame, &params, &[T(&blurred)]);
             }
         }
         Ok(())

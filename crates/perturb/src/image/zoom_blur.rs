@@ -4,8 +4,8 @@
 use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
 
-use super::color_pass::ColorPass;
 use super::kernels::store_truncated;
+use super::run_pass::RunPass;
 use crate::image_f32::RgbF32;
 use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::PerturbError;
@@ -78,34 +78,31 @@ struct Zooms {
     _pad: [i32; 2],
     inverse_total: f32,
     windows: [[f32; 4]; MAX_ZOOMS],
-    weights: [[f32; 4]; MAX_ZOOMS],
 }
 
 fn zooms(severity: u8, width: u32, height: u32) -> Zooms {
     let factors = zoom_factors(severity);
     let mut out = Zooms {
-        count: factors.len().next_multiple_of(4) as i32,
+        count: factors.len() as i32,
         _pad: [0; 2],
         inverse_total: 1.0 / (factors.len() + 1) as f32,
         windows: [[0.0; 4]; MAX_ZOOMS],
-        weights: [[0.0; 4]; MAX_ZOOMS],
     };
     for (k, &z) in factors.iter().enumerate() {
         let (x, y) = (axis_window(width, z), axis_window(height, z));
         out.windows[k] = [x.top, y.top, x.scale, y.scale];
-        out.weights[k][0] = 1.0;
     }
     out
 }
 
 struct ZoomBlur {
-    pass: ColorPass,
+    pass: RunPass,
 }
 
 impl ZoomBlur {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         Ok(Self {
-            pass: ColorPass::new::<Zooms>(kit, SHADER)?,
+            pass: RunPass::new::<Zooms>(kit, SHADER)?,
         })
     }
 }
