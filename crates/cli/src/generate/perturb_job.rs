@@ -158,7 +158,10 @@ fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::R
     // Frames are decoded a few at a time in parallel, ahead of the GPU, and delivered in order.
     let decoder = std::thread::spawn(move || {
         for chunk in sources.chunks(DECODE_AHEAD) {
-            let decoded: Vec<_> = chunk.par_iter().map(|&s| decode_frame(&frames[s], scale)).collect();
+            let decoded: Vec<_> = chunk
+                .par_iter()
+                .map(|&s| decode_frame(&frames[s], scale))
+                .collect();
             for frame in decoded {
                 let failed = frame.is_err();
                 if tx.send(frame).is_err() || failed {
