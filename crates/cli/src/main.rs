@@ -33,7 +33,17 @@ enum Command {
     Eval(commands::eval::EvalArgs),
 }
 
+/// Mesa's Vulkan drivers probe for a Wayland display and print an "error:" line when
+/// XDG_RUNTIME_DIR is unset (headless machines, CI); give the probe a directory to look in.
+/// Runs first in `main`, while the process has one thread.
+fn quiet_headless_wayland_probe() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir());
+    }
+}
+
 fn main() -> ExitCode {
+    quiet_headless_wayland_probe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => commands::render::run(args),
