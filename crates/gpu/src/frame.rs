@@ -12,6 +12,9 @@ pub struct FrameTextures {
     pub color: wgpu::Texture,
     /// `R32Float`, metres along the optical axis.
     pub depth: wgpu::Texture,
+    color_view: wgpu::TextureView,
+    color_render_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
 }
 
 impl FrameTextures {
@@ -41,33 +44,38 @@ impl FrameTextures {
                 view_formats,
             })
         };
+        let color = make(
+            "frame colour",
+            Self::COLOR_FORMAT,
+            &[Self::COLOR_SRGB_FORMAT],
+        );
+        let depth = make("frame depth", Self::DEPTH_FORMAT, &[]);
         Self {
             width,
             height,
-            color: make(
-                "frame colour",
-                Self::COLOR_FORMAT,
-                &[Self::COLOR_SRGB_FORMAT],
-            ),
-            depth: make("frame depth", Self::DEPTH_FORMAT, &[]),
+            color_view: color.create_view(&Default::default()),
+            color_render_view: color.create_view(&wgpu::TextureViewDescriptor {
+                format: Some(Self::COLOR_SRGB_FORMAT),
+                usage: Some(wgpu::TextureUsages::RENDER_ATTACHMENT),
+                ..Default::default()
+            }),
+            depth_view: depth.create_view(&Default::default()),
+            color,
+            depth,
         }
     }
 
     /// The colour texture seen as sRGB: a render target that encodes linear shading to sRGB.
-    pub fn color_render_view(&self) -> wgpu::TextureView {
-        self.color.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(Self::COLOR_SRGB_FORMAT),
-            usage: Some(wgpu::TextureUsages::RENDER_ATTACHMENT),
-            ..Default::default()
-        })
+    pub fn color_render_view(&self) -> &wgpu::TextureView {
+        &self.color_render_view
     }
 
-    pub fn color_view(&self) -> wgpu::TextureView {
-        self.color.create_view(&Default::default())
+    pub fn color_view(&self) -> &wgpu::TextureView {
+        &self.color_view
     }
 
-    pub fn depth_view(&self) -> wgpu::TextureView {
-        self.depth.create_view(&Default::default())
+    pub fn depth_view(&self) -> &wgpu::TextureView {
+        &self.depth_view
     }
 
     pub fn size(&self) -> wgpu::Extent3d {

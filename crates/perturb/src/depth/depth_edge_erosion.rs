@@ -109,7 +109,7 @@ impl GpuPerturbation for EdgeErosion {
         let group = kit.bind_group_at(
             &self.depth_max,
             NAME,
-            &[(0, R::TextureView(&depth)), (2, max_bits())],
+            &[(0, R::TextureView(depth)), (2, max_bits())],
         );
         let columns = [kit.width.div_ceil(64), 1, 1];
         kit.dispatch_workgroups(encoder, &self.depth_max, &group, "depth_max", columns);
@@ -117,7 +117,7 @@ impl GpuPerturbation for EdgeErosion {
             &self.gradient,
             NAME,
             &[
-                (0, R::TextureView(&depth)),
+                (0, R::TextureView(depth)),
                 (2, max_bits()),
                 (4, R::TextureView(&states[0])),
             ],
@@ -192,7 +192,7 @@ impl GpuPerturbation for EdgeErosion {
         let group = kit.bind_group_at(
             &self.void_columns,
             NAME,
-            &[(0, R::TextureView(&depth)), (3, R::TextureView(&states[1]))],
+            &[(0, R::TextureView(depth)), (3, R::TextureView(&states[1]))],
         );
         kit.dispatch(encoder, &self.void_columns, &group, "void_columns");
         Ok(())

@@ -92,7 +92,7 @@ impl GpuPerturbation for DepthMissing {
             &self.pipeline,
             NAME,
             &[
-                wgpu::BindingResource::TextureView(&depth),
+                wgpu::BindingResource::TextureView(depth),
                 self.params.as_entire_binding(),
             ],
         );

@@ -50,7 +50,7 @@ impl GpuPerturbation for DepthNoise {
         frame: &FrameTextures,
         key: &FrameKey,
     ) -> Result<(), PerturbError> {
-        self.stats.encode(kit, encoder, &frame.depth_view());
+        self.stats.encode(kit, encoder, frame.depth_view());
         let params = KeyedParams {
             key: key.rng(NAME, PURPOSE_NOISE).0,
             values: [FACTOR[key.level()], 0.0, 0.0, 0.0],

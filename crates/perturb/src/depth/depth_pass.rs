@@ -34,7 +34,7 @@ impl DepthPass {
         kit.write_uniform(&self.params, params);
         let depth = frame.depth_view();
         let mut resources = vec![
-            wgpu::BindingResource::TextureView(&depth),
+            wgpu::BindingResource::TextureView(depth),
             self.params.as_entire_binding(),
         ];
         resources.extend_from_slice(extra);

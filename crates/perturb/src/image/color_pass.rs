@@ -39,7 +39,7 @@ impl ColorPass {
         let output = frame.color_view();
         let mut resources = vec![
             wgpu::BindingResource::TextureView(&source),
-            wgpu::BindingResource::TextureView(&output),
+            wgpu::BindingResource::TextureView(output),
             self.params.as_entire_binding(),
         ];
         resources.extend_from_slice(extra);

@@ -46,7 +46,7 @@ impl GpuPerturbation for Contrast {
         frame: &FrameTextures,
         key: &FrameKey,
     ) -> Result<(), PerturbError> {
-        self.means.encode(kit, encoder, &frame.color_view());
+        self.means.encode(kit, encoder, frame.color_view());
         let params = KeyedParams {
             key: [0; 4],
             values: [FACTOR[key.level()], 0.0, 0.0, 0.0],

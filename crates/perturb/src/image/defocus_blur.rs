@@ -234,7 +234,7 @@ impl GpuPerturbation for DefocusBlur {
             &self.rows,
             "defocus rows",
             &[
-                wgpu::BindingResource::TextureView(&color),
+                wgpu::BindingResource::TextureView(color),
                 wgpu::BindingResource::TextureView(&prefix),
                 self.prefix_params.as_entire_binding(),
             ],
@@ -246,7 +246,7 @@ impl GpuPerturbation for DefocusBlur {
             "defocus boxes",
             &[
                 wgpu::BindingResource::TextureView(&prefix),
-                wgpu::BindingResource::TextureView(&color),
+                wgpu::BindingResource::TextureView(color),
                 self.box_params.as_entire_binding(),
             ],
         );

@@ -165,7 +165,7 @@ impl GpuPerturbation for Fog {
             "fog range",
             &[
                 wgpu::BindingResource::TextureView(&map),
-                wgpu::BindingResource::TextureView(&color),
+                wgpu::BindingResource::TextureView(color),
                 self.range.as_entire_binding(),
             ],
         );

@@ -121,7 +121,7 @@ impl GpuPerturbation for GaussianBlur {
         kit.copy_color_to_scratch(encoder, frame);
         let source = view(&kit.scratch.color);
         self.passes
-            .encode(kit, encoder, &source, &frame.color_view());
+            .encode(kit, encoder, &source, frame.color_view());
         Ok(())
     }
 }

@@ -79,7 +79,7 @@ impl GpuPerturbation for GlassBlur {
         let frame_view = frame.color_view();
         let scratch = view(&kit.scratch.color);
         // Blur into scratch, sweep back and forth, blur from wherever the sweeps ended.
-        self.blur.encode(kit, encoder, &frame_view, &scratch);
+        self.blur.encode(kit, encoder, frame_view, &scratch);
         let rng = key.rng(NAME, 0);
         for (i, buffer) in self.sweeps.iter().take(iterations as usize).enumerate() {
             let params = Sweep {
@@ -90,9 +90,9 @@ impl GpuPerturbation for GlassBlur {
             };
             kit.write_uniform(buffer, &params);
             let (from, to) = if i % 2 == 0 {
-                (&scratch, &frame_view)
+                (&scratch, frame_view)
             } else {
-                (&frame_view, &scratch)
+                (frame_view, &scratch)
             };
             let bind_group = kit.bind_group(
                 &self.sweep,
@@ -106,11 +106,11 @@ impl GpuPerturbation for GlassBlur {
             kit.dispatch(encoder, &self.sweep, &bind_group, "glass sweep");
         }
         let swept = if iterations % 2 == 1 {
-            &frame_view
+            frame_view
         } else {
             &scratch
         };
-        self.blur.encode(kit, encoder, swept, &frame_view);
+        self.blur.encode(kit, encoder, swept, frame_view);
         Ok(())
     }
 }

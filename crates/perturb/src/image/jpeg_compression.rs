@@ -102,7 +102,7 @@ impl GpuPerturbation for JpegCompression {
             &self.blocks,
             "jpeg blocks",
             &[
-                wgpu::BindingResource::TextureView(&color),
+                wgpu::BindingResource::TextureView(color),
                 wgpu::BindingResource::TextureView(&luma),
                 wgpu::BindingResource::TextureView(&chroma),
                 self.tables.as_entire_binding(),
@@ -117,7 +117,7 @@ impl GpuPerturbation for JpegCompression {
             &[
                 wgpu::BindingResource::TextureView(&luma),
                 wgpu::BindingResource::TextureView(&chroma),
-                wgpu::BindingResource::TextureView(&color),
+                wgpu::BindingResource::TextureView(color),
             ],
         );
         kit.dispatch(encoder, &self.decode, &decode, "jpeg decode");

@@ -185,7 +185,7 @@ impl GpuPerturbation for Pixelate {
             &self.rows,
             SHADER,
             &[
-                wgpu::BindingResource::TextureView(&frame_view),
+                wgpu::BindingResource::TextureView(frame_view),
                 wgpu::BindingResource::TextureView(&intermediate),
                 self.params.as_entire_binding(),
                 self.tables.as_entire_binding(),
@@ -204,7 +204,7 @@ impl GpuPerturbation for Pixelate {
             SHADER,
             &[
                 wgpu::BindingResource::TextureView(&intermediate),
-                wgpu::BindingResource::TextureView(&frame_view),
+                wgpu::BindingResource::TextureView(frame_view),
                 self.params.as_entire_binding(),
                 self.tables.as_entire_binding(),
             ],

@@ -40,7 +40,7 @@ impl RunPass {
         let output = frame.color_view();
         let mut resources = vec![
             wgpu::BindingResource::TextureView(&source),
-            wgpu::BindingResource::TextureView(&output),
+            wgpu::BindingResource::TextureView(output),
             self.params.as_entire_binding(),
         ];
         resources.extend_from_slice(extra);

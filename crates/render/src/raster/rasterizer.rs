@@ -202,13 +202,13 @@ impl Rasterizer {
             label: Some("mesh"),
             color_attachments: &[
                 Some(wgpu::RenderPassColorAttachment {
-                    view: &color_view,
+                    view: color_view,
                     depth_slice: None,
                     resolve_target: None,
                     ops: clear(wgpu::Color::BLACK),
                 }),
                 Some(wgpu::RenderPassColorAttachment {
-                    view: &depth_view,
+                    view: depth_view,
                     depth_slice: None,
                     resolve_target: None,
                     ops: clear(wgpu::Color::TRANSPARENT),
