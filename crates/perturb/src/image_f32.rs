@@ -58,6 +58,21 @@ impl RgbF32 {
         self.at(x, y)
     }
 
+    /// Applies `f(x, y, pixel)` to every pixel: the shape of every per-pixel CPU twin.
+    pub fn map_pixels(&self, f: impl Fn(u32, u32, [f32; 3]) -> [f32; 3]) -> Self {
+        let width = self.width.max(1);
+        Self {
+            width: self.width,
+            height: self.height,
+            data: self
+                .data
+                .iter()
+                .enumerate()
+                .map(|(i, &p)| f(i as u32 % width, i as u32 / width, p))
+                .collect(),
+        }
+    }
+
     /// Applies `f` to every pixel.
     pub fn map(&self, f: impl Fn([f32; 3]) -> [f32; 3]) -> Self {
         Self {

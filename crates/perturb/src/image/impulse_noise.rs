@@ -32,24 +32,19 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
     let rng = key.rng(NAME, PURPOSE_NOISE);
     let amount = AMOUNT[key.level()];
-    let mut out = image.clone();
-    for y in 0..image.height {
-        for x in 0..image.width {
-            let words = rng.draw([x, y, 0, 0]);
-            let i = image.index(x, y);
-            out.data[i] = std::array::from_fn(|c| {
-                let u = rng::uniform(words[c]);
-                if u < 0.5 * amount {
-                    1.0
-                } else if u < amount {
-                    0.0
-                } else {
-                    image.data[i][c]
-                }
-            });
-        }
-    }
-    out
+    image.map_pixels(|x, y, p| {
+        let words = rng.draw([x, y, 0, 0]);
+        std::array::from_fn(|c| {
+            let u = rng::uniform(words[c]);
+            if u < 0.5 * amount {
+                1.0
+            } else if u < amount {
+                0.0
+            } else {
+                p[c]
+            }
+        })
+    })
 }
 
 #[cfg(test)]

@@ -30,15 +30,9 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
     let rng = key.rng(NAME, PURPOSE_NOISE);
     let c = PHOTONS[key.level()];
-    let mut out = image.clone();
-    for y in 0..image.height {
-        for x in 0..image.width {
-            let i = image.index(x, y);
-            out.data[i] =
-                std::array::from_fn(|ch| rng.poisson([x, y, ch as u32], image.data[i][ch] * c) / c);
-        }
-    }
-    out
+    image.map_pixels(|x, y, p| {
+        std::array::from_fn(|ch| rng.poisson([x, y, ch as u32], p[ch] * c) / c)
+    })
 }
 
 #[cfg(test)]

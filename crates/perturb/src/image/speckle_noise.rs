@@ -29,18 +29,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
     let rng = key.rng(NAME, PURPOSE_NOISE);
     let sigma = SIGMA[key.level()];
-    let mut out = image.clone();
-    for y in 0..image.height {
-        for x in 0..image.width {
-            let n = rng.normal3([x, y, 0, 0]);
-            let i = image.index(x, y);
-            out.data[i] = std::array::from_fn(|c| {
-                let v = image.data[i][c];
-                v + v * sigma * n[c]
-            });
-        }
-    }
-    out
+    image.map_pixels(|x, y, p| {
+        let n = rng.normal3([x, y, 0, 0]);
+        std::array::from_fn(|c| p[c] + p[c] * sigma * n[c])
+    })
 }
 
 #[cfg(test)]
