@@ -4,6 +4,11 @@
 mod commands;
 mod generate;
 
+/// Frames are megabyte buffers made and dropped on several threads; glibc returns them to the
+/// kernel and faults them back in on every frame, mimalloc keeps reusing them.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};

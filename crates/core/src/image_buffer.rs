@@ -22,22 +22,35 @@ impl RgbImage {
 
     /// RGBA with opaque alpha, the layout GPU textures use.
     pub fn to_rgba(&self) -> Vec<u8> {
-        self.data
-            .chunks_exact(3)
-            .flat_map(|p| [p[0], p[1], p[2], 255])
-            .collect()
+        let mut rgba = vec![255u8; self.data.len() / 3 * 4];
+        for (to, from) in rgba.chunks_exact_mut(4).zip(self.data.chunks_exact(3)) {
+            to[..3].copy_from_slice(from);
+        }
+        rgba
     }
 
-    pub fn from_rgba(width: u32, height: u32, rgba: &[u8]) -> Self {
-        let data = rgba
-            .chunks_exact(4)
-            .flat_map(|p| [p[0], p[1], p[2]])
-            .collect();
+    /// From RGBA rows that start every `row_stride` bytes (GPU readback pads them); alpha is
+    /// dropped.
+    pub fn from_rgba_rows(width: u32, height: u32, rgba: &[u8], row_stride: usize) -> Self {
+        let row = width as usize * 4;
+        let mut data = vec![0u8; width as usize * height as usize * 3];
+        for (to, from) in data
+            .chunks_exact_mut(width as usize * 3)
+            .zip(rgba.chunks(row_stride))
+        {
+            for (pixel, rgba) in to.chunks_exact_mut(3).zip(from[..row].chunks_exact(4)) {
+                pixel.copy_from_slice(&rgba[..3]);
+            }
+        }
         Self {
             width,
             height,
             data,
         }
+    }
+
+    pub fn from_rgba(width: u32, height: u32, rgba: &[u8]) -> Self {
+        Self::from_rgba_rows(width, height, rgba, width as usize * 4)
     }
 }
 
@@ -83,5 +96,28 @@ impl DepthImage {
             height,
             data,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::RgbImage;
+
+    #[test]
+    fn rgba_round_trip_drops_row_padding() {
+        let image = RgbImage {
+            width: 3,
+            height: 2,
+            data: (0..18).collect(),
+        };
+        let rgba = image.to_rgba();
+        assert_eq!(&rgba[..8], &[0, 1, 2, 255, 3, 4, 5, 255]);
+        // Rows padded from 12 to 16 bytes with junk, as GPU readback pads them.
+        let padded: Vec<u8> = rgba
+            .chunks(12)
+            .flat_map(|row| row.iter().copied().chain([77; 4]))
+            .collect();
+        assert_eq!(RgbImage::from_rgba_rows(3, 2, &padded, 16), image);
+        assert_eq!(RgbImage::from_rgba(3, 2, &rgba), image);
     }
 }

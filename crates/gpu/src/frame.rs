@@ -86,7 +86,8 @@ impl FrameTextures {
         }
     }
 
-    /// Uploads a frame read from disk (the `rslam perturb` path); without depth, depth is zeroed.
+    /// Uploads a frame read from disk (the `rslam perturb` path). Without depth the depth texture
+    /// keeps whatever it held: image-only inputs run image corruptions only, which never read it.
     pub fn upload(&self, ctx: &GpuContext, color: &RgbImage, depth: Option<&DepthImage>) {
         let layout = |bytes_per_pixel: u32| wgpu::TexelCopyBufferLayout {
             offset: 0,
@@ -99,19 +100,13 @@ impl FrameTextures {
             layout(4),
             self.size(),
         );
-        let zeros;
-        let depth_values: &[f32] = match depth {
-            Some(d) => &d.data,
-            None => {
-                zeros = vec![0.0f32; (self.width * self.height) as usize];
-                &zeros
-            }
-        };
-        ctx.queue.write_texture(
-            self.depth.as_image_copy(),
-            bytemuck::cast_slice(depth_values),
-            layout(4),
-            self.size(),
-        );
+        if let Some(depth) = depth {
+            ctx.queue.write_texture(
+                self.depth.as_image_copy(),
+                bytemuck::cast_slice(&depth.data),
+                layout(4),
+                self.size(),
+            );
+        }
     }
 }

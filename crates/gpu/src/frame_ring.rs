@@ -6,7 +6,8 @@ use crate::{FrameReadback, FrameTextures, GpuContext, GpuError};
 pub struct ReadFrame {
     pub index: usize,
     pub color: RgbImage,
-    pub depth: DepthImage,
+    /// `None` when the ring was made without depth.
+    pub depth: Option<DepthImage>,
 }
 
 struct Slot {
@@ -22,11 +23,17 @@ pub struct FrameRing {
 }
 
 impl FrameRing {
-    pub fn new(ctx: &GpuContext, width: u32, height: u32, in_flight: usize) -> Self {
+    pub fn new(
+        ctx: &GpuContext,
+        width: u32,
+        height: u32,
+        in_flight: usize,
+        with_depth: bool,
+    ) -> Self {
         let slots = (0..in_flight.max(1))
             .map(|_| Slot {
                 textures: FrameTextures::new(ctx, width, height),
-                readback: FrameReadback::new(ctx, width, height),
+                readback: FrameReadback::new(ctx, width, height, with_depth),
                 pending: None,
             })
             .collect();

@@ -4,13 +4,14 @@ use rslam_core::{DepthImage, RgbImage};
 
 use crate::{FrameTextures, GpuContext, GpuError};
 
-/// Staging buffers for one frame's colour and depth, rows padded to wgpu's 256-byte alignment.
+/// Staging buffers for one frame's colour and, when asked for, its depth; rows padded to wgpu's
+/// 256-byte alignment.
 pub struct FrameReadback {
     width: u32,
     height: u32,
     padded_row_bytes: u32,
     color: wgpu::Buffer,
-    depth: wgpu::Buffer,
+    depth: Option<wgpu::Buffer>,
 }
 
 /// Both colour and depth are 4 bytes per pixel, so one padded row length serves both.
@@ -21,7 +22,8 @@ fn padded_row_bytes(width: u32) -> u32 {
 }
 
 impl FrameReadback {
-    pub fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
+    /// Without `with_depth` only colour is copied and read (image-only inputs have no depth).
+    pub fn new(ctx: &GpuContext, width: u32, height: u32, with_depth: bool) -> Self {
         let padded = padded_row_bytes(width);
         let make = |label| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -36,13 +38,17 @@ impl FrameReadback {
             height,
             padded_row_bytes: padded,
             color: make("readback colour"),
-            depth: make("readback depth"),
+            depth: with_depth.then(|| make("readback depth")),
         }
     }
 
-    /// Records the copies of both textures into the staging buffers.
+    fn buffers(&self) -> impl Iterator<Item = &wgpu::Buffer> {
+        std::iter::once(&self.color).chain(&self.depth)
+    }
+
+    /// Records the copies of the textures read back into the staging buffers.
     pub fn encode_copy(&self, encoder: &mut wgpu::CommandEncoder, frame: &FrameTextures) {
-        for (texture, buffer) in [(&frame.color, &self.color), (&frame.depth, &self.depth)] {
+        for (texture, buffer) in [&frame.color, &frame.depth].into_iter().zip(self.buffers()) {
             encoder.copy_texture_to_buffer(
                 texture.as_image_copy(),
                 wgpu::TexelCopyBufferInfo {
@@ -58,16 +64,17 @@ impl FrameReadback {
         }
     }
 
-    /// Waits for `submission`, maps both buffers and unpads them into CPU images.
+    /// Waits for `submission`, maps the buffers and unpads them into CPU images; depth is `None`
+    /// unless it was asked for.
     pub fn read(
         &self,
         ctx: &GpuContext,
         submission: wgpu::SubmissionIndex,
-    ) -> Result<(RgbImage, DepthImage), GpuError> {
+    ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
         // A failed submission shows up here first, with the real cause.
         ctx.check()?;
         let (tx, rx) = mpsc::channel();
-        for buffer in [&self.color, &self.depth] {
+        for buffer in self.buffers() {
             let tx = tx.clone();
             buffer.map_async(wgpu::MapMode::Read, .., move |r| {
                 let _ = tx.send(r);
@@ -78,43 +85,45 @@ impl FrameReadback {
                 submission_index: Some(submission),
                 timeout: None,
             })
-            .map_err(|e| GpuError::Readback {
-                message: e.to_string(),
-            })?;
-        for _ in 0..2 {
+            .map_err(readback_failed)?;
+        for _ in self.buffers() {
             rx.recv()
-                .map_err(|e| GpuError::Readback {
-                    message: e.to_string(),
-                })?
-                .map_err(|e| GpuError::Readback {
-                    message: e.to_string(),
-                })?;
+                .map_err(readback_failed)?
+                .map_err(readback_failed)?;
         }
         ctx.check()?;
-        let row = (self.width * 4) as usize;
-        let unpad = |buffer: &wgpu::Buffer| -> Result<Vec<u8>, GpuError> {
-            let view = buffer
-                .get_mapped_range(..)
-                .map_err(|e| GpuError::Readback {
-                    message: e.to_string(),
-                })?;
-            let mut out = Vec::with_capacity(row * self.height as usize);
-            for chunk in view.chunks(self.padded_row_bytes as usize) {
-                out.extend_from_slice(&chunk[..row]);
-            }
-            Ok(out)
+        let padded = self.padded_row_bytes as usize;
+        let color = {
+            let view = self.color.get_mapped_range(..).map_err(readback_failed)?;
+            RgbImage::from_rgba_rows(self.width, self.height, &view, padded)
         };
-        let rgba = unpad(&self.color)?;
-        let depth_bytes = unpad(&self.depth)?;
         self.color.unmap();
-        self.depth.unmap();
-        let color = RgbImage::from_rgba(self.width, self.height, &rgba);
-        let depth = DepthImage {
-            width: self.width,
-            height: self.height,
-            data: bytemuck::pod_collect_to_vec(&depth_bytes),
+        let depth = match &self.depth {
+            Some(buffer) => {
+                let row = self.width as usize * 4;
+                let view = buffer.get_mapped_range(..).map_err(readback_failed)?;
+                let data = view
+                    .chunks(padded)
+                    .flat_map(|r| r[..row].chunks_exact(4))
+                    .map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]))
+                    .collect();
+                drop(view);
+                buffer.unmap();
+                Some(DepthImage {
+                    width: self.width,
+                    height: self.height,
+                    data,
+                })
+            }
+            None => None,
         };
         Ok((color, depth))
+    }
+}
+
+fn readback_failed(e: impl std::fmt::Display) -> GpuError {
+    GpuError::Readback {
+        message: e.to_string(),
     }
 }
 

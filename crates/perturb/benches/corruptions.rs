@@ -104,19 +104,25 @@ fn corruptions(c: &mut Criterion) {
     }
     group.finish();
 
-    let readback = FrameReadback::new(&ctx, WIDTH, HEIGHT);
+    let readback = FrameReadback::new(&ctx, WIDTH, HEIGHT, true);
+    let color_readback = FrameReadback::new(&ctx, WIDTH, HEIGHT, false);
     let mut group = c.benchmark_group("readback_1200x680");
     group.throughput(Throughput::Elements((WIDTH * HEIGHT) as u64));
     group.sample_size(10);
-    group.bench_function("color_and_depth", |b| {
-        b.iter(|| {
-            let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            readback.encode_copy(&mut encoder, &frame);
-            readback
-                .read(&ctx, ctx.queue.submit([encoder.finish()]))
-                .expect("readback")
+    for (name, readback) in [
+        ("color_and_depth", &readback),
+        ("color", &color_readback),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                readback.encode_copy(&mut encoder, &frame);
+                readback
+                    .read(&ctx, ctx.queue.submit([encoder.finish()]))
+                    .expect("readback")
+            });
         });
-    });
+    }
     group.finish();
 
     let dir = std::env::temp_dir().join("rslam-perturb-bench");
@@ -164,8 +170,8 @@ fn corruptions(c: &mut Criterion) {
                 perturbation
                     .encode(&kit, &mut encoder, &frame, &key)
                     .expect("encode");
-                readback.encode_copy(&mut encoder, &frame);
-                let (out, _) = readback
+                color_readback.encode_copy(&mut encoder, &frame);
+                let (out, _) = color_readback
                     .read(&ctx, ctx.queue.submit([encoder.finish()]))
                     .expect("readback");
                 std::fs::write(&output, encode_png(&out).expect("encode")).expect("write");

@@ -50,7 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         scratch: &scratch,
     };
     let frame = FrameTextures::new(&ctx, width, height);
-    let readback = FrameReadback::new(&ctx, width, height);
+    let readback = FrameReadback::new(&ctx, width, height, false);
     for name in args[2].split(',') {
         let entry = find(name).ok_or_else(|| format!("unknown perturbation '{name}'"))?;
         let mut perturbation = (entry.build)(&kit)?;

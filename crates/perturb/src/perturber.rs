@@ -199,7 +199,7 @@ mod tests {
         let clean = testing::test_image(w, h);
         let depth = testing::test_depth(w, h);
         let frame = FrameTextures::new(ctx, w, h);
-        let readback = FrameReadback::new(ctx, w, h);
+        let readback = FrameReadback::new(ctx, w, h, true);
         let mut seen = [false; 6];
         for index in 0..40 {
             frame.upload(ctx, &clean, Some(&depth));
@@ -209,6 +209,7 @@ mod tests {
             let (color, out_depth) = readback
                 .read(ctx, ctx.queue.submit([encoder.finish()]))
                 .unwrap();
+            let out_depth = out_depth.expect("depth was asked for");
             assert_eq!(got, perturber.severities(index));
             let severity = got.items[0].severity;
             assert_eq!(

@@ -38,16 +38,17 @@ pub fn run_frame(
         (entry.build)(&kit).unwrap_or_else(|e| panic!("building {}: {e}", entry.name));
     let frame = FrameTextures::new(ctx, width, height);
     frame.upload(ctx, color, depth);
-    let readback = FrameReadback::new(ctx, width, height);
+    let readback = FrameReadback::new(ctx, width, height, true);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
     perturbation
         .encode(&kit, &mut encoder, &frame, key)
         .unwrap_or_else(|e| panic!("encoding {}: {e}", entry.name));
     readback.encode_copy(&mut encoder, &frame);
     let submission = ctx.queue.submit([encoder.finish()]);
-    readback
+    let (color, depth) = readback
         .read(ctx, submission)
-        .unwrap_or_else(|e| panic!("running {}: {e}", entry.name))
+        .unwrap_or_else(|e| panic!("running {}: {e}", entry.name));
+    (color, depth.expect("depth was asked for"))
 }
 
 /// A key for frame 0 at `severity`.

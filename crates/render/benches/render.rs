@@ -21,7 +21,7 @@ fn render_benches(c: &mut Criterion) {
     ] {
         let rasterizer = Rasterizer::new(&ctx, &scene, k).expect("rasterizer");
         let frame = FrameTextures::new(&ctx, k.width, k.height);
-        let readback = FrameReadback::new(&ctx, k.width, k.height);
+        let readback = FrameReadback::new(&ctx, k.width, k.height, true);
         let mut group = c.benchmark_group(format!("render_room0_{label}"));
         group.throughput(Throughput::Elements(1));
         group.sample_size(20);

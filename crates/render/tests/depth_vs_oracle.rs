@@ -29,7 +29,7 @@ fn render_depths(scene: &Scene, poses: &[Pose], k: Intrinsics) -> Vec<DepthImage
         .expect("a Vulkan adapter (lavapipe) is required");
     let rasterizer = Rasterizer::new(&ctx, scene, k).expect("upload scene");
     let frame = FrameTextures::new(&ctx, k.width, k.height);
-    let readback = FrameReadback::new(&ctx, k.width, k.height);
+    let readback = FrameReadback::new(&ctx, k.width, k.height, true);
     poses
         .iter()
         .map(|pose| {
@@ -37,7 +37,11 @@ fn render_depths(scene: &Scene, poses: &[Pose], k: Intrinsics) -> Vec<DepthImage
             rasterizer.encode(&ctx, &mut encoder, &frame, pose);
             readback.encode_copy(&mut encoder, &frame);
             let submission = ctx.queue.submit([encoder.finish()]);
-            readback.read(&ctx, submission).expect("readback").1
+            readback
+                .read(&ctx, submission)
+                .expect("readback")
+                .1
+                .expect("depth was asked for")
         })
         .collect()
 }

@@ -1,9 +1,11 @@
 //! Dataset generation: glue between the renderer (or a dataset on disk), the perturber and the
 //! dataset writer. Frames go GPU → one readback → encoder threads; the manifest is written last.
 
+mod decode_ahead;
 mod drive;
 mod encoder_pool;
 mod manifest;
+mod perturb_images;
 mod perturb_job;
 mod progress;
 mod render_job;

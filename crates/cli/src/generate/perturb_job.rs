@@ -1,30 +1,24 @@
 //! `rslam perturb`: corruptions applied to what is already on disk: a dataset (Replica or TUM
 //! layout), a folder of images, or one image.
 
-use std::collections::hash_map::Entry;
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::mpsc::sync_channel;
 
-use anyhow::Context;
-use rayon::prelude::*;
 use rslam_core::dataset::{
-    decode_depth_png, read_dataset, read_rgb, write_rgb_like, DatasetWriter, ItemSeverities,
-    Manifest, SourceDataset,
+    decode_depth_png, read_dataset, read_rgb, DatasetFrame, DatasetWriter, SourceDataset,
 };
 use rslam_core::{DepthImage, Pose, RgbImage, Trajectory};
-use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
+use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::{PerturbSpec, Perturber};
 
+use super::decode_ahead::DecodeAhead;
 use super::drive::drive;
 use super::manifest::ManifestBuilder;
+use super::perturb_images::{image_files, perturb_images};
 use super::sink::{FrameSink, OutputPlan};
 
 /// Largest |Δt| at which a ground-truth pose stands for a frame when re-stamping (TUM's 100 Hz
 /// motion capture has one within 5 ms of every frame).
 const GT_MATCH_MAX_DIFF_S: f64 = 0.02;
-/// Frames decoded together, in parallel, ahead of the GPU.
-const DECODE_AHEAD: usize = 4;
 
 pub enum PerturbInput {
     Dataset(PathBuf),
@@ -32,7 +26,7 @@ pub enum PerturbInput {
     Image(PathBuf),
 }
 
-fn is_image(path: &Path) -> bool {
+pub(super) fn is_image(path: &Path) -> bool {
     path.extension()
         .map(|e| e.to_string_lossy().to_lowercase())
         .is_some_and(|e| matches!(e.as_str(), "png" | "jpg" | "jpeg"))
@@ -86,21 +80,6 @@ pub fn run_perturb(job: PerturbJob) -> anyhow::Result<usize> {
     }
 }
 
-fn image_files(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .with_context(|| format!("--input {}", dir.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.is_file() && is_image(p))
-        .collect();
-    files.sort();
-    anyhow::ensure!(
-        !files.is_empty(),
-        "--input {}: no .png/.jpg images in this folder",
-        dir.display()
-    );
-    Ok(files)
-}
-
 fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::Result<usize> {
     let src = read_dataset(root)?;
     if !job.perturb.depth.is_empty() {
@@ -151,32 +130,21 @@ fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::R
     let writer = DatasetWriter::create(&job.out, src.format, k)?;
     let sink = FrameSink::new(writer, plan);
     let with_depth = src.frames.iter().all(|f| f.depth.is_some());
-    let (tx, rx) = sync_channel::<anyhow::Result<(RgbImage, Option<DepthImage>)>>(DECODE_AHEAD);
-    let sources = sink.plan().needed_sources();
-    let frames = src.frames.clone();
     let scale = src.format.depth_scale();
-    // Frames are decoded a few at a time in parallel, ahead of the GPU, and delivered in order.
-    let decoder = std::thread::spawn(move || {
-        for chunk in sources.chunks(DECODE_AHEAD) {
-            let decoded: Vec<_> = chunk
-                .par_iter()
-                .map(|&s| decode_frame(&frames[s], scale))
-                .collect();
-            for frame in decoded {
-                let failed = frame.is_err();
-                if tx.send(frame).is_err() || failed {
-                    return;
-                }
-            }
-        }
-    });
+    let needed: Vec<DatasetFrame> = sink
+        .plan()
+        .needed_sources()
+        .into_iter()
+        .map(|s| src.frames[s].clone())
+        .collect();
+    let decoder = DecodeAhead::start(needed, move |frame| decode_frame(frame, scale));
     let fps = drive(
         ctx,
         &sink,
         with_depth,
         "perturbing",
         |source, encoder, frame| {
-            let (color, depth) = rx.recv().context("frame decoder stopped")??;
+            let (color, depth) = decoder.next()?;
             anyhow::ensure!(
                 (color.width, color.height) == (k.width, k.height),
                 "{}: image is {}x{}, expected {}x{} like the first frame",
@@ -191,8 +159,7 @@ fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::R
             Ok(())
         },
     )?;
-    drop(rx);
-    let _ = decoder.join();
+    drop(decoder);
     let manifest = ManifestBuilder {
         command: &job.command,
         source: &root.display().to_string(),
@@ -213,7 +180,7 @@ fn perturb_dataset(ctx: &GpuContext, job: &PerturbJob, root: &Path) -> anyhow::R
 }
 
 fn decode_frame(
-    frame: &rslam_core::dataset::DatasetFrame,
+    frame: &DatasetFrame,
     scale: f64,
 ) -> anyhow::Result<(RgbImage, Option<DepthImage>)> {
     let color = read_rgb(&frame.rgb)?;
@@ -250,86 +217,4 @@ fn output_ground_truth(src: &SourceDataset, plan: &OutputPlan, restamp: bool) ->
         }
     }
     Trajectory::new(timestamps, poses)
-}
-
-/// Image inputs: each image perturbed as frame i of a sequence, written under its own name.
-fn perturb_images(
-    ctx: &GpuContext,
-    job: &PerturbJob,
-    files: &[PathBuf],
-    folder: bool,
-) -> anyhow::Result<usize> {
-    let spec = &job.perturb;
-    if !spec.depth.is_empty() {
-        anyhow::bail!("--perturb '{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)");
-    }
-    if spec.fast.is_some() || spec.misalign.is_some() {
-        anyhow::bail!("--perturb '{spec}': fast and misalign act on RGB-D streams; use a dataset (Replica or TUM layout) as --input");
-    }
-    if folder {
-        std::fs::create_dir_all(&job.out)
-            .with_context(|| format!("--out {}", job.out.display()))?;
-        let _ = std::fs::remove_file(job.out.join(rslam_core::dataset::MANIFEST_FILE));
-    }
-    let mut per_size: HashMap<(u32, u32), (Perturber, FrameTextures, FrameReadback)> =
-        HashMap::new();
-    let mut per_frame = vec![String::new(); spec.image.len()];
-    for (i, file) in files.iter().enumerate() {
-        let color = read_rgb(file)?;
-        let size = (color.width, color.height);
-        let (perturber, frame, readback) = match per_size.entry(size) {
-            Entry::Occupied(entry) => entry.into_mut(),
-            Entry::Vacant(entry) => entry.insert((
-                Perturber::new(ctx, spec, size.0, size.1, job.seed)?,
-                FrameTextures::new(ctx, size.0, size.1),
-                FrameReadback::new(ctx, size.0, size.1),
-            )),
-        };
-        frame.upload(ctx, &color, None);
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let got = perturber.encode(ctx, &mut encoder, frame, i as u32)?;
-        readback.encode_copy(&mut encoder, frame);
-        let submission = ctx.queue.submit([encoder.finish()]);
-        let (out_color, _) = readback.read(ctx, submission)?;
-        for (column, item) in per_frame.iter_mut().zip(&got.items) {
-            column.push(char::from(b'0' + item.severity));
-        }
-        let out = if folder {
-            job.out
-                .join(file.file_name().context("image without a file name")?)
-        } else {
-            job.out.clone()
-        };
-        write_rgb_like(&out, &out_color, 95)?;
-    }
-    if folder {
-        let labels = spec.frame_items().map(|item| item.to_string());
-        let manifest = Manifest {
-            tool: "rslam".into(),
-            tool_version: env!("CARGO_PKG_VERSION").into(),
-            command: job.command.clone(),
-            source: files
-                .first()
-                .and_then(|f| f.parent())
-                .map(|p| p.display().to_string())
-                .unwrap_or_default(),
-            source_hash: String::new(),
-            format: None,
-            camera: None,
-            rate_hz: 0.0,
-            frame_count: files.len(),
-            seed: job.seed,
-            perturbation: spec.to_string(),
-            perturbation_parsed: serde_json::to_value(spec)?,
-            severities: labels
-                .zip(per_frame)
-                .map(|(item, per_frame)| ItemSeverities { item, per_frame })
-                .collect(),
-            rgb_source: (0..files.len()).collect(),
-            depth_source: Vec::new(),
-            extra: serde_json::json!({ "files": files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>() }),
-        };
-        manifest.write(&job.out)?;
-    }
-    Ok(files.len())
 }

@@ -64,6 +64,16 @@ pub fn read_rgb(path: &Path) -> Result<RgbImage, CoreError> {
     decode_rgb(&bytes).map_err(|message| CoreError::bad_file(path, message))
 }
 
+/// Width and height of a PNG or JPEG from its header, without decoding the pixels.
+pub fn read_image_size(path: &Path) -> Result<(u32, u32), CoreError> {
+    image::ImageReader::open(path)
+        .map_err(|e| CoreError::io(path, e))?
+        .with_guessed_format()
+        .map_err(|e| CoreError::io(path, e))?
+        .into_dimensions()
+        .map_err(|e| CoreError::bad_file(path, format!("not a readable image: {e}")))
+}
+
 pub fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
     let image = image::ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()

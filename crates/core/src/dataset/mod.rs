@@ -10,8 +10,8 @@ mod reader;
 mod writer;
 
 pub use codec::{
-    decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, read_rgb,
-    write_rgb_like,
+    decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, read_image_size,
+    read_rgb, write_rgb_like,
 };
 pub use layout::DatasetFormat;
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};

@@ -1,0 +1,60 @@
+//! Frames decoded on a background thread, a few at a time in parallel, ahead of the GPU, and
+//! handed over in order.
+
+use std::sync::mpsc::{sync_channel, Receiver};
+use std::thread::JoinHandle;
+
+use anyhow::Context;
+use rayon::prelude::*;
+
+/// Frames decoded together, in parallel.
+const DECODE_AHEAD: usize = 4;
+
+pub struct DecodeAhead<T> {
+    frames: Option<Receiver<anyhow::Result<T>>>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl<T: Send + 'static> DecodeAhead<T> {
+    /// Starts decoding `items` in order with `decode`; it stops after the first error.
+    pub fn start<I: Send + Sync + 'static>(
+        items: Vec<I>,
+        decode: impl Fn(&I) -> anyhow::Result<T> + Send + Sync + 'static,
+    ) -> Self {
+        let (tx, rx) = sync_channel(DECODE_AHEAD);
+        let thread = std::thread::spawn(move || {
+            for chunk in items.chunks(DECODE_AHEAD) {
+                let decoded: Vec<_> = chunk.par_iter().map(&decode).collect();
+                for frame in decoded {
+                    let failed = frame.is_err();
+                    if tx.send(frame).is_err() || failed {
+                        return;
+                    }
+                }
+            }
+        });
+        Self {
+            frames: Some(rx),
+            thread: Some(thread),
+        }
+    }
+
+    /// The next decoded frame, or the error that stopped decoding.
+    pub fn next(&self) -> anyhow::Result<T> {
+        self.frames
+            .as_ref()
+            .context("frame decoder stopped")?
+            .recv()
+            .context("frame decoder stopped")?
+    }
+}
+
+impl<T> Drop for DecodeAhead<T> {
+    fn drop(&mut self) {
+        // Closing the channel first lets a decoder blocked on a full channel finish.
+        self.frames = None;
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
