@@ -109,10 +109,7 @@ fn corruptions(c: &mut Criterion) {
     let mut group = c.benchmark_group("readback_1200x680");
     group.throughput(Throughput::Elements((WIDTH * HEIGHT) as u64));
     group.sample_size(10);
-    for (name, readback) in [
-        ("color_and_depth", &readback),
-        ("color", &color_readback),
-    ] {
+    for (name, readback) in [("color_and_depth", &readback), ("color", &color_readback)] {
         group.bench_function(name, |b| {
             b.iter(|| {
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());

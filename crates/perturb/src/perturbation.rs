@@ -169,6 +169,9 @@ impl Kit<'_> {
     }
 
     /// A uniform buffer sized for `T`, written per frame with [`Kit::write_uniform`].
+    /// A uniform block of `T`. Small results of a reduction pass (a storage buffer) that a later
+    /// pass reads at every pixel are copied into one of these first: on lavapipe per-pixel
+    /// storage-buffer reads cost as much as the rest of such a pass, uniform reads nothing.
     pub fn uniform_buffer<T: Pod>(&self, label: &str) -> wgpu::Buffer {
         self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(label),

@@ -1,7 +1,8 @@
 //! Frame-wide sums on the GPU (`shaders/common/reduce.wgsl`): one invocation per column adds the
 //! column, one invocation adds the columns (no workgroup barriers: those are slow on lavapipe).
-//! The result stays on the GPU in a storage buffer that the next pass of the same frame reads
-//! (contrast: channel means; depth_noise: depth std).
+//! The result stays on the GPU, copied into a uniform buffer that the next pass of the same frame
+//! reads (contrast: channel means; depth_noise: depth std): on lavapipe a per-pixel read of a
+//! storage buffer doubled the cost of the contrast pass, a uniform read costs nothing.
 
 use crate::perturbation::Kit;
 use crate::PerturbError;
@@ -15,6 +16,7 @@ pub struct Reduction {
     finish: wgpu::ComputePipeline,
     partials: wgpu::Buffer,
     sums: wgpu::Buffer,
+    sums_uniform: wgpu::Buffer,
     groups: u32,
     label: &'static str,
 }
@@ -29,6 +31,7 @@ impl Reduction {
             finish: kit.pipeline_entry(shader, "finish_sums")?,
             partials: kit.storage_buffer(shader, kit.width as u64 * vec4_bytes),
             sums: kit.storage_buffer(shader, vec4_bytes),
+            sums_uniform: kit.uniform_buffer::<[f32; 4]>(shader),
             groups: kit.width.div_ceil(COLUMNS_PER_GROUP),
             label: shader,
         })
@@ -60,10 +63,11 @@ impl Reduction {
             ],
         );
         kit.dispatch_workgroups(encoder, &self.finish, &finish, self.label, [1, 1, 1]);
+        encoder.copy_buffer_to_buffer(&self.sums, 0, &self.sums_uniform, 0, None);
     }
 
-    /// The vec4 of sums, as a storage buffer for the next pass.
+    /// The vec4 of sums, as a uniform buffer for the next pass.
     pub fn sums(&self) -> &wgpu::Buffer {
-        &self.sums
+        &self.sums_uniform
     }
 }

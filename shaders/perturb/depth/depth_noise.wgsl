@@ -10,7 +10,7 @@ struct Params {
 @group(0) @binding(0) var depth: texture_storage_2d<r32float, read_write>;
 @group(0) @binding(1) var<uniform> params: Params;
 // (sum z, sum z², valid count, 0) from depth_noise_stats.wgsl
-@group(0) @binding(2) var<storage, read> sums: vec4<f32>;
+@group(0) @binding(2) var<uniform> sums: vec4<f32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -12,7 +12,7 @@ struct Params {
 @group(0) @binding(1) var output: texture_storage_2d<rgba8unorm, write>;
 @group(0) @binding(2) var<uniform> params: Params;
 // (sum r, sum g, sum b, pixel count) from contrast_mean.wgsl
-@group(0) @binding(3) var<storage, read> sums: vec4<f32>;
+@group(0) @binding(3) var<uniform> sums: vec4<f32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -14,7 +14,7 @@ struct Fog {
 @group(0) @binding(1) var output: texture_storage_2d<rgba8unorm, write>;
 @group(0) @binding(2) var<uniform> fog: Fog;
 @group(0) @binding(3) var map: texture_2d<f32>;
-@group(0) @binding(4) var<storage, read> range: array<u32, 4>;
+@group(0) @binding(4) var<uniform> range: vec4<u32>;
 
 fn unordered(u: u32) -> f32 {
     return bitcast<f32>(select(~u, u & 0x7fffffffu, (u & 0x80000000u) != 0u));

@@ -14,7 +14,7 @@ struct Water {
 @group(0) @binding(1) var output: texture_storage_2d<rgba8unorm, write>;
 @group(0) @binding(2) var<uniform> water: Water;
 @group(0) @binding(3) var shade: texture_2d<f32>;
-@group(0) @binding(4) var<storage, read> maximum: array<u32, 4>;
+@group(0) @binding(4) var<uniform> maximum: vec4<u32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

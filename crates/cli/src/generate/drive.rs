@@ -66,7 +66,11 @@ pub fn drive(
     sink: &FrameSink,
     with_depth: bool,
     what: &str,
-    record: impl FnMut(usize, &mut rslam_gpu::wgpu::CommandEncoder, &FrameTextures) -> anyhow::Result<()>,
+    record: impl FnMut(
+        usize,
+        &mut rslam_gpu::wgpu::CommandEncoder,
+        &FrameTextures,
+    ) -> anyhow::Result<()>,
 ) -> anyhow::Result<f64> {
     let k = sink.intrinsics();
     let sources = sink.plan().needed_sources();

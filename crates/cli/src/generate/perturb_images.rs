@@ -58,7 +58,11 @@ pub fn perturb_images(
         let _ = std::fs::remove_file(job.out.join(rslam_core::dataset::MANIFEST_FILE));
         files
             .iter()
-            .map(|f| Ok(job.out.join(f.file_name().context("image without a file name")?)))
+            .map(|f| {
+                Ok(job
+                    .out
+                    .join(f.file_name().context("image without a file name")?))
+            })
             .collect::<anyhow::Result<_>>()?
     } else {
         vec![job.out.clone()]

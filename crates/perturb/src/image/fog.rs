@@ -82,6 +82,8 @@ struct Fog {
     levels: Vec<LevelPasses>,
     map: wgpu::Texture,
     range: wgpu::Buffer,
+    /// `range` copied for the per-pixel pass (see `crate::perturbation::Kit::uniform_buffer`).
+    range_uniform: wgpu::Buffer,
     pass: ColorPass,
     size: u32,
 }
@@ -114,6 +116,7 @@ impl Fog {
             levels,
             map,
             range: kit.storage_buffer("fog range", 16),
+            range_uniform: kit.uniform_buffer::<[u32; 4]>("fog range"),
             pass: ColorPass::new::<FogParams>(kit, "perturb/image/fog.wgsl")?,
             size,
         })
@@ -178,13 +181,14 @@ impl GpuPerturbation for Fog {
             columns,
             rows,
         );
+        encoder.copy_buffer_to_buffer(&self.range, 0, &self.range_uniform, 0, None);
         let params = FogParams {
             amplitude,
             _pad: [0.0; 3],
         };
         let extra = [
             wgpu::BindingResource::TextureView(&map),
-            self.range.as_entire_binding(),
+            self.range_uniform.as_entire_binding(),
         ];
         self.pass.encode(kit, encoder, frame, &params, &extra);
         Ok(())

@@ -134,6 +134,9 @@ struct Spatter {
     histogram: wgpu::Buffer,
     lut: wgpu::Buffer,
     maximum: wgpu::Buffer,
+    /// `lut` and `maximum` copied for the per-pixel passes (see `Kit::uniform_buffer`).
+    lut_uniform: wgpu::Buffer,
+    maximum_uniform: wgpu::Buffer,
     water: ColorPass,
     mud: ColorPass,
 }
@@ -188,6 +191,8 @@ impl Spatter {
             histogram: kit.storage_buffer("spatter histogram", 256 * 4),
             lut: kit.storage_buffer("spatter equalisation", 256 * 4),
             maximum: kit.storage_buffer("spatter maximum", 16),
+            lut_uniform: kit.uniform_buffer::<[u32; 256]>("spatter equalisation"),
+            maximum_uniform: kit.uniform_buffer::<[u32; 4]>("spatter maximum"),
             water: ColorPass::new::<Water>(kit, "perturb/image/spatter.wgsl")?,
             mud: ColorPass::new::<Mud>(kit, "perturb/image/spatter_mud.wgsl")?,
         })
@@ -234,7 +239,8 @@ impl Spatter {
             "spatter equalize",
             [1, 1, 1],
         );
-        let resources = [T(&work), T(&spare), self.lut.as_entire_binding()];
+        encoder.copy_buffer_to_buffer(&self.lut, 0, &self.lut_uniform, 0, None);
+        let resources = [T(&work), T(&spare), self.lut_uniform.as_entire_binding()];
         let lut = kit.bind_group(&p.lut, "spatter lut", &resources);
         kit.dispatch(encoder, &p.lut, &lut, "spatter lut");
         let emboss = kit.bind_group(&p.emboss, "spatter emboss", &[T(&spare), T(&work)]);
@@ -252,7 +258,8 @@ impl Spatter {
             intensity,
             _pad: [0.0; 3],
         };
-        let extra = [T(&spare), self.maximum.as_entire_binding()];
+        encoder.copy_buffer_to_buffer(&self.maximum, 0, &self.maximum_uniform, 0, None);
+        let extra = [T(&spare), self.maximum_uniform.as_entire_binding()];
         self.water.encode(kit, encoder, frame, &params, &extra);
     }
 }
