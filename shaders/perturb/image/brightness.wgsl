@@ -1,5 +1,6 @@
 // brightness: V += delta in HSV (imagecorruptions `brightness`, skimage rgb2hsv/hsv2rgb).
 #include "common/color.wgsl"
+#include "perturb/image/pointwise_runs.wgsl"
 
 struct Params {
     key: vec4<u32>,
@@ -11,13 +12,8 @@ struct Params {
 @group(0) @binding(1) var output: texture_storage_2d<rgba8unorm, write>;
 @group(0) @binding(2) var<uniform> params: Params;
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(source);
-    if (id.x >= size.x || id.y >= size.y) {
-        return;
-    }
-    var hsv = rgb_to_hsv(textureLoad(source, id.xy, 0).rgb);
+fn corrupt(p: vec2<u32>, x: vec3<f32>) -> vec3<f32> {
+    var hsv = rgb_to_hsv(x);
     hsv.z = clamp(hsv.z + params.values.x, 0.0, 1.0);
-    textureStore(output, id.xy, vec4<f32>(truncate8(hsv_to_rgb(hsv)), 1.0));
+    return hsv_to_rgb(hsv);
 }

@@ -2,6 +2,7 @@
 // equal odds (imagecorruptions `impulse_noise` = skimage random_noise 's&p', salt_vs_pepper 0.5).
 #include "common/rng.wgsl"
 #include "common/color.wgsl"
+#include "perturb/image/pointwise_runs.wgsl"
 
 struct Params {
     key: vec4<u32>,
@@ -24,15 +25,8 @@ fn impulse(x: f32, bits: u32, amount: f32) -> f32 {
     return x;
 }
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(source);
-    if (id.x >= size.x || id.y >= size.y) {
-        return;
-    }
-    let x = textureLoad(source, id.xy, 0).rgb;
-    let u = rng_draw(params.key, vec4<u32>(id.x, id.y, 0u, 0u));
+fn corrupt(p: vec2<u32>, x: vec3<f32>) -> vec3<f32> {
+    let u = rng_draw(params.key, vec4<u32>(p, 0u, 0u));
     let amount = params.values.x;
-    let y = vec3<f32>(impulse(x.r, u.x, amount), impulse(x.g, u.y, amount), impulse(x.b, u.z, amount));
-    textureStore(output, id.xy, vec4<f32>(truncate8(y), 1.0));
+    return vec3<f32>(impulse(x.r, u.x, amount), impulse(x.g, u.y, amount), impulse(x.b, u.z, amount));
 }

@@ -4,6 +4,7 @@
 use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
 
+use super::run_pass::RunPass;
 use crate::perturbation::{view, FrameKey, GpuPerturbation, Kit};
 use crate::PerturbError;
 
@@ -57,9 +58,10 @@ pub struct KeyedParams {
     pub values: [f32; 4],
 }
 
-/// A per-pixel corruption whose parameters are a function of the frame key only.
+/// A per-pixel corruption whose parameters are a function of the frame key only; its shader
+/// defines `corrupt` and includes `pointwise_runs.wgsl` (runs of 8 pixels per invocation).
 pub struct PointwisePass {
-    pass: ColorPass,
+    pass: RunPass,
     params: fn(&FrameKey) -> KeyedParams,
 }
 
@@ -70,7 +72,7 @@ impl PointwisePass {
         params: fn(&FrameKey) -> KeyedParams,
     ) -> Result<Box<dyn GpuPerturbation>, PerturbError> {
         Ok(Box::new(Self {
-            pass: ColorPass::new::<KeyedParams>(kit, shader)?,
+            pass: RunPass::new::<KeyedParams>(kit, shader)?,
             params,
         }))
     }
