@@ -15,8 +15,8 @@ pub struct Reduction {
     partial: wgpu::ComputePipeline,
     finish: wgpu::ComputePipeline,
     partials: wgpu::Buffer,
+    sums_storage: wgpu::Buffer,
     sums: wgpu::Buffer,
-    sums_uniform: wgpu::Buffer,
     groups: u32,
     label: &'static str,
 }
@@ -30,8 +30,8 @@ impl Reduction {
             partial: kit.pipeline_entry(shader, "partial_sums")?,
             finish: kit.pipeline_entry(shader, "finish_sums")?,
             partials: kit.storage_buffer(shader, kit.width as u64 * vec4_bytes),
-            sums: kit.storage_buffer(shader, vec4_bytes),
-            sums_uniform: kit.uniform_buffer::<[f32; 4]>(shader),
+            sums_storage: kit.storage_buffer(shader, vec4_bytes),
+            sums: kit.uniform_buffer::<[f32; 4]>(shader),
             groups: kit.width.div_ceil(COLUMNS_PER_GROUP),
             label: shader,
         })
@@ -59,15 +59,15 @@ impl Reduction {
             self.label,
             &[
                 (1, self.partials.as_entire_binding()),
-                (2, self.sums.as_entire_binding()),
+                (2, self.sums_storage.as_entire_binding()),
             ],
         );
         kit.dispatch_workgroups(encoder, &self.finish, &finish, self.label, [1, 1, 1]);
-        encoder.copy_buffer_to_buffer(&self.sums, 0, &self.sums_uniform, 0, None);
+        encoder.copy_buffer_to_buffer(&self.sums_storage, 0, &self.sums, 0, None);
     }
 
     /// The vec4 of sums, as a uniform buffer for the next pass.
     pub fn sums(&self) -> &wgpu::Buffer {
-        &self.sums_uniform
+        &self.sums
     }
 }
