@@ -5,5 +5,6 @@ mod eval;
 mod harness;
 mod list;
 mod motion;
+mod perturb;
 mod render;
 mod scene;

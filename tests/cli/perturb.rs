@@ -1,0 +1,136 @@
+//! `rslam perturb` on images: a folder (mixed sizes and formats, pipelined through the GPU) and a
+//! single file, checked against the contrast formula computed here.
+
+use std::path::Path;
+
+use crate::harness::Workspace;
+
+/// imagecorruptions' contrast factor at severity 5.
+const CONTRAST_5: f64 = 0.05;
+
+fn pattern(width: u32, height: u32, offset: u32) -> image::RgbImage {
+    image::RgbImage::from_fn(width, height, |x, y| {
+        image::Rgb([
+            ((x * 3 + offset) % 256) as u8,
+            ((y * 5 + 2 * offset) % 256) as u8,
+            ((x + y + 3 * offset) % 256) as u8,
+        ])
+    })
+}
+
+/// (x - mean) * c + mean per channel, in [0, 1], truncated to 8 bits.
+fn contrast(input: &image::RgbImage, c: f64) -> image::RgbImage {
+    let n = (input.width() * input.height()) as f64;
+    let mut mean = [0.0f64; 3];
+    for p in input.pixels() {
+        for k in 0..3 {
+            mean[k] += p[k] as f64 / 255.0 / n;
+        }
+    }
+    image::RgbImage::from_fn(input.width(), input.height(), |x, y| {
+        let p = input.get_pixel(x, y);
+        image::Rgb(std::array::from_fn(|k| {
+            let v = (p[k] as f64 / 255.0 - mean[k]) * c + mean[k];
+            (v.clamp(0.0, 1.0) * 255.0) as u8
+        }))
+    })
+}
+
+fn assert_close(path: &Path, expected: &image::RgbImage, tolerance: i32) {
+    let got = image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgb8();
+    assert_eq!(
+        got.dimensions(),
+        expected.dimensions(),
+        "{}",
+        path.display()
+    );
+    let worst = got
+        .as_raw()
+        .iter()
+        .zip(expected.as_raw())
+        .map(|(&a, &b)| (a as i32 - b as i32).abs())
+        .max()
+        .unwrap_or(0);
+    assert!(
+        worst <= tolerance,
+        "{}: off by {worst} levels",
+        path.display()
+    );
+}
+
+#[test]
+fn image_folder_keeps_names_formats_and_order_across_sizes() {
+    let ws = Workspace::new();
+    std::fs::create_dir_all(ws.path("in")).unwrap();
+    // Two runs of 64x48 around other sizes; 33 wide is not a multiple of the shaders' runs of 8.
+    let inputs = [
+        ("a.png", pattern(64, 48, 10)),
+        ("b.png", pattern(64, 48, 60)),
+        ("c.jpg", pattern(40, 30, 90)),
+        ("d.png", pattern(64, 48, 120)),
+        ("e.png", pattern(33, 21, 200)),
+    ];
+    for (name, image) in &inputs {
+        image.save(ws.path(&format!("in/{name}"))).unwrap();
+    }
+    ws.rslam(&[
+        "perturb",
+        "--input",
+        "in",
+        "--out",
+        "out",
+        "--perturb",
+        "contrast:5",
+    ])
+    .success();
+    for (name, image) in &inputs {
+        let out = ws.path(&format!("out/{name}"));
+        if name.ends_with(".png") {
+            assert_close(&out, &contrast(image, CONTRAST_5), 1);
+        } else {
+            assert_eq!(
+                &std::fs::read(&out).unwrap()[..2],
+                &[0xFF, 0xD8],
+                "JPEG out"
+            );
+            // The input and output JPEG encodings each lose a little.
+            let decoded_input = image::open(ws.path("in/c.jpg")).unwrap().to_rgb8();
+            assert_close(&out, &contrast(&decoded_input, CONTRAST_5), 4);
+        }
+    }
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(ws.path("out/rslam.json")).unwrap()).unwrap();
+    assert_eq!(manifest["frame_count"], 5);
+    assert_eq!(manifest["severities"][0]["per_frame"], "55555");
+}
+
+#[test]
+fn one_image_is_written_to_out_and_depth_corruptions_are_refused() {
+    let ws = Workspace::new();
+    let image = pattern(50, 20, 7);
+    image.save(ws.path("frame.png")).unwrap();
+    ws.rslam(&[
+        "perturb",
+        "--input",
+        "frame.png",
+        "--out",
+        "low.png",
+        "--perturb",
+        "contrast:5",
+    ])
+    .success();
+    assert_close(&ws.path("low.png"), &contrast(&image, CONTRAST_5), 1);
+    ws.rslam(&[
+        "perturb",
+        "--input",
+        "frame.png",
+        "--out",
+        "x.png",
+        "--perturb",
+        "depth_missing:3",
+    ])
+    .fails_with(2, &["depth corruptions need depth images"]);
+    assert!(!ws.path("x.png").exists());
+}
