@@ -3,6 +3,7 @@
 // displacement fields and the mud mask. Edges: kernel.edge 0 = replicate, 1 = reflect (SciPy
 // 'nearest' / 'reflect').
 #include "perturb/image/filter.wgsl"
+#include "perturb/image/kernel_run.wgsl"
 
 @group(0) @binding(0) var source: texture_2d<f32>;
 @group(0) @binding(1) var output: texture_storage_2d<rgba32float, write>;
@@ -39,38 +40,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let v5 = textureLoad(source, vec2<i32>(edge_index(first + j + 5, size.x), fixed), 0);
         let v6 = textureLoad(source, vec2<i32>(edge_index(first + j + 6, size.x), fixed), 0);
         let v7 = textureLoad(source, vec2<i32>(edge_index(first + j + 7, size.x), fixed), 0);
-        s0 += kernel.taps[j + 8].x * v0 + kernel.taps[j + 9].x * v1
-            + kernel.taps[j + 10].x * v2 + kernel.taps[j + 11].x * v3
-            + kernel.taps[j + 12].x * v4 + kernel.taps[j + 13].x * v5
-            + kernel.taps[j + 14].x * v6 + kernel.taps[j + 15].x * v7;
-        s1 += kernel.taps[j + 7].x * v0 + kernel.taps[j + 8].x * v1
-            + kernel.taps[j + 9].x * v2 + kernel.taps[j + 10].x * v3
-            + kernel.taps[j + 11].x * v4 + kernel.taps[j + 12].x * v5
-            + kernel.taps[j + 13].x * v6 + kernel.taps[j + 14].x * v7;
-        s2 += kernel.taps[j + 6].x * v0 + kernel.taps[j + 7].x * v1
-            + kernel.taps[j + 8].x * v2 + kernel.taps[j + 9].x * v3
-            + kernel.taps[j + 10].x * v4 + kernel.taps[j + 11].x * v5
-            + kernel.taps[j + 12].x * v6 + kernel.taps[j + 13].x * v7;
-        s3 += kernel.taps[j + 5].x * v0 + kernel.taps[j + 6].x * v1
-            + kernel.taps[j + 7].x * v2 + kernel.taps[j + 8].x * v3
-            + kernel.taps[j + 9].x * v4 + kernel.taps[j + 10].x * v5
-            + kernel.taps[j + 11].x * v6 + kernel.taps[j + 12].x * v7;
-        s4 += kernel.taps[j + 4].x * v0 + kernel.taps[j + 5].x * v1
-            + kernel.taps[j + 6].x * v2 + kernel.taps[j + 7].x * v3
-            + kernel.taps[j + 8].x * v4 + kernel.taps[j + 9].x * v5
-            + kernel.taps[j + 10].x * v6 + kernel.taps[j + 11].x * v7;
-        s5 += kernel.taps[j + 3].x * v0 + kernel.taps[j + 4].x * v1
-            + kernel.taps[j + 5].x * v2 + kernel.taps[j + 6].x * v3
-            + kernel.taps[j + 7].x * v4 + kernel.taps[j + 8].x * v5
-            + kernel.taps[j + 9].x * v6 + kernel.taps[j + 10].x * v7;
-        s6 += kernel.taps[j + 2].x * v0 + kernel.taps[j + 3].x * v1
-            + kernel.taps[j + 4].x * v2 + kernel.taps[j + 5].x * v3
-            + kernel.taps[j + 6].x * v4 + kernel.taps[j + 7].x * v5
-            + kernel.taps[j + 8].x * v6 + kernel.taps[j + 9].x * v7;
-        s7 += kernel.taps[j + 1].x * v0 + kernel.taps[j + 2].x * v1
-            + kernel.taps[j + 3].x * v2 + kernel.taps[j + 4].x * v3
-            + kernel.taps[j + 5].x * v4 + kernel.taps[j + 6].x * v5
-            + kernel.taps[j + 7].x * v6 + kernel.taps[j + 8].x * v7;
+        s0 += run_output4(j, 0, v0, v1, v2, v3, v4, v5, v6, v7);
+        s1 += run_output4(j, 1, v0, v1, v2, v3, v4, v5, v6, v7);
+        s2 += run_output4(j, 2, v0, v1, v2, v3, v4, v5, v6, v7);
+        s3 += run_output4(j, 3, v0, v1, v2, v3, v4, v5, v6, v7);
+        s4 += run_output4(j, 4, v0, v1, v2, v3, v4, v5, v6, v7);
+        s5 += run_output4(j, 5, v0, v1, v2, v3, v4, v5, v6, v7);
+        s6 += run_output4(j, 6, v0, v1, v2, v3, v4, v5, v6, v7);
+        s7 += run_output4(j, 7, v0, v1, v2, v3, v4, v5, v6, v7);
     }
     if (origin + 0 < size.x) {
         textureStore(output, vec2<i32>(origin + 0, fixed), s0);
