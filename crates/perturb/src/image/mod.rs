@@ -17,7 +17,6 @@ pub mod jpeg_compression;
 pub mod kernels;
 pub mod motion_blur;
 pub mod pixelate;
-pub mod run_pass;
 pub mod saturate;
 pub mod separable;
 pub mod shot_noise;

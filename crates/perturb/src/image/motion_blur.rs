@@ -3,9 +3,9 @@
 
 use rslam_gpu::FrameTextures;
 
+use super::color_pass::ColorPass;
 use super::kernels::{apply_line_taps, motion_line_taps, store_truncated};
 use super::kernels::{LineKernelUniform, LineTap};
-use super::run_pass::RunPass;
 use crate::image_f32::RgbF32;
 use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::RngKey;
@@ -45,13 +45,13 @@ fn frame_taps(seed: u64, frame: u32, severity: u8, width: u32, height: u32) -> V
 }
 
 struct MotionBlur {
-    pass: RunPass,
+    pass: ColorPass,
 }
 
 impl MotionBlur {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         Ok(Self {
-            pass: RunPass::new::<LineKernelUniform>(kit, SHADER)?,
+            pass: ColorPass::runs::<LineKernelUniform>(kit, SHADER)?,
         })
     }
 }

@@ -6,9 +6,9 @@
 use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
 
+use super::color_pass::ColorPass;
 use super::kernels::{apply_line_taps, motion_line_taps, LineKernelUniform, LineTap};
 use super::motion_blur::frame_angle;
-use super::run_pass::RunPass;
 use super::textures::storage_texture;
 use super::zoom_blur::{axis_window, AxisWindow};
 use crate::image_f32::RgbF32;
@@ -123,7 +123,7 @@ struct Snow {
     layer_params: wgpu::Buffer,
     line: wgpu::Buffer,
     layer: wgpu::Texture,
-    pass: RunPass,
+    pass: ColorPass,
 }
 
 impl Snow {
@@ -134,7 +134,7 @@ impl Snow {
             layer_params: kit.uniform_buffer::<LayerUniform>("snow layer"),
             line: kit.uniform_buffer::<LineKernelUniform>("snow blur"),
             layer: storage_texture(kit, "snow layer", wgpu::TextureFormat::R32Float, w, h),
-            pass: RunPass::new::<Composite>(kit, "perturb/image/snow.wgsl")?,
+            pass: ColorPass::runs::<Composite>(kit, "perturb/image/snow.wgsl")?,
         })
     }
 }

@@ -4,8 +4,8 @@
 use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
 
+use super::color_pass::ColorPass;
 use super::kernels::store_truncated;
-use super::run_pass::RunPass;
 use crate::image_f32::RgbF32;
 use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::PerturbError;
@@ -96,13 +96,13 @@ fn zooms(severity: u8, width: u32, height: u32) -> Zooms {
 }
 
 struct ZoomBlur {
-    pass: RunPass,
+    pass: ColorPass,
 }
 
 impl ZoomBlur {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         Ok(Self {
-            pass: RunPass::new::<Zooms>(kit, SHADER)?,
+            pass: ColorPass::runs::<Zooms>(kit, SHADER)?,
         })
     }
 }
