@@ -7,4 +7,5 @@ mod list;
 mod motion;
 mod perturb;
 mod render;
+mod resume;
 mod scene;

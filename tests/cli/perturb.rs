@@ -134,3 +134,61 @@ fn one_image_is_written_to_out_and_depth_corruptions_are_refused() {
     .fails_with(2, &["depth corruptions need depth images"]);
     assert!(!ws.path("x.png").exists());
 }
+
+#[test]
+fn a_dataset_without_camera_file_needs_camera_and_a_corrupt_frame_is_named() {
+    let ws = Workspace::new();
+    ws.rslam(&[
+        "render",
+        "--scene",
+        "room0",
+        "--frames",
+        "6",
+        "--camera",
+        "64,48,60,60,31.5,23.5",
+        "--format",
+        "tum",
+        "--out",
+        "seq",
+    ])
+    .success();
+    // A TUM sequence as published: no rslam.json, hence no camera anywhere.
+    std::fs::remove_file(ws.path("seq/rslam.json")).unwrap();
+    let perturb = |extra: &[&str]| {
+        let args = [
+            &["perturb", "--input", "seq", "--perturb", "brightness:2"][..],
+            extra,
+        ]
+        .concat();
+        ws.rslam(&args)
+    };
+    perturb(&["--out", "a"]).fails_with(2, &["seq", "no camera intrinsics", "--camera"]);
+    assert!(
+        !ws.path("a").exists(),
+        "nothing written before the camera is known"
+    );
+    perturb(&["--out", "a", "--camera", "64,48,60,60,31.5,23.5"]).success();
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(ws.path("a/rslam.json")).unwrap()).unwrap();
+    assert_eq!(manifest["camera"]["fx"], 60.0);
+    let yaml = std::fs::read_to_string(ws.path("a/orbslam3.yaml")).unwrap();
+    assert!(yaml.contains("Camera1.fx: 60.000000"), "{yaml}");
+
+    let rgb = crate::dataset_check::files(&ws.path("seq/rgb"), "");
+    std::fs::write(&rgb[3], b"\x89PNG\r\n\x1a\n truncated").unwrap();
+    let name = rgb[3].file_name().unwrap().to_string_lossy().into_owned();
+    let err = perturb(&["--out", "b", "--camera", "64,48,60,60,31.5,23.5"]).fails_with(2, &[&name]);
+    assert_eq!(
+        err.trim()
+            .lines()
+            .filter(|l| l.starts_with("error"))
+            .count(),
+        1,
+        "{err}"
+    );
+    assert!(
+        !ws.path("b/rslam.json").exists(),
+        "a failed run never looks complete"
+    );
+    assert!(ws.path("b/rslam.run.json").exists());
+}

@@ -2,7 +2,7 @@
 //! `commands/`; exit code 0 = ok, 1 = a check failed, 2 = an error.
 
 mod commands;
-mod generate;
+mod progress_bar;
 
 /// Frames are megabyte buffers made and dropped on several threads; glibc returns them to the
 /// kernel and faults them back in on every frame, mimalloc keeps reusing them.
@@ -36,6 +36,8 @@ enum Command {
     Scene(commands::scene::SceneArgs),
     /// Evaluate an estimated trajectory against ground truth (ATE, RPE, SR), or many runs.
     Eval(commands::eval::EvalArgs),
+    /// Check a generated dataset against its checksums (rslam.b3sum) and manifest digest.
+    Verify(commands::verify::VerifyArgs),
 }
 
 /// Mesa's Vulkan drivers probe for a Wayland display and print an "error:" line when
@@ -56,6 +58,7 @@ fn main() -> ExitCode {
         Command::List(args) => commands::list::run(args),
         Command::Scene(args) => commands::scene::run(args),
         Command::Eval(args) => commands::eval::run(args),
+        Command::Verify(args) => commands::verify::run(args),
     };
     match result {
         Ok(code) => code,

@@ -2,6 +2,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::CoreError;
 
+/// Frame rate of the Replica camera preset and of Replica `traj.txt` files (formats.md).
+pub const REPLICA_RATE_HZ: f64 = 20.0;
+/// Frame rate of the TUM camera preset (formats.md).
+pub const TUM_RATE_HZ: f64 = 30.0;
+
 /// Pinhole intrinsics, pixel centres at integer coordinates (OpenCV convention).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Intrinsics {
@@ -33,6 +38,16 @@ impl Intrinsics {
         cx: 319.5,
         cy: 239.5,
     };
+
+    /// The rate of the preset `text` names (`tum`: 30 Hz); 20 Hz for `replica` and explicit
+    /// cameras, the documented default of `rslam render`.
+    pub fn preset_rate_hz(text: &str) -> f64 {
+        if text == "tum" {
+            TUM_RATE_HZ
+        } else {
+            REPLICA_RATE_HZ
+        }
+    }
 
     /// `replica`, `tum` or `W,H,FX,FY,CX,CY`.
     pub fn parse(text: &str) -> Result<Self, CoreError> {

@@ -9,12 +9,14 @@ pub mod dataset;
 mod error;
 mod image_buffer;
 mod intrinsics;
+mod nearest_time;
 mod pose;
 mod trajectory;
 pub mod trajectory_io;
 
 pub use error::CoreError;
 pub use image_buffer::{DepthImage, RgbImage};
-pub use intrinsics::Intrinsics;
+pub use intrinsics::{Intrinsics, REPLICA_RATE_HZ, TUM_RATE_HZ};
+pub use nearest_time::nearest_time;
 pub use pose::Pose;
 pub use trajectory::Trajectory;

@@ -32,5 +32,5 @@ pub use listing::{listing, ListEntry};
 pub use perturbation::{
     view, CatalogueEntry, ExplicitForm, FrameKey, GpuPerturbation, Group, Kit, Scratch, WORKGROUP,
 };
-pub use perturber::{dynamic_severity, FrameSeverities, ItemSeverity, Perturber};
+pub use perturber::{dynamic_severity, severity_on, FrameSeverities, ItemSeverity, Perturber};
 pub use spec::{all_names, parse_severity, Deviation, FrameItem, Level, Misalign, PerturbSpec};

@@ -17,6 +17,22 @@ pub fn dynamic_severity(seed: u64, name: &str, frame: u32, max: u8) -> u8 {
     ((u * (max as f64 + 1.0)) as u8).min(max)
 }
 
+/// The severity an item named `name` at `level` gives `frame` (pure): its severity, a draw in
+/// {0, …, severity} under `@dynamic`, and 5 for an explicit parameter form.
+pub fn severity_on(name: &str, level: &Level, seed: u64, frame: u32) -> u8 {
+    match *level {
+        Level::Severity {
+            severity,
+            dynamic: false,
+        } => severity,
+        Level::Severity {
+            severity,
+            dynamic: true,
+        } => dynamic_severity(seed, name, frame, severity),
+        Level::Explicit { .. } => 5,
+    }
+}
+
 /// The severity one item received on one frame (0 = the frame was left clean by it; explicit
 /// parameter forms report 5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -99,17 +115,7 @@ impl Perturber {
             .iter()
             .map(|item| ItemSeverity {
                 name: item.name,
-                severity: match item.level {
-                    Level::Severity {
-                        severity,
-                        dynamic: false,
-                    } => severity,
-                    Level::Severity {
-                        severity,
-                        dynamic: true,
-                    } => dynamic_severity(self.seed, item.name, frame, severity),
-                    Level::Explicit { .. } => 5,
-                },
+                severity: severity_on(item.name, &item.level, self.seed, frame),
             })
             .collect();
         FrameSeverities { frame, items }

@@ -4,4 +4,14 @@ pub mod eval;
 pub mod list;
 pub mod perturb;
 pub mod render;
+mod run_summary;
 pub mod scene;
+pub mod verify;
+
+/// The command line as typed, with the program called `rslam` whatever path started it, so that
+/// the same command records the same manifest.
+pub fn typed_command() -> Vec<String> {
+    std::iter::once("rslam".to_string())
+        .chain(std::env::args().skip(1))
+        .collect()
+}

@@ -2,10 +2,16 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
-use rslam_gpu::AdapterChoice;
+use rslam_core::dataset::DatasetOverrides;
+use rslam_core::Intrinsics;
+use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
+use rslam_pipeline::{
+    image_files, perturb_dataset, perturb_images, PerturbDatasetJob, PerturbImagesJob, PerturbInput,
+};
 
-use crate::generate::{run_perturb, PerturbInput, PerturbJob};
+use super::run_summary::print_summary;
+use crate::progress_bar::ProgressBar;
 
 #[derive(clap::Args)]
 pub struct PerturbArgs {
@@ -21,25 +27,68 @@ pub struct PerturbArgs {
     /// Seed of every random draw.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// The dataset's camera (`replica`, `tum` or W,H,FX,FY,CX,CY); needed when it has no
+    /// rslam.json or cam_params.json (TUM sequences never do).
+    #[arg(long)]
+    camera: Option<String>,
+    /// The dataset's frame rate in Hz; needed when it has no rslam.json and no timestamps
+    /// (Replica frames).
+    #[arg(long)]
+    rate: Option<f64>,
+    /// Replace what --out holds if it is another rslam output (never a folder of other files).
+    #[arg(long)]
+    force: bool,
     /// Use the GPU whose name contains this text (default: a real GPU if any, else lavapipe).
     #[arg(long)]
     adapter: Option<String>,
 }
 
 pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
-    let perturb = PerturbSpec::parse(&args.perturb).context("--perturb")?;
-    let job = PerturbJob {
-        input: PerturbInput::detect(&args.input)?,
-        out: args.out,
-        perturb,
-        seed: args.seed,
-        adapter: AdapterChoice {
-            name_contains: args.adapter,
-        },
-        command: std::env::args().collect(),
+    let spec = PerturbSpec::parse(&args.perturb).context("--perturb")?;
+    let camera = match &args.camera {
+        Some(text) => Some(Intrinsics::parse(text).context("--camera")?),
+        None => None,
     };
-    let out = job.out.clone();
-    let count = run_perturb(job)?;
-    eprintln!("wrote {count} perturbed frames to {}", out.display());
+    let input = PerturbInput::detect(&args.input).context("--input")?;
+    let command: Vec<String> = super::typed_command();
+    let ctx = GpuContext::new(&AdapterChoice {
+        name_contains: args.adapter,
+    })?;
+    eprintln!("adapter: {}", ctx.describe());
+    let progress = ProgressBar::new();
+    let (files, single) = match input {
+        PerturbInput::Dataset(root) => {
+            let job = PerturbDatasetJob {
+                input: root,
+                overrides: DatasetOverrides {
+                    camera,
+                    rate_hz: args.rate,
+                },
+                out: args.out,
+                spec,
+                seed: args.seed,
+                force: args.force,
+                command,
+            };
+            let report = perturb_dataset(&ctx, &job, &progress)?;
+            print_summary(&report, &job.out, &progress);
+            return Ok(ExitCode::SUCCESS);
+        }
+        PerturbInput::ImageFolder(dir) => (image_files(&dir)?, false),
+        PerturbInput::Image(file) => (vec![file], true),
+    };
+    let job = PerturbImagesJob {
+        files,
+        out: args.out,
+        single,
+        spec,
+        seed: args.seed,
+        force: args.force,
+        command,
+    };
+    match perturb_images(&ctx, &job, &progress)? {
+        Some(report) => print_summary(&report, &job.out, &progress),
+        None => eprintln!("wrote {}", job.out.display()),
+    }
     Ok(ExitCode::SUCCESS)
 }

@@ -4,17 +4,19 @@ use std::process::ExitCode;
 use anyhow::Context;
 use rslam_core::dataset::DatasetFormat;
 use rslam_core::Intrinsics;
-use rslam_gpu::AdapterChoice;
+use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
+use rslam_pipeline::{render_dataset, RenderJob, SceneJob};
 
-use crate::generate::{run_render, RenderJob};
+use super::run_summary::print_summary;
+use crate::progress_bar::ProgressBar;
 
 #[derive(clap::Args)]
 pub struct RenderArgs {
     /// Built-in scene (room0 room1 room2 office0 … office4) or a mesh file (.ply, .gltf, .glb, .obj).
     #[arg(long)]
     scene: String,
-    /// Output folder (new, empty, or an earlier rslam dataset to overwrite).
+    /// Output folder: new or empty; or the same command's unfinished output, which is resumed.
     #[arg(long)]
     out: PathBuf,
     /// Camera path: Replica traj.txt or a TUM trajectory; default: the scene's own.
@@ -38,45 +40,43 @@ pub struct RenderArgs {
     /// Perturbations, e.g. `fog:3,depth_missing:5,rot:1,fast:2` (see `rslam list`).
     #[arg(long)]
     perturb: Option<String>,
+    /// Replace what --out holds if it is another rslam output (never a folder of other files).
+    #[arg(long)]
+    force: bool,
     /// Use the GPU whose name contains this text (default: a real GPU if any, else lavapipe).
     #[arg(long)]
     adapter: Option<String>,
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
-    let perturb = match &args.perturb {
+    let spec = match &args.perturb {
         Some(text) => PerturbSpec::parse(text).context("--perturb")?,
         None => PerturbSpec::default(),
     };
     let camera = Intrinsics::parse(&args.camera).context("--camera")?;
-    let default_rate = if args.camera == "tum" { 30.0 } else { 20.0 };
-    let rate_hz = args.rate.unwrap_or(default_rate);
-    anyhow::ensure!(
-        rate_hz.is_finite() && rate_hz > 0.0,
-        "--rate {rate_hz}: expected a positive number of Hz"
-    );
     let job = RenderJob {
-        scene: args.scene,
-        out: args.out,
-        trajectory: args.traj,
-        frames: args.frames,
-        camera,
-        rate_hz,
-        format: args.format,
-        seed: args.seed,
-        perturb,
-        adapter: AdapterChoice {
-            name_contains: args.adapter,
+        scene: SceneJob {
+            scene: args.scene,
+            trajectory: args.traj,
+            frames: args.frames,
+            camera,
+            rate_hz: args
+                .rate
+                .unwrap_or(Intrinsics::preset_rate_hz(&args.camera)),
+            spec,
+            seed: args.seed,
         },
-        command: std::env::args().collect(),
+        out: args.out,
+        format: args.format,
+        force: args.force,
+        command: super::typed_command(),
     };
-    let out = job.out.clone();
-    let report = run_render(job)?;
-    eprintln!(
-        "wrote {} frames to {} ({:.1} frames/s)",
-        report.frames,
-        out.display(),
-        report.frames_per_second
-    );
+    let ctx = GpuContext::new(&AdapterChoice {
+        name_contains: args.adapter,
+    })?;
+    eprintln!("adapter: {}", ctx.describe());
+    let progress = ProgressBar::new();
+    let report = render_dataset(&ctx, &job, &progress)?;
+    print_summary(&report, &job.out, &progress);
     Ok(ExitCode::SUCCESS)
 }

@@ -15,16 +15,24 @@ fn encode_failed(what: &str, e: impl std::fmt::Display) -> CoreError {
     }
 }
 
+/// JPEG at `quality`; JPEG stores sizes in 16 bits, so a side over 65,535 px is an error.
 pub fn encode_jpeg(image: &RgbImage, quality: u8) -> Result<Vec<u8>, CoreError> {
+    let side = |v: u32| {
+        u16::try_from(v).map_err(|_| {
+            encode_failed(
+                "JPEG",
+                format!(
+                    "{}x{} image: JPEG allows at most 65535 pixels a side",
+                    image.width, image.height
+                ),
+            )
+        })
+    };
+    let (width, height) = (side(image.width)?, side(image.height)?);
     let mut out = Vec::new();
     let encoder = jpeg_encoder::Encoder::new(&mut out, quality);
     encoder
-        .encode(
-            &image.data,
-            image.width as u16,
-            image.height as u16,
-            jpeg_encoder::ColorType::Rgb,
-        )
+        .encode(&image.data, width, height, jpeg_encoder::ColorType::Rgb)
         .map_err(|e| encode_failed("JPEG", e))?;
     Ok(out)
 }
@@ -110,23 +118,31 @@ pub fn decode_depth_png(path: &Path, scale: f64) -> Result<DepthImage, CoreError
     ))
 }
 
-/// Writes `image` in the format that `like` names by its extension (PNG or JPEG at `quality`).
+/// Writes `image` in the format that `path` names by its extension (PNG or JPEG at `quality`).
 pub fn write_rgb_like(path: &Path, image: &RgbImage, quality: u8) -> Result<(), CoreError> {
+    let bytes = encode_rgb_like(path, image, quality)?;
+    std::fs::write(path, bytes).map_err(|e| CoreError::io(path, e))
+}
+
+/// `image` encoded in the format that `path` names by its extension (PNG or JPEG at `quality`).
+pub fn encode_rgb_like(path: &Path, image: &RgbImage, quality: u8) -> Result<Vec<u8>, CoreError> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_lowercase())
         .unwrap_or_default();
-    let bytes = match ext.as_str() {
-        "jpg" | "jpeg" => encode_jpeg(image, quality)?,
-        "png" => encode_png(image)?,
-        other => {
-            return Err(CoreError::bad_file(
-                path,
-                format!("unsupported image extension '{other}': expected .png, .jpg or .jpeg"),
-            ))
-        }
-    };
-    std::fs::write(path, bytes).map_err(|e| CoreError::io(path, e))
+    match ext.as_str() {
+        "jpg" | "jpeg" => encode_jpeg(image, quality).map_err(|e| in_file(path, e)),
+        "png" => encode_png(image).map_err(|e| in_file(path, e)),
+        other => Err(CoreError::bad_file(
+            path,
+            format!("unsupported image extension '{other}': expected .png, .jpg or .jpeg"),
+        )),
+    }
+}
+
+/// An encoding error, naming the file it was for.
+fn in_file(path: &Path, error: CoreError) -> CoreError {
+    CoreError::bad_file(path, error.to_string())
 }
 
 #[cfg(test)]
@@ -156,6 +172,14 @@ mod tests {
             (back.data[2] - 65535.0 / 6553.5).abs() < 1e-4,
             "saturates at 10 m"
         );
+    }
+
+    #[test]
+    fn jpeg_over_65535_pixels_a_side_is_an_error_not_a_wrapped_size() {
+        let wide = RgbImage::new(65_536, 1);
+        let error = encode_jpeg(&wide, 95).unwrap_err().to_string();
+        assert!(error.contains("65535"), "{error}");
+        assert!(encode_jpeg(&RgbImage::new(65_535, 1), 95).is_ok());
     }
 
     #[test]

@@ -2,6 +2,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::dataset::PARTIAL_SUFFIX;
 use crate::{CoreError, Intrinsics};
 
 /// Written last into every dataset: without it a dataset is incomplete.
@@ -35,6 +36,10 @@ pub struct Manifest {
     pub depth_source: Vec<usize>,
     /// Anything else a stage wants recorded (e.g. drawn trajectory deviations).
     pub extra: serde_json::Value,
+    /// BLAKE3 (hex) of `rslam.b3sum`, the checksum list of every file: one digest for the whole
+    /// content. Empty until the run has finished.
+    #[serde(default)]
+    pub content_digest: String,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -44,20 +49,42 @@ pub struct ItemSeverities {
 }
 
 impl Manifest {
+    /// Writes `dir/rslam.json` through a temporary name and a rename: it appears whole or not.
     pub fn write(&self, dir: &Path) -> Result<(), CoreError> {
-        let path = dir.join(MANIFEST_FILE);
+        self.write_as(dir, MANIFEST_FILE)
+    }
+
+    /// Writes this manifest as `dir/name` (also the run record of a run in progress), atomically.
+    pub fn write_as(&self, dir: &Path, name: &str) -> Result<(), CoreError> {
+        let path = dir.join(name);
         let value =
             serde_json::to_value(self).map_err(|e| CoreError::bad_file(&path, e.to_string()))?;
         let mut text = String::new();
         write_compact_pretty(&value, 0, &mut text);
-        std::fs::write(&path, text + "\n").map_err(|e| CoreError::io(&path, e))
+        let partial = dir.join(format!("{name}{PARTIAL_SUFFIX}"));
+        std::fs::write(&partial, text + "\n").map_err(|e| CoreError::io(&partial, e))?;
+        std::fs::rename(&partial, &path).map_err(|e| CoreError::io(&path, e))
     }
 
     pub fn read(dir: &Path) -> Result<Self, CoreError> {
-        let path = dir.join(MANIFEST_FILE);
+        Self::read_as(dir, MANIFEST_FILE)
+    }
+
+    pub fn read_as(dir: &Path, name: &str) -> Result<Self, CoreError> {
+        let path = dir.join(name);
         let text = std::fs::read_to_string(&path).map_err(|e| CoreError::io(&path, e))?;
         serde_json::from_str(&text)
             .map_err(|e| CoreError::bad_file(&path, format!("not an rslam manifest: {e}")))
+    }
+
+    /// What the run does, without how it was typed or what it made: two runs with the same job
+    /// write the same bytes, so one may finish what the other started.
+    pub fn job(&self) -> Manifest {
+        Manifest {
+            command: Vec::new(),
+            content_digest: String::new(),
+            ..self.clone()
+        }
     }
 }
 

@@ -2,18 +2,25 @@
 //! GO-SLAM) and TUM RGB-D (ORB-SLAM3). [`DatasetWriter`] writes frames from many threads and
 //! the manifest last; [`read_dataset`] reads either layout back.
 
+mod checksums;
 mod codec;
 mod layout;
 mod manifest;
 mod orbslam3;
 mod reader;
+mod verify;
 mod writer;
 
+pub use checksums::{
+    blake3_hex, content_files, is_bookkeeping, ChecksumDifferences, Checksums, ContentWriter,
+    CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,
+};
 pub use codec::{
-    decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, read_image_size,
-    read_rgb, write_rgb_like,
+    decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, encode_rgb_like,
+    read_image_size, read_rgb, write_rgb_like,
 };
 pub use layout::DatasetFormat;
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
-pub use reader::{read_dataset, DatasetFrame, SourceDataset};
-pub use writer::{DatasetWriter, OutputFrame};
+pub use reader::{read_dataset, DatasetFrame, DatasetOverrides, SourceDataset};
+pub use verify::{verify_output, Verification};
+pub use writer::{DatasetWriter, FrameFiles, OutputFrame};

@@ -4,11 +4,10 @@ use std::path::{Path, PathBuf};
 
 use crate::dataset::{DatasetFormat, Manifest, MANIFEST_FILE};
 use crate::trajectory_io::{read_trajectory_with, ReadOptions, TrajectoryFormat};
-use crate::{CoreError, Intrinsics, Trajectory};
+use crate::{nearest_time, CoreError, Intrinsics, Trajectory};
 
 /// Largest RGB–depth time difference when pairing TUM rgb.txt and depth.txt without associations.
 const TUM_PAIR_MAX_DIFF_S: f64 = 0.02;
-const REPLICA_RATE_HZ: f64 = 20.0;
 
 /// One frame of a source dataset: its colour file and, where present, its depth file.
 #[derive(Clone, Debug, PartialEq)]
@@ -17,6 +16,15 @@ pub struct DatasetFrame {
     pub rgb_time: f64,
     pub depth: Option<PathBuf>,
     pub depth_time: f64,
+}
+
+/// What the reader cannot know from every dataset and must not guess: the camera (TUM sequences
+/// and Replica scenes without `cam_params.json` have no camera file) and the frame rate (Replica
+/// frames have no timestamps). Where given, they take precedence over the dataset's own.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DatasetOverrides {
+    pub camera: Option<Intrinsics>,
+    pub rate_hz: Option<f64>,
 }
 
 #[derive(Clone, Debug)]
@@ -31,17 +39,19 @@ pub struct SourceDataset {
     pub manifest: Option<Manifest>,
 }
 
-/// Detects the layout of `root` (Replica: `results/`; TUM: `rgb.txt`) and lists its frames.
-pub fn read_dataset(root: &Path) -> Result<SourceDataset, CoreError> {
+/// Detects the layout of `root` (Replica: `results/`; TUM: `rgb.txt`) and lists its frames. The
+/// camera comes from `overrides`, the manifest or `cam_params.json`, the rate from `overrides`,
+/// the manifest or the TUM timestamps; where neither is known the error says so.
+pub fn read_dataset(root: &Path, overrides: &DatasetOverrides) -> Result<SourceDataset, CoreError> {
     let manifest = if root.join(MANIFEST_FILE).exists() {
         Some(Manifest::read(root)?)
     } else {
         None
     };
     if root.join("rgb.txt").is_file() {
-        read_tum(root, manifest)
+        read_tum(root, manifest, overrides)
     } else if root.join("results").is_dir() {
-        read_replica(root, manifest)
+        read_replica(root, manifest, overrides)
     } else {
         Err(CoreError::bad_file(
             root,
@@ -84,17 +94,57 @@ fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
             .as_f64()
             .ok_or_else(|| CoreError::bad_file(path, format!("expected a number at camera.{key}")))
     };
-    Ok(Some(Intrinsics {
-        width: number("w")? as u32,
-        height: number("h")? as u32,
+    let size = |key: &str| {
+        let value = number(key)?;
+        if value >= 1.0 && value.fract() == 0.0 && value <= u32::MAX as f64 {
+            Ok(value as u32)
+        } else {
+            Err(CoreError::bad_file(
+                path,
+                format!("expected a positive whole number of pixels at camera.{key}, got {value}"),
+            ))
+        }
+    };
+    let camera = Intrinsics {
+        width: size("w")?,
+        height: size("h")?,
         fx: number("fx")?,
         fy: number("fy")?,
         cx: number("cx")?,
         cy: number("cy")?,
-    }))
+    };
+    if !(camera.fx > 0.0 && camera.fy > 0.0) {
+        return Err(CoreError::bad_file(
+            path,
+            "expected positive focal lengths camera.fx and camera.fy",
+        ));
+    }
+    Ok(Some(camera))
 }
 
-fn read_replica(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, CoreError> {
+fn no_camera(root: &Path, looked_in: &str) -> CoreError {
+    CoreError::bad_file(
+        root,
+        format!("no camera intrinsics ({looked_in}); give them explicitly (rslam: --camera)"),
+    )
+}
+
+fn rate_or_error(rate_hz: Option<f64>, root: &Path, why: &str) -> Result<f64, CoreError> {
+    match rate_hz {
+        Some(hz) if hz.is_finite() && hz > 0.0 => Ok(hz),
+        Some(hz) => Err(CoreError::BadRate { hz }),
+        None => Err(CoreError::bad_file(
+            root,
+            format!("unknown frame rate ({why}); give it explicitly (rslam: --rate)"),
+        )),
+    }
+}
+
+fn read_replica(
+    root: &Path,
+    manifest: Option<Manifest>,
+    overrides: &DatasetOverrides,
+) -> Result<SourceDataset, CoreError> {
     let results = root.join("results");
     let rgb = sorted_with_prefix(&results, "frame")?;
     let depth = sorted_with_prefix(&results, "depth")?;
@@ -114,7 +164,11 @@ fn read_replica(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset
             ),
         ));
     }
-    let rate_hz = manifest.as_ref().map_or(REPLICA_RATE_HZ, |m| m.rate_hz);
+    let rate_hz = rate_or_error(
+        overrides.rate_hz.or(manifest.as_ref().map(|m| m.rate_hz)),
+        root,
+        "Replica frames carry no timestamps and there is no rslam.json",
+    )?;
     let traj_path = root.join("traj.txt");
     let ground_truth = if traj_path.is_file() {
         let options = ReadOptions {
@@ -126,9 +180,13 @@ fn read_replica(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset
     } else {
         None
     };
-    let intrinsics = match manifest.as_ref().and_then(|m| m.camera) {
+    let intrinsics = match overrides
+        .camera
+        .or(manifest.as_ref().and_then(|m| m.camera))
+    {
         Some(camera) => camera,
-        None => replica_camera(root)?.unwrap_or(Intrinsics::REPLICA),
+        None => replica_camera(root)?
+            .ok_or_else(|| no_camera(root, "no rslam.json, no cam_params.json here or one up"))?,
     };
     let frames = rgb
         .into_iter()
@@ -180,7 +238,11 @@ fn tum_list(path: &Path) -> Result<Vec<(f64, PathBuf)>, CoreError> {
     Ok(entries)
 }
 
-fn read_tum(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, CoreError> {
+fn read_tum(
+    root: &Path,
+    manifest: Option<Manifest>,
+    overrides: &DatasetOverrides,
+) -> Result<SourceDataset, CoreError> {
     let associations = root.join("associations.txt");
     let frames: Vec<DatasetFrame> = if associations.is_file() {
         read_associations(&associations)?
@@ -194,10 +256,9 @@ fn read_tum(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, Co
         };
         rgb.into_iter()
             .map(|(rgb_time, rgb)| {
-                let nearest = depth
-                    .iter()
-                    .min_by(|a, b| (a.0 - rgb_time).abs().total_cmp(&(b.0 - rgb_time).abs()))
-                    .filter(|d| (d.0 - rgb_time).abs() <= TUM_PAIR_MAX_DIFF_S);
+                let nearest =
+                    nearest_time(depth.iter().map(|d| d.0), rgb_time, TUM_PAIR_MAX_DIFF_S)
+                        .map(|i| &depth[i]);
                 DatasetFrame {
                     rgb,
                     rgb_time,
@@ -220,14 +281,23 @@ fn read_tum(root: &Path, manifest: Option<Manifest>) -> Result<SourceDataset, Co
     } else {
         None
     };
-    let rate_hz = match &manifest {
-        Some(m) => m.rate_hz,
-        None => estimate_rate(&frames),
-    };
-    let intrinsics = manifest
-        .as_ref()
-        .and_then(|m| m.camera)
-        .unwrap_or(Intrinsics::TUM);
+    let rate_hz = rate_or_error(
+        overrides
+            .rate_hz
+            .or(manifest.as_ref().map(|m| m.rate_hz))
+            .or_else(|| measured_rate(&frames)),
+        root,
+        "fewer than two distinct colour timestamps and no rslam.json",
+    )?;
+    let intrinsics = overrides
+        .camera
+        .or(manifest.as_ref().and_then(|m| m.camera))
+        .ok_or_else(|| {
+            no_camera(
+                root,
+                "TUM sequences have no camera file, and there is no rslam.json",
+            )
+        })?;
     Ok(SourceDataset {
         root: root.to_path_buf(),
         format: DatasetFormat::Tum,
@@ -270,16 +340,16 @@ fn read_associations(path: &Path) -> Result<Vec<DatasetFrame>, CoreError> {
     Ok(frames)
 }
 
-/// Median frame interval of the colour stream, as a rate (TUM's 30 Hz when unknown).
-fn estimate_rate(frames: &[DatasetFrame]) -> f64 {
+/// Median frame interval of the colour stream, as a rate; `None` without two distinct times.
+fn measured_rate(frames: &[DatasetFrame]) -> Option<f64> {
     let mut gaps: Vec<f64> = frames
         .windows(2)
         .map(|w| w[1].rgb_time - w[0].rgb_time)
         .filter(|g| *g > 0.0)
         .collect();
     if gaps.is_empty() {
-        return 30.0;
+        return None;
     }
     gaps.sort_by(f64::total_cmp);
-    1.0 / gaps[gaps.len() / 2]
+    Some(1.0 / gaps[gaps.len() / 2])
 }

@@ -1,7 +1,7 @@
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::dataset::{
-    encode_depth_png, encode_jpeg, encode_png, orbslam3, DatasetFormat, Manifest, MANIFEST_FILE,
+    encode_depth_png, encode_jpeg, encode_png, orbslam3, ContentWriter, DatasetFormat, Manifest,
 };
 use crate::trajectory_io::{write_replica, write_tum};
 use crate::{CoreError, DepthImage, Intrinsics, RgbImage, Trajectory};
@@ -17,11 +17,19 @@ pub struct OutputFrame {
     pub depth_time: f64,
 }
 
+/// Where one output frame's colour and depth go, relative to the dataset root.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FrameFiles {
+    pub rgb: String,
+    pub depth: String,
+}
+
 /// Writes one dataset. Frame files may be written from many threads (`&self`), each through a
-/// temporary name and a rename, so no reader sees half a file; [`DatasetWriter::finish`] writes
-/// the trajectory and index files and then the manifest, last.
+/// temporary name and a rename, so no reader sees half a file; each is hashed as it is written.
+/// [`DatasetWriter::finish`] writes the trajectory and index files, the checksum list and then the
+/// manifest, last.
 pub struct DatasetWriter {
-    root: PathBuf,
+    content: ContentWriter,
     format: DatasetFormat,
     intrinsics: Intrinsics,
 }
@@ -31,29 +39,13 @@ fn tum_name(dir: &str, time: f64) -> String {
 }
 
 impl DatasetWriter {
-    /// Prepares `root`: an empty or missing folder, or an earlier rslam dataset, whose manifest and
-    /// frames are removed first so that an interrupted run never looks complete.
-    pub fn create(
+    /// Creates the layout's folders under `root`; files already there stay (a resumed run keeps
+    /// its complete frames). Deciding whether `root` may be written is the caller's job.
+    pub fn open(
         root: &Path,
         format: DatasetFormat,
         intrinsics: Intrinsics,
     ) -> Result<Self, CoreError> {
-        if root.exists() {
-            let is_dataset = root.join(MANIFEST_FILE).exists();
-            let mut entries = std::fs::read_dir(root).map_err(|e| CoreError::io(root, e))?;
-            if !is_dataset && entries.next().is_some() {
-                return Err(CoreError::bad_file(
-                    root,
-                    "output folder is not empty and holds no rslam dataset (rslam.json); choose an empty or new folder",
-                ));
-            }
-            if is_dataset {
-                remove_path(&root.join(MANIFEST_FILE))?;
-                for old in ["results", "rgb", "depth"] {
-                    remove_path(&root.join(old))?;
-                }
-            }
-        }
         let dirs: &[&str] = match format {
             DatasetFormat::Replica => &["results"],
             DatasetFormat::Tum => &["rgb", "depth"],
@@ -63,14 +55,28 @@ impl DatasetWriter {
             std::fs::create_dir_all(&path).map_err(|e| CoreError::io(&path, e))?;
         }
         Ok(Self {
-            root: root.to_path_buf(),
+            content: ContentWriter::new(root),
             format,
             intrinsics,
         })
     }
 
+    /// The files output frame `index` is written to.
+    pub fn frame_files(&self, index: usize, frame: &OutputFrame) -> FrameFiles {
+        match self.format {
+            DatasetFormat::Replica => FrameFiles {
+                rgb: format!("results/frame{index:06}.jpg"),
+                depth: format!("results/depth{index:06}.png"),
+            },
+            DatasetFormat::Tum => FrameFiles {
+                rgb: tum_name("rgb", frame.rgb_time),
+                depth: tum_name("depth", frame.depth_time),
+            },
+        }
+    }
+
     pub fn root(&self) -> &Path {
-        &self.root
+        self.content.root()
     }
 
     pub fn intrinsics(&self) -> Intrinsics {
@@ -81,60 +87,57 @@ impl DatasetWriter {
         self.format
     }
 
-    fn write_atomic(&self, rel: &str, bytes: &[u8]) -> Result<(), CoreError> {
-        let path = self.root.join(rel);
-        let tmp = self.root.join(format!("{rel}.partial"));
-        std::fs::write(&tmp, bytes).map_err(|e| CoreError::io(&tmp, e))?;
-        std::fs::rename(&tmp, &path).map_err(|e| CoreError::io(&path, e))
+    /// Colour of output frame `index`, captured at `frame.rgb_time`.
+    pub fn write_rgb(
+        &self,
+        index: usize,
+        frame: &OutputFrame,
+        image: &RgbImage,
+    ) -> Result<(), CoreError> {
+        let bytes = match self.format {
+            DatasetFormat::Replica => encode_jpeg(image, JPEG_QUALITY)?,
+            DatasetFormat::Tum => encode_png(image)?,
+        };
+        self.content
+            .write(&self.frame_files(index, frame).rgb, &bytes)
     }
 
-    /// Colour of output frame `index`, captured at `time`.
-    pub fn write_rgb(&self, index: usize, time: f64, image: &RgbImage) -> Result<(), CoreError> {
-        match self.format {
-            DatasetFormat::Replica => self.write_atomic(
-                &format!("results/frame{index:06}.jpg"),
-                &encode_jpeg(image, JPEG_QUALITY)?,
-            ),
-            DatasetFormat::Tum => self.write_atomic(&tum_name("rgb", time), &encode_png(image)?),
-        }
-    }
-
-    /// One depth image, captured at `time`, delivered with each of the output frames `outputs`
-    /// (several under misalignment). Replica writes it once per output frame; TUM once, named by
-    /// its capture time.
+    /// One depth image delivered with each of the output frames `outputs` (several under
+    /// misalignment, all carrying the same depth capture time). Replica writes it once per
+    /// output frame; TUM once, named by its capture time.
     pub fn write_depth(
         &self,
-        outputs: &[usize],
-        time: f64,
+        outputs: &[(usize, OutputFrame)],
         depth: &DepthImage,
     ) -> Result<(), CoreError> {
-        if outputs.is_empty() {
-            return Ok(());
-        }
         let bytes = encode_depth_png(depth, self.format.depth_scale())?;
-        match self.format {
-            DatasetFormat::Replica => outputs.iter().try_for_each(|index| {
-                self.write_atomic(&format!("results/depth{index:06}.png"), &bytes)
-            }),
-            DatasetFormat::Tum => self.write_atomic(&tum_name("depth", time), &bytes),
-        }
+        let mut names: Vec<String> = outputs
+            .iter()
+            .map(|(index, frame)| self.frame_files(*index, frame).depth)
+            .collect();
+        names.dedup();
+        names
+            .iter()
+            .try_for_each(|name| self.content.write(name, &bytes))
     }
 
-    /// Index and trajectory files, then the manifest. `ground_truth` holds one pose per output
-    /// frame, stamped with its colour capture time.
+    /// Index and trajectory files, the checksum list (frames written by an earlier, interrupted
+    /// run are hashed now), then the manifest with the content digest, last. `ground_truth` holds
+    /// one pose per output frame, stamped with its colour capture time. Returns the manifest as
+    /// written.
     pub fn finish(
         self,
         frames: &[OutputFrame],
         ground_truth: &Trajectory,
-        manifest: &Manifest,
-    ) -> Result<(), CoreError> {
+        manifest: Manifest,
+    ) -> Result<Manifest, CoreError> {
         match self.format {
             DatasetFormat::Replica => {
-                write_replica(&self.root.join("traj.txt"), ground_truth)?;
+                write_replica(&self.root().join("traj.txt"), ground_truth)?;
                 self.write_text("cam_params.json", &self.cam_params_json())?;
             }
             DatasetFormat::Tum => {
-                write_tum(&self.root.join("groundtruth.txt"), ground_truth)?;
+                write_tum(&self.root().join("groundtruth.txt"), ground_truth)?;
                 self.write_text(
                     "rgb.txt",
                     &tum_list("rgb", frames.iter().map(|f| f.rgb_time)),
@@ -162,12 +165,11 @@ impl DatasetWriter {
                 )?;
             }
         }
-        manifest.write(&self.root)
+        self.content.finish(manifest)
     }
 
     fn write_text(&self, rel: &str, text: &str) -> Result<(), CoreError> {
-        let path = self.root.join(rel);
-        std::fs::write(&path, text).map_err(|e| CoreError::io(&path, e))
+        self.content.write(rel, text.as_bytes())
     }
 
     fn cam_params_json(&self) -> String {
@@ -190,15 +192,4 @@ fn tum_list(dir: &str, times: impl Iterator<Item = f64>) -> String {
         text.push_str(&format!("{t:.6} {}\n", tum_name(dir, t)));
     }
     text
-}
-
-fn remove_path(path: &Path) -> Result<(), CoreError> {
-    let result = if path.is_dir() {
-        std::fs::remove_dir_all(path)
-    } else if path.exists() {
-        std::fs::remove_file(path)
-    } else {
-        Ok(())
-    };
-    result.map_err(|e| CoreError::io(path, e))
 }

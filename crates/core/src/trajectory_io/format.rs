@@ -91,7 +91,7 @@ pub struct ReadOptions {
 }
 
 impl ReadOptions {
-    pub const DEFAULT_REPLICA_RATE_HZ: f64 = 20.0;
+    pub const DEFAULT_REPLICA_RATE_HZ: f64 = crate::REPLICA_RATE_HZ;
 }
 
 impl Default for ReadOptions {

@@ -14,7 +14,7 @@ use rslam_core::{Pose, Trajectory};
 use super::rng::Rng;
 
 pub const FRAMES: usize = 2000;
-pub const RATE_HZ: f64 = 20.0;
+pub const RATE_HZ: f64 = rslam_core::REPLICA_RATE_HZ;
 const WAYPOINTS: usize = 10;
 /// Dense spline samples per waypoint for the arc-length table.
 const SAMPLES_PER_SPAN: usize = 64;

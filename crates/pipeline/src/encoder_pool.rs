@@ -5,15 +5,23 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
-type Job = Box<dyn FnOnce() -> anyhow::Result<()> + Send>;
+use crate::PipelineError;
+
+type Job = Box<dyn FnOnce() -> Result<(), PipelineError> + Send>;
 
 pub struct EncoderPool {
     sender: Option<SyncSender<Job>>,
     workers: Vec<JoinHandle<()>>,
-    first_error: Arc<Mutex<Option<anyhow::Error>>>,
+    first_error: Arc<Mutex<Option<PipelineError>>>,
 }
 
 impl EncoderPool {
+    /// One worker per core, with a queue of two jobs per worker.
+    pub fn per_core() -> Self {
+        let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+        Self::new(threads, 2 * threads)
+    }
+
     pub fn new(threads: usize, queue: usize) -> Self {
         let (sender, receiver) = sync_channel::<Job>(queue);
         let receiver = Arc::new(Mutex::new(receiver));
@@ -47,18 +55,18 @@ impl EncoderPool {
     /// Queues a job; fails with the first error any job has reported so far.
     pub fn submit(
         &self,
-        job: impl FnOnce() -> anyhow::Result<()> + Send + 'static,
-    ) -> anyhow::Result<()> {
+        job: impl FnOnce() -> Result<(), PipelineError> + Send + 'static,
+    ) -> Result<(), PipelineError> {
         self.take_error()?;
         if let Some(sender) = &self.sender {
             sender
                 .send(Box::new(job))
-                .map_err(|_| anyhow::anyhow!("encoder threads stopped"))?;
+                .map_err(|_| PipelineError::Worker("the encoder threads stopped".into()))?;
         }
         Ok(())
     }
 
-    fn take_error(&self) -> anyhow::Result<()> {
+    fn take_error(&self) -> Result<(), PipelineError> {
         match self
             .first_error
             .lock()
@@ -71,12 +79,12 @@ impl EncoderPool {
     }
 
     /// Waits for every queued job and returns the first error.
-    pub fn finish(mut self) -> anyhow::Result<()> {
+    pub fn finish(mut self) -> Result<(), PipelineError> {
         self.sender = None;
         for worker in self.workers.drain(..) {
             worker
                 .join()
-                .map_err(|_| anyhow::anyhow!("an encoder thread panicked"))?;
+                .map_err(|_| PipelineError::Worker("an encoder thread panicked".into()))?;
         }
         self.take_error()
     }

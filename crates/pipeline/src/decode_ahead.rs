@@ -4,14 +4,15 @@
 use std::sync::mpsc::{sync_channel, Receiver};
 use std::thread::JoinHandle;
 
-use anyhow::Context;
 use rayon::prelude::*;
+
+use crate::PipelineError;
 
 /// Frames decoded together, in parallel.
 const DECODE_AHEAD: usize = 4;
 
 pub struct DecodeAhead<T> {
-    frames: Option<Receiver<anyhow::Result<T>>>,
+    frames: Option<Receiver<Result<T, PipelineError>>>,
     thread: Option<JoinHandle<()>>,
 }
 
@@ -19,7 +20,7 @@ impl<T: Send + 'static> DecodeAhead<T> {
     /// Starts decoding `items` in order with `decode`; it stops after the first error.
     pub fn start<I: Send + Sync + 'static>(
         items: Vec<I>,
-        decode: impl Fn(&I) -> anyhow::Result<T> + Send + Sync + 'static,
+        decode: impl Fn(&I) -> Result<T, PipelineError> + Send + Sync + 'static,
     ) -> Self {
         let (tx, rx) = sync_channel(DECODE_AHEAD);
         let thread = std::thread::spawn(move || {
@@ -40,12 +41,13 @@ impl<T: Send + 'static> DecodeAhead<T> {
     }
 
     /// The next decoded frame, or the error that stopped decoding.
-    pub fn next(&self) -> anyhow::Result<T> {
+    pub fn next(&self) -> Result<T, PipelineError> {
+        let stopped = || PipelineError::Worker("the frame decoder stopped".into());
         self.frames
             .as_ref()
-            .context("frame decoder stopped")?
+            .ok_or_else(stopped)?
             .recv()
-            .context("frame decoder stopped")?
+            .map_err(|_| stopped())?
     }
 }
 

@@ -1,0 +1,72 @@
+//! The terminal's view of a run: a progress bar with frames/s, and Ctrl-C turned into an orderly
+//! stop (no manifest written, the same command resumes).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use indicatif::{ProgressBar as Bar, ProgressStyle};
+use rslam_pipeline::{PipelineError, Progress};
+
+pub struct ProgressBar {
+    bar: Mutex<Option<Bar>>,
+    started: Mutex<Option<Instant>>,
+    interrupted: Arc<AtomicBool>,
+}
+
+impl ProgressBar {
+    pub fn new() -> Self {
+        let interrupted = Arc::new(AtomicBool::new(false));
+        let flag = interrupted.clone();
+        // Only the first handler per process can be installed; one bar is made per process.
+        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst));
+        Self {
+            bar: Mutex::new(None),
+            started: Mutex::new(None),
+            interrupted,
+        }
+    }
+
+    /// Frames per second of the last stage, for stderr.
+    pub fn rate(&self) -> Option<f64> {
+        let bar = self.bar.lock().unwrap_or_else(|p| p.into_inner());
+        let started = *self.started.lock().unwrap_or_else(|p| p.into_inner());
+        let (bar, started) = (bar.as_ref()?, started?);
+        let seconds = started.elapsed().as_secs_f64();
+        (seconds > 0.0 && bar.position() > 0).then(|| bar.position() as f64 / seconds)
+    }
+}
+
+impl Progress for ProgressBar {
+    fn start(&self, total: usize, what: &str) {
+        let bar = Bar::new(total as u64);
+        bar.set_style(
+            ProgressStyle::with_template(&format!(
+                "{what} [{{bar:40}}] {{pos}}/{{len}} frames, {{per_sec}}, eta {{eta}}"
+            ))
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        *self.bar.lock().unwrap_or_else(|p| p.into_inner()) = Some(bar);
+        *self.started.lock().unwrap_or_else(|p| p.into_inner()) = Some(Instant::now());
+    }
+
+    fn advance(&self) -> Result<(), PipelineError> {
+        let bar = self.bar.lock().unwrap_or_else(|p| p.into_inner());
+        if self.interrupted.load(Ordering::SeqCst) {
+            if let Some(bar) = bar.as_ref() {
+                bar.abandon_with_message("interrupted");
+            }
+            return Err(PipelineError::Interrupted);
+        }
+        if let Some(bar) = bar.as_ref() {
+            bar.inc(1);
+        }
+        Ok(())
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = self.bar.lock().unwrap_or_else(|p| p.into_inner()).as_ref() {
+            bar.finish();
+        }
+    }
+}

@@ -1,0 +1,79 @@
+//! Writing a dataset from a pipeline, resumably: the output folder decides what is left to do,
+//! only source frames with a missing file are drawn, and the manifest comes last.
+
+use std::path::Path;
+
+use rslam_core::dataset::{DatasetFormat, DatasetWriter, Manifest};
+use rslam_core::{Intrinsics, Trajectory};
+use rslam_gpu::GpuContext;
+
+use crate::output_folder::{self, FolderState};
+use crate::pipeline::Pipeline;
+use crate::plan::FramePlan;
+use crate::progress::Progress;
+use crate::sink::DatasetSink;
+use crate::source::FrameSource;
+use crate::PipelineError;
+
+/// What a run did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunReport {
+    /// Output frames of the finished output.
+    pub frames: usize,
+    /// Source frames drawn (or perturbed) by this run; fewer than needed when it resumed.
+    pub made: usize,
+    /// What the output folder held when the run began.
+    pub found: FolderState,
+    /// The manifest as written (as found, when the folder was complete already).
+    pub manifest: Manifest,
+}
+
+/// One dataset to write: where, in which layout, and what it holds besides the frames.
+pub struct DatasetOutput<'a> {
+    pub out: &'a Path,
+    pub format: DatasetFormat,
+    pub camera: Intrinsics,
+    /// Replace whatever rslam output `out` holds.
+    pub force: bool,
+    pub plan: &'a FramePlan,
+    pub ground_truth: &'a Trajectory,
+    /// The job's manifest, without the content digest.
+    pub manifest: Manifest,
+}
+
+pub fn write_dataset<S: FrameSource>(
+    ctx: &GpuContext,
+    pipeline: &mut Pipeline<S>,
+    target: DatasetOutput,
+    progress: &dyn Progress,
+    what: &str,
+) -> Result<RunReport, PipelineError> {
+    let plan = target.plan;
+    let found = output_folder::prepare(target.out, &target.manifest, target.force)?;
+    if found == FolderState::Complete {
+        return Ok(RunReport {
+            frames: plan.len(),
+            made: 0,
+            found,
+            manifest: Manifest::read(target.out)?,
+        });
+    }
+    let writer = DatasetWriter::open(target.out, target.format, target.camera)?;
+    let mut sink = DatasetSink::new(writer, plan);
+    let sources: Vec<usize> = plan
+        .needed_sources()
+        .into_iter()
+        .filter(|&s| !sink.is_written(s))
+        .collect();
+    progress.start(sources.len(), what);
+    pipeline.run(ctx, &sources, progress, &mut sink)?;
+    progress.finish();
+    let manifest = sink.finish(target.ground_truth, target.manifest)?;
+    output_folder::finish(target.out)?;
+    Ok(RunReport {
+        frames: plan.len(),
+        made: sources.len(),
+        found,
+        manifest,
+    })
+}

@@ -1,0 +1,35 @@
+//! What `rslam perturb --input` names: a dataset, a folder of images, or one image.
+
+use std::path::{Path, PathBuf};
+
+use crate::perturb_images::is_image;
+use crate::PipelineError;
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PerturbInput {
+    Dataset(PathBuf),
+    ImageFolder(PathBuf),
+    Image(PathBuf),
+}
+
+impl PerturbInput {
+    /// A dataset (Replica `results/` or TUM `rgb.txt`), a folder of PNG/JPEG images, or one image.
+    pub fn detect(path: &Path) -> Result<Self, PipelineError> {
+        if path.is_file() {
+            if !is_image(path) {
+                return Err(PipelineError::input(
+                    path,
+                    "expected a dataset folder, an image folder or a .png/.jpg file",
+                ));
+            }
+            return Ok(Self::Image(path.to_path_buf()));
+        }
+        if !path.is_dir() {
+            return Err(PipelineError::input(path, "no such file or folder"));
+        }
+        if path.join("rgb.txt").is_file() || path.join("results").is_dir() {
+            return Ok(Self::Dataset(path.to_path_buf()));
+        }
+        Ok(Self::ImageFolder(path.to_path_buf()))
+    }
+}

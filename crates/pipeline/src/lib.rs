@@ -1,0 +1,44 @@
+//! The generation pipeline: a source, a perturbation spec and a sink, driven through the GPU.
+//!
+//! Data flow: a job (`RenderJob`, `PerturbDatasetJob`, `PerturbImagesJob`) or an in-memory caller
+//! ([`FramesInMemory`]) picks a [`source`] — a scene drawn along a (deviated) path, a dataset or
+//! image files decoded ahead, buffers in memory — and makes the [`FramePlan`] before any frame is
+//! drawn: which source frame each output frame's colour and depth come from, their capture times
+//! and every frame's severities. The [`Pipeline`] records each needed source frame and its image
+//! then depth corruptions into one command encoder, keeps several frames in flight and reads each
+//! back once; a [`sink`] encodes it into a dataset on worker threads or assembles output frames
+//! in memory. A dataset run first marks its folder with `rslam.run.json` ([`output_folder`]), so
+//! that the same job resumes where it stopped, and finishes with checksums and the manifest.
+
+mod dataset_run;
+mod decode_ahead;
+mod encoder_pool;
+mod error;
+mod frame_loop;
+mod frames_in_memory;
+mod input;
+mod manifest;
+pub mod output_folder;
+mod perturb_dataset;
+mod perturb_images;
+mod pipeline;
+mod plan;
+mod progress;
+mod render;
+mod scene_job;
+pub mod sink;
+pub mod source;
+
+pub use dataset_run::RunReport;
+pub use error::PipelineError;
+pub use frames_in_memory::FramesInMemory;
+pub use input::PerturbInput;
+pub use output_folder::FolderState;
+pub use perturb_dataset::{perturb_dataset, PerturbDatasetJob};
+pub use perturb_images::{image_files, perturb_images, PerturbImagesJob};
+pub use pipeline::Pipeline;
+pub use plan::{FramePlan, SourceTiming};
+pub use progress::{Progress, Silent};
+pub use render::{render_dataset, RenderJob};
+pub use scene_job::{ResolvedScene, SceneJob};
+pub use sink::RgbdFrame;

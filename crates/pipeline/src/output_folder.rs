@@ -1,0 +1,120 @@
+//! What an output folder already holds decides what a run does with it. A run writes its job
+//! (the manifest without the content digest) as `rslam.run.json` before the first frame and
+//! removes it after `rslam.json`: the same job finds its frames and goes on, another job is
+//! refused unless `force` starts over, and a folder that is not rslam's is never touched.
+
+use std::path::Path;
+
+use rslam_core::dataset::{Checksums, Manifest, MANIFEST_FILE, PARTIAL_SUFFIX, RUN_FILE};
+use rslam_core::CoreError;
+
+use crate::PipelineError;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FolderState {
+    /// Nothing there yet.
+    Fresh,
+    /// An unfinished run of the same job: its complete files stay.
+    Resume,
+    /// The same job finished here already, every file it listed is there.
+    Complete,
+}
+
+/// Prepares `root` for `job` and says what it holds.
+pub fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, PipelineError> {
+    let state = if !root.exists() {
+        FolderState::Fresh
+    } else if root.join(RUN_FILE).is_file() {
+        match Manifest::read_as(root, RUN_FILE) {
+            Ok(earlier) if earlier.job() == job.job() && !force => FolderState::Resume,
+            Ok(_) if force => clear(root)?,
+            Ok(earlier) => return Err(other_job(root, &earlier, "an unfinished run")),
+            Err(_) if force => clear(root)?,
+            Err(e) => return Err(e.into()),
+        }
+    } else if root.join(MANIFEST_FILE).is_file() {
+        match Manifest::read(root) {
+            Ok(earlier) if earlier.job() == job.job() && !force => {
+                if all_listed_files_exist(root) {
+                    return Ok(FolderState::Complete);
+                }
+                std::fs::remove_file(root.join(MANIFEST_FILE))
+                    .map_err(|e| CoreError::io(root.join(MANIFEST_FILE), e))?;
+                FolderState::Resume
+            }
+            Ok(_) if force => clear(root)?,
+            Ok(earlier) => return Err(other_job(root, &earlier, "the finished output")),
+            Err(_) if force => clear(root)?,
+            Err(e) => return Err(e.into()),
+        }
+    } else if is_empty(root)? {
+        FolderState::Fresh
+    } else {
+        return Err(PipelineError::output(
+            root,
+            "not empty and holds no rslam output (rslam.json or rslam.run.json); choose an empty or new folder",
+        ));
+    };
+    std::fs::create_dir_all(root).map_err(|e| CoreError::io(root, e))?;
+    remove_partial_files(root)?;
+    job.job().write_as(root, RUN_FILE)?;
+    Ok(state)
+}
+
+/// Marks the run finished: called after the manifest is written.
+pub fn finish(root: &Path) -> Result<(), PipelineError> {
+    let path = root.join(RUN_FILE);
+    std::fs::remove_file(&path).map_err(|e| CoreError::io(&path, e))?;
+    Ok(())
+}
+
+fn other_job(root: &Path, earlier: &Manifest, what: &str) -> PipelineError {
+    PipelineError::output(
+        root,
+        format!(
+            "holds {what} of another job (`{}`, perturbation '{}', seed {}); choose another output or pass --force to start over",
+            earlier.command.join(" "),
+            earlier.perturbation,
+            earlier.seed
+        ),
+    )
+}
+
+fn is_empty(root: &Path) -> Result<bool, PipelineError> {
+    let mut entries = std::fs::read_dir(root).map_err(|e| CoreError::io(root, e))?;
+    Ok(entries.next().is_none())
+}
+
+fn all_listed_files_exist(root: &Path) -> bool {
+    Checksums::read(root).is_ok_and(|sums| sums.paths().all(|p| root.join(p).is_file()))
+}
+
+/// Removes everything in `root`, an earlier rslam output.
+fn clear(root: &Path) -> Result<FolderState, PipelineError> {
+    for entry in std::fs::read_dir(root).map_err(|e| CoreError::io(root, e))? {
+        let path = entry.map_err(|e| CoreError::io(root, e))?.path();
+        let removed = if path.is_dir() {
+            std::fs::remove_dir_all(&path)
+        } else {
+            std::fs::remove_file(&path)
+        };
+        removed.map_err(|e| CoreError::io(&path, e))?;
+    }
+    Ok(FolderState::Fresh)
+}
+
+/// A file cut off mid-write keeps its temporary name: it is redone, never used.
+fn remove_partial_files(root: &Path) -> Result<(), PipelineError> {
+    let mut pending = vec![root.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).map_err(|e| CoreError::io(&dir, e))? {
+            let path = entry.map_err(|e| CoreError::io(&dir, e))?.path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.to_string_lossy().ends_with(PARTIAL_SUFFIX) {
+                std::fs::remove_file(&path).map_err(|e| CoreError::io(&path, e))?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,133 @@
+//! `rslam perturb` on a dataset (Replica or TUM layout): its frames decoded, perturbed and
+//! written in the same layout, with `fast` and `misalign` re-planning the streams.
+
+use std::path::PathBuf;
+
+use rslam_core::dataset::{read_dataset, DatasetOverrides, SourceDataset};
+use rslam_core::{nearest_time, Pose, Trajectory};
+use rslam_gpu::GpuContext;
+use rslam_perturb::PerturbSpec;
+
+use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
+use crate::manifest::ManifestParts;
+use crate::pipeline::Pipeline;
+use crate::plan::{FramePlan, SourceTiming};
+use crate::progress::Progress;
+use crate::source::DatasetSource;
+use crate::PipelineError;
+
+/// Largest |Δt| at which a ground-truth pose stands for a frame when re-stamping (TUM's 100 Hz
+/// motion capture has one within 5 ms of every frame).
+const GT_MATCH_MAX_DIFF_S: f64 = 0.02;
+
+pub struct PerturbDatasetJob {
+    pub input: PathBuf,
+    /// Camera and rate where the dataset does not state them.
+    pub overrides: DatasetOverrides,
+    pub out: PathBuf,
+    pub spec: PerturbSpec,
+    pub seed: u64,
+    pub force: bool,
+    pub command: Vec<String>,
+}
+
+/// The plan of a recorded dataset under `spec`.
+pub fn dataset_plan(dataset: &SourceDataset, spec: &PerturbSpec, seed: u64) -> FramePlan {
+    let rgb_times: Vec<f64> = dataset.frames.iter().map(|f| f.rgb_time).collect();
+    let depth_offsets: Vec<f64> = dataset
+        .frames
+        .iter()
+        .map(|f| f.depth_time - f.rgb_time)
+        .collect();
+    FramePlan::recorded(
+        &SourceTiming {
+            rgb_times: &rgb_times,
+            depth_offsets: &depth_offsets,
+            rate_hz: dataset.rate_hz,
+        },
+        spec,
+        seed,
+    )
+}
+
+/// Refuses what cannot be applied to recorded frames.
+pub fn check_dataset_spec(
+    dataset: &SourceDataset,
+    spec: &PerturbSpec,
+) -> Result<(), PipelineError> {
+    if spec.needs_scene() {
+        return Err(PipelineError::option(
+            "--perturb",
+            format!("'{spec}': trajectory deviations (rot, trans) re-render the frames along new poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
+        ));
+    }
+    if !spec.depth.is_empty() {
+        if let Some(frame) = dataset.frames.iter().find(|f| f.depth.is_none()) {
+            return Err(PipelineError::option(
+                "--perturb",
+                format!(
+                    "'{spec}': depth corruptions need depth, but {} has none",
+                    frame.rgb.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub fn perturb_dataset(
+    ctx: &GpuContext,
+    job: &PerturbDatasetJob,
+    progress: &dyn Progress,
+) -> Result<RunReport, PipelineError> {
+    let dataset = read_dataset(&job.input, &job.overrides)?;
+    check_dataset_spec(&dataset, &job.spec)?;
+    let plan = dataset_plan(&dataset, &job.spec, job.seed);
+    let ground_truth = output_ground_truth(&dataset, &plan, job.spec.fast.is_some());
+    let manifest = ManifestParts {
+        command: &job.command,
+        source: job.input.display().to_string(),
+        source_hash: String::new(),
+        format: Some(dataset.format),
+        camera: Some(dataset.intrinsics),
+        rate_hz: dataset.rate_hz,
+        seed: job.seed,
+        spec: &job.spec,
+        plan: &plan,
+        extra: serde_json::json!({ "adapter": ctx.describe() }),
+    }
+    .build()?;
+    let mut pipeline = Pipeline::new(ctx, DatasetSource::new(&dataset), &job.spec, job.seed)?;
+    let output = DatasetOutput {
+        out: &job.out,
+        format: dataset.format,
+        camera: dataset.intrinsics,
+        force: job.force,
+        plan: &plan,
+        ground_truth: &ground_truth,
+        manifest,
+    };
+    write_dataset(ctx, &mut pipeline, output, progress, "perturbing")
+}
+
+/// The source's ground truth for the output frames. Without re-stamping it is kept whole (at its
+/// own rate); with `fast` each kept frame takes the pose nearest its original capture time.
+fn output_ground_truth(src: &SourceDataset, plan: &FramePlan, restamp: bool) -> Trajectory {
+    let Some(gt) = &src.ground_truth else {
+        return Trajectory::default();
+    };
+    if !restamp {
+        return gt.clone();
+    }
+    let mut timestamps = Vec::new();
+    let mut poses: Vec<Pose> = Vec::new();
+    for (j, &s) in plan.rgb_source.iter().enumerate() {
+        let captured = src.frames[s].rgb_time;
+        if let Some(i) = nearest_time(gt.timestamps.iter().copied(), captured, GT_MATCH_MAX_DIFF_S)
+        {
+            timestamps.push(plan.frames[j].rgb_time);
+            poses.push(gt.poses[i]);
+        }
+    }
+    Trajectory::new(timestamps, poses)
+}

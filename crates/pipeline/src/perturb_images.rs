@@ -1,0 +1,258 @@
+//! `rslam perturb` on images: a folder of PNG/JPEG files or one file. Image i is frame i of a
+//! sequence (its RNG key); it is perturbed on the GPU and written under its own name, in its own
+//! format. Decoding runs ahead, frames overlap on the GPU, encoding runs on worker threads. A
+//! folder output is resumable and gets checksums and a manifest like a dataset.
+
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use rslam_core::dataset::{encode_rgb_like, read_image_size, read_rgb, ContentWriter, Manifest};
+use rslam_core::{CoreError, RgbImage};
+use rslam_gpu::GpuContext;
+use rslam_perturb::{PerturbSpec, Perturber};
+
+use crate::dataset_run::RunReport;
+use crate::decode_ahead::DecodeAhead;
+use crate::encoder_pool::EncoderPool;
+use crate::frame_loop::FrameRun;
+use crate::manifest::ManifestParts;
+use crate::output_folder::{self, FolderState};
+use crate::plan::FramePlan;
+use crate::progress::Progress;
+use crate::PipelineError;
+
+/// JPEG quality of perturbed JPEG images.
+const JPEG_QUALITY: u8 = 95;
+
+pub struct PerturbImagesJob {
+    /// The images, in frame order.
+    pub files: Vec<PathBuf>,
+    /// The folder written into (each image under its own name), or with one input image and
+    /// `single` set, the output file itself.
+    pub out: PathBuf,
+    pub single: bool,
+    pub spec: PerturbSpec,
+    pub seed: u64,
+    pub force: bool,
+    pub command: Vec<String>,
+}
+
+/// Whether `path` names a PNG or JPEG file by its extension.
+pub fn is_image(path: &Path) -> bool {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .is_some_and(|e| matches!(e.as_str(), "png" | "jpg" | "jpeg"))
+}
+
+/// The PNG/JPEG files of `dir`, sorted by name.
+pub fn image_files(dir: &Path) -> Result<Vec<PathBuf>, PipelineError> {
+    let entries = std::fs::read_dir(dir).map_err(|e| CoreError::io(dir, e))?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.is_file() && is_image(p))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(PipelineError::input(
+            dir,
+            "no .png/.jpg images in this folder",
+        ));
+    }
+    Ok(files)
+}
+
+/// Refuses what cannot be applied to separate images.
+pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
+    if !spec.depth.is_empty() {
+        return Err(PipelineError::option("--perturb", format!("'{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)")));
+    }
+    if spec.fast.is_some() || spec.misalign.is_some() || spec.needs_scene() {
+        return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
+    }
+    Ok(())
+}
+
+/// Where perturbed image i goes.
+#[derive(Clone)]
+enum Destination {
+    Folder {
+        content: Arc<ContentWriter>,
+        names: Arc<Vec<String>>,
+    },
+    File(PathBuf),
+}
+
+impl Destination {
+    fn write(&self, index: usize, image: &RgbImage) -> Result<(), PipelineError> {
+        match self {
+            Self::Folder { content, names } => {
+                let name = &names[index];
+                let bytes = encode_rgb_like(&content.root().join(name), image, JPEG_QUALITY)?;
+                Ok(content.write(name, &bytes)?)
+            }
+            Self::File(path) => {
+                let bytes = encode_rgb_like(path, image, JPEG_QUALITY)?;
+                std::fs::write(path, bytes).map_err(|e| CoreError::io(path, e))?;
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Perturbs the job's images; a single image yields no manifest (`None`).
+pub fn perturb_images(
+    ctx: &GpuContext,
+    job: &PerturbImagesJob,
+    progress: &dyn Progress,
+) -> Result<Option<RunReport>, PipelineError> {
+    check_image_spec(&job.spec)?;
+    if job.single {
+        let all: Vec<usize> = (0..job.files.len()).collect();
+        let destination = Destination::File(job.out.clone());
+        run_images(ctx, job, &all, &destination, progress)?;
+        return Ok(None);
+    }
+    let names: Vec<String> = job
+        .files
+        .iter()
+        .map(|f| {
+            f.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .ok_or_else(|| PipelineError::input(f, "an image path without a file name"))
+        })
+        .collect::<Result<_, _>>()?;
+    let plan = FramePlan::images(job.files.len(), false, &job.spec, job.seed);
+    let manifest = ManifestParts {
+        command: &job.command,
+        source: job
+            .files
+            .first()
+            .and_then(|f| f.parent())
+            .map(|p| p.display().to_string())
+            .unwrap_or_default(),
+        source_hash: String::new(),
+        format: None,
+        camera: None,
+        rate_hz: 0.0,
+        seed: job.seed,
+        spec: &job.spec,
+        plan: &plan,
+        extra: serde_json::json!({ "files": names, "adapter": ctx.describe() }),
+    }
+    .build()?;
+    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
+    if found == FolderState::Complete {
+        return Ok(Some(RunReport {
+            frames: plan.len(),
+            made: 0,
+            found,
+            manifest: Manifest::read(&job.out)?,
+        }));
+    }
+    let missing: Vec<usize> = (0..names.len())
+        .filter(|&i| !job.out.join(&names[i]).is_file())
+        .collect();
+    let content = Arc::new(ContentWriter::new(&job.out));
+    let destination = Destination::Folder {
+        content: content.clone(),
+        names: Arc::new(names),
+    };
+    run_images(ctx, job, &missing, &destination, progress)?;
+    drop(destination);
+    let content = Arc::try_unwrap(content)
+        .map_err(|_| PipelineError::Worker("image writer still shared".into()))?;
+    let manifest = content.finish(manifest)?;
+    output_folder::finish(&job.out)?;
+    Ok(Some(RunReport {
+        frames: plan.len(),
+        made: missing.len(),
+        found,
+        manifest,
+    }))
+}
+
+/// Perturbs images `indices` of the job into `destination`.
+fn run_images(
+    ctx: &GpuContext,
+    job: &PerturbImagesJob,
+    indices: &[usize],
+    destination: &Destination,
+    progress: &dyn Progress,
+) -> Result<(), PipelineError> {
+    let files = &job.files;
+    let sizes = indices
+        .iter()
+        .map(|&i| read_image_size(&files[i]))
+        .collect::<Result<Vec<_>, _>>()?;
+    let pool = EncoderPool::per_core();
+    progress.start(indices.len(), "perturbing");
+    let mut perturbers: HashMap<(u32, u32), Perturber> = HashMap::new();
+    for run in runs_of_equal_size(&sizes) {
+        let (width, height) = sizes[run.start];
+        let perturber = match perturbers.entry((width, height)) {
+            Entry::Occupied(e) => e.into_mut(),
+            Entry::Vacant(e) => e.insert(Perturber::new(ctx, &job.spec, width, height, job.seed)?),
+        };
+        let sources: Vec<usize> = indices[run].to_vec();
+        let paths: Vec<PathBuf> = sources.iter().map(|&i| files[i].clone()).collect();
+        let decoder = DecodeAhead::start(paths, |file| Ok(read_rgb(file)?));
+        FrameRun {
+            ctx,
+            width,
+            height,
+            sources: &sources,
+            with_depth: false,
+        }
+        .run(
+            progress,
+            |index, encoder, frame| {
+                let color = decoder.next()?;
+                if (color.width, color.height) != (width, height) {
+                    return Err(PipelineError::input(
+                        &files[index],
+                        format!(
+                            "image is {}x{} but its header says {width}x{height}",
+                            color.width, color.height
+                        ),
+                    ));
+                }
+                frame.upload(ctx, &color, None);
+                perturber.encode(ctx, encoder, frame, index as u32)?;
+                Ok(())
+            },
+            |frame| {
+                let destination = destination.clone();
+                pool.submit(move || destination.write(frame.index, &frame.color))
+            },
+        )?;
+    }
+    progress.finish();
+    pool.finish()
+}
+
+/// Consecutive files of the same size share one perturber and one frame ring.
+fn runs_of_equal_size(sizes: &[(u32, u32)]) -> Vec<Range<usize>> {
+    let mut runs: Vec<Range<usize>> = Vec::new();
+    for (i, size) in sizes.iter().enumerate() {
+        match runs.last_mut() {
+            Some(run) if sizes[run.start] == *size => run.end = i + 1,
+            _ => runs.push(i..i + 1),
+        }
+    }
+    runs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::runs_of_equal_size;
+
+    #[test]
+    fn consecutive_equal_sizes_form_one_run() {
+        let sizes = [(4, 3), (4, 3), (8, 6), (4, 3), (4, 3), (4, 3)];
+        assert_eq!(runs_of_equal_size(&sizes), vec![0..2, 2..3, 3..6]);
+        assert!(runs_of_equal_size(&[]).is_empty());
+    }
+}

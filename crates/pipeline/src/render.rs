@@ -1,0 +1,59 @@
+//! `rslam render`: a scene along a path, perturbed, written as a dataset.
+
+use std::path::PathBuf;
+
+use rslam_core::dataset::DatasetFormat;
+use rslam_gpu::GpuContext;
+
+use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
+use crate::manifest::ManifestParts;
+use crate::pipeline::Pipeline;
+use crate::progress::Progress;
+use crate::scene_job::SceneJob;
+use crate::source::SceneSource;
+use crate::PipelineError;
+
+pub struct RenderJob {
+    pub scene: SceneJob,
+    pub out: PathBuf,
+    pub format: DatasetFormat,
+    /// Replace whatever rslam output `out` holds.
+    pub force: bool,
+    /// The command as typed, for the manifest.
+    pub command: Vec<String>,
+}
+
+pub fn render_dataset(
+    ctx: &GpuContext,
+    job: &RenderJob,
+    progress: &dyn Progress,
+) -> Result<RunReport, PipelineError> {
+    let resolved = job.scene.resolve()?;
+    let camera = job.scene.camera;
+    let ground_truth = resolved.plan.ground_truth(&resolved.poses);
+    let manifest = ManifestParts {
+        command: &job.command,
+        source: resolved.scene.name.clone(),
+        source_hash: resolved.scene.content_hash(),
+        format: Some(job.format),
+        camera: Some(camera),
+        rate_hz: job.scene.rate_hz,
+        seed: job.scene.seed,
+        spec: &job.scene.spec,
+        plan: &resolved.plan,
+        extra: serde_json::json!({ "adapter": ctx.describe() }),
+    }
+    .build()?;
+    let source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
+    let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, job.scene.seed)?;
+    let output = DatasetOutput {
+        out: &job.out,
+        format: job.format,
+        camera,
+        force: job.force,
+        plan: &resolved.plan,
+        ground_truth: &ground_truth,
+        manifest,
+    };
+    write_dataset(ctx, &mut pipeline, output, progress, "rendering")
+}

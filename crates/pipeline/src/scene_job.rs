@@ -1,0 +1,90 @@
+//! A scene seen along a camera path with perturbations: what `rslam render` writes and what the
+//! viewer shows. Resolving it loads the mesh, reads the path, deviates the poses (`rot`, `trans`)
+//! and makes the frame plan (`fast`, `misalign`, severities).
+
+use std::path::PathBuf;
+
+use rslam_core::trajectory_io::read_trajectory;
+use rslam_core::{Intrinsics, Pose};
+use rslam_perturb::PerturbSpec;
+use rslam_render::{load_scene, Scene};
+
+use crate::plan::FramePlan;
+use crate::PipelineError;
+
+#[derive(Clone, Debug)]
+pub struct SceneJob {
+    /// Built-in scene name or mesh file.
+    pub scene: String,
+    /// Camera path file; `None`: the scene's own path.
+    pub trajectory: Option<PathBuf>,
+    /// Use only the first N poses.
+    pub frames: Option<usize>,
+    pub camera: Intrinsics,
+    pub rate_hz: f64,
+    pub spec: PerturbSpec,
+    pub seed: u64,
+}
+
+/// A [`SceneJob`] made concrete: the mesh, one (deviated) pose per source frame, the plan.
+pub struct ResolvedScene {
+    pub scene: Scene,
+    pub poses: Vec<Pose>,
+    pub plan: FramePlan,
+}
+
+impl SceneJob {
+    pub fn resolve(&self) -> Result<ResolvedScene, PipelineError> {
+        if !(self.rate_hz.is_finite() && self.rate_hz > 0.0) {
+            return Err(PipelineError::option(
+                "--rate",
+                format!("{}: expected a positive number of Hz", self.rate_hz),
+            ));
+        }
+        let scene = load_scene(&self.scene)?;
+        let clean = self.camera_path(&scene)?;
+        let clean = rslam_core::Trajectory::from_poses_at_rate(clean, self.rate_hz);
+        let deviated = rslam_perturb::trajectory::deviate(&clean, &self.spec, self.seed);
+        let plan = FramePlan::rendered(deviated.len(), self.rate_hz, &self.spec, self.seed);
+        Ok(ResolvedScene {
+            scene,
+            poses: deviated.poses,
+            plan,
+        })
+    }
+
+    fn camera_path(&self, scene: &Scene) -> Result<Vec<Pose>, PipelineError> {
+        let poses = match &self.trajectory {
+            Some(path) => read_trajectory(path, None)?.trajectory.poses,
+            None => match &scene.default_trajectory {
+                Some(path) => path.poses.clone(),
+                None => {
+                    return Err(PipelineError::option(
+                        "--traj",
+                        format!(
+                            "scene '{}' has no default trajectory: pass --traj FILE",
+                            self.scene
+                        ),
+                    ))
+                }
+            },
+        };
+        let count = match self.frames {
+            Some(0) => {
+                return Err(PipelineError::option(
+                    "--frames",
+                    "0: expected at least one frame",
+                ))
+            }
+            Some(n) if n > poses.len() => {
+                return Err(PipelineError::option(
+                    "--frames",
+                    format!("{n}: the trajectory has only {} poses", poses.len()),
+                ))
+            }
+            Some(n) => n,
+            None => poses.len(),
+        };
+        Ok(poses[..count].to_vec())
+    }
+}

@@ -1,0 +1,22 @@
+//! Where read-back source frames go: into a dataset on disk, or assembled into output frames
+//! handed to a callback in memory.
+
+mod dataset;
+mod memory;
+
+pub use dataset::DatasetSink;
+pub use memory::{MemorySink, RgbdFrame};
+
+use rslam_core::{DepthImage, RgbImage};
+
+use crate::PipelineError;
+
+pub trait FrameSink {
+    /// Source frame `source`, read back; `depth` is `None` for inputs without depth.
+    fn accept(
+        &mut self,
+        source: usize,
+        color: RgbImage,
+        depth: Option<DepthImage>,
+    ) -> Result<(), PipelineError>;
+}

@@ -1,0 +1,281 @@
+//! Where source frames come from: a source records frame `index` into the frame textures on
+//! the GPU — a scene draws it from its pose, a dataset uploads its decoded images. A rig of
+//! several sensors is several sources, one per camera, each with its own plan and sink.
+
+use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFrame, SourceDataset};
+use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
+use rslam_gpu::{wgpu, FrameTextures, GpuContext};
+use rslam_render::{Rasterizer, Scene};
+
+use crate::decode_ahead::DecodeAhead;
+use crate::PipelineError;
+
+pub trait FrameSource {
+    /// Width and height of every frame.
+    fn size(&self) -> (u32, u32);
+    /// Whether frames carry depth.
+    fn has_depth(&self) -> bool;
+    /// Called once per run with the source frames it will record, in that order (decoding
+    /// starts here).
+    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError>;
+    /// Records source frame `index` into `frame`.
+    fn record(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        index: usize,
+    ) -> Result<(), PipelineError>;
+}
+
+/// A mesh drawn along a path: source frame `i` is the view from `poses[i]`.
+pub struct SceneSource {
+    rasterizer: Rasterizer,
+    poses: Vec<Pose>,
+}
+
+impl SceneSource {
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &Scene,
+        camera: Intrinsics,
+        poses: Vec<Pose>,
+    ) -> Result<Self, PipelineError> {
+        Ok(Self {
+            rasterizer: Rasterizer::new(ctx, scene, camera)?,
+            poses,
+        })
+    }
+
+    pub fn poses(&self) -> &[Pose] {
+        &self.poses
+    }
+}
+
+impl FrameSource for SceneSource {
+    fn size(&self) -> (u32, u32) {
+        let k = self.rasterizer.intrinsics();
+        (k.width, k.height)
+    }
+
+    fn has_depth(&self) -> bool {
+        true
+    }
+
+    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+        match sources.iter().find(|&&s| s >= self.poses.len()) {
+            Some(s) => Err(PipelineError::option(
+                "frame",
+                format!("{s} is past the path's {} poses", self.poses.len()),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    fn record(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        index: usize,
+    ) -> Result<(), PipelineError> {
+        self.rasterizer
+            .encode(ctx, encoder, frame, &self.poses[index]);
+        Ok(())
+    }
+}
+
+struct Decoded {
+    index: usize,
+    color: RgbImage,
+    depth: Option<DepthImage>,
+}
+
+/// The frames of a dataset on disk, decoded ahead of the GPU on worker threads.
+pub struct DatasetSource {
+    frames: Vec<DatasetFrame>,
+    intrinsics: Intrinsics,
+    depth_scale: f64,
+    decoder: Option<DecodeAhead<Decoded>>,
+}
+
+impl DatasetSource {
+    pub fn new(dataset: &SourceDataset) -> Self {
+        Self {
+            frames: dataset.frames.clone(),
+            intrinsics: dataset.intrinsics,
+            depth_scale: dataset.format.depth_scale(),
+            decoder: None,
+        }
+    }
+}
+
+impl FrameSource for DatasetSource {
+    fn size(&self) -> (u32, u32) {
+        (self.intrinsics.width, self.intrinsics.height)
+    }
+
+    fn has_depth(&self) -> bool {
+        self.frames.iter().all(|f| f.depth.is_some())
+    }
+
+    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+        let needed: Vec<(usize, DatasetFrame)> = sources
+            .iter()
+            .map(|&s| {
+                self.frames.get(s).cloned().map(|f| (s, f)).ok_or_else(|| {
+                    PipelineError::option(
+                        "frame",
+                        format!("{s} is past the dataset's {} frames", self.frames.len()),
+                    )
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        let scale = self.depth_scale;
+        self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
+            Ok(Decoded {
+                index: *index,
+                color: read_rgb(&frame.rgb)?,
+                depth: match &frame.depth {
+                    Some(path) => Some(decode_depth_png(path, scale)?),
+                    None => None,
+                },
+            })
+        }));
+        Ok(())
+    }
+
+    fn record(
+        &mut self,
+        ctx: &GpuContext,
+        _encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        index: usize,
+    ) -> Result<(), PipelineError> {
+        let decoder = self
+            .decoder
+            .as_ref()
+            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
+        let decoded = decoder.next()?;
+        let file = &self.frames[index];
+        if decoded.index != index {
+            return Err(PipelineError::Worker(format!(
+                "decoder delivered frame {} where frame {index} was expected",
+                decoded.index
+            )));
+        }
+        check_size(
+            &file.rgb,
+            decoded.color.width,
+            decoded.color.height,
+            self.intrinsics,
+        )?;
+        if let (Some(path), Some(depth)) = (&file.depth, &decoded.depth) {
+            check_size(path, depth.width, depth.height, self.intrinsics)?;
+        }
+        frame.upload(ctx, &decoded.color, decoded.depth.as_ref());
+        Ok(())
+    }
+}
+
+fn check_size(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    camera: Intrinsics,
+) -> Result<(), PipelineError> {
+    if (width, height) == (camera.width, camera.height) {
+        return Ok(());
+    }
+    Err(PipelineError::input(
+        path,
+        format!(
+            "image is {width}x{height}, but the dataset's camera is {}x{}",
+            camera.width, camera.height
+        ),
+    ))
+}
+
+/// Frames already in memory (numpy arrays from Python, images the viewer holds), all of one size.
+pub struct BufferSource {
+    width: u32,
+    height: u32,
+    frames: Vec<(RgbImage, Option<DepthImage>)>,
+}
+
+impl BufferSource {
+    /// Fails unless every colour and depth image has the first colour image's size and either
+    /// every frame or none has depth.
+    pub fn new(frames: Vec<(RgbImage, Option<DepthImage>)>) -> Result<Self, PipelineError> {
+        let Some((first, first_depth)) = frames.first() else {
+            return Err(PipelineError::option(
+                "frames",
+                "expected at least one frame",
+            ));
+        };
+        let (width, height) = (first.width, first.height);
+        let with_depth = first_depth.is_some();
+        for (i, (color, depth)) in frames.iter().enumerate() {
+            let sizes_agree = (color.width, color.height) == (width, height)
+                && depth
+                    .as_ref()
+                    .is_none_or(|d| (d.width, d.height) == (width, height));
+            if !sizes_agree || depth.is_some() != with_depth {
+                return Err(PipelineError::option(
+                    "frames",
+                    format!(
+                        "frame {i}: expected {width}x{height} colour{} like frame 0",
+                        if with_depth { " and depth" } else { "" }
+                    ),
+                ));
+            }
+        }
+        Ok(Self {
+            width,
+            height,
+            frames,
+        })
+    }
+}
+
+impl BufferSource {
+    pub fn len(&self) -> usize {
+        self.frames.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.frames.is_empty()
+    }
+}
+
+impl FrameSource for BufferSource {
+    fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    fn has_depth(&self) -> bool {
+        self.frames[0].1.is_some()
+    }
+
+    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+        match sources.iter().find(|&&s| s >= self.frames.len()) {
+            Some(s) => Err(PipelineError::option(
+                "frame",
+                format!("{s} is past the {} frames given", self.frames.len()),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    fn record(
+        &mut self,
+        ctx: &GpuContext,
+        _encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        index: usize,
+    ) -> Result<(), PipelineError> {
+        let (color, depth) = &self.frames[index];
+        frame.upload(ctx, color, depth.as_ref());
+        Ok(())
+    }
+}

@@ -1,0 +1,188 @@
+//! Runs that stop part-way and go on: SIGKILL mid-render then the same command gives the bytes
+//! of an uninterrupted run; another job on that folder is refused; `--force` starts over;
+//! `rslam verify` catches a changed file.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+use crate::dataset_check::files;
+use crate::harness::Workspace;
+use crate::render::SMALL_CAMERA;
+
+/// Every file under `root`, relative path → bytes.
+fn tree(root: &Path) -> BTreeMap<String, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    let mut pending = vec![root.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else {
+                let relative = path.strip_prefix(root).unwrap().display().to_string();
+                out.insert(relative, std::fs::read(&path).unwrap());
+            }
+        }
+    }
+    out
+}
+
+fn assert_same_tree(a: &Path, b: &Path) {
+    let (a, b) = (tree(a), tree(b));
+    assert_eq!(
+        a.keys().collect::<Vec<_>>(),
+        b.keys().collect::<Vec<_>>(),
+        "same files"
+    );
+    for (name, bytes) in &a {
+        assert!(bytes == &b[name], "{name} differs");
+    }
+}
+
+const FRAMES: &str = "300";
+
+fn render_args(format: &str) -> Vec<&str> {
+    vec![
+        "render",
+        "--scene",
+        "room0",
+        "--frames",
+        FRAMES,
+        "--camera",
+        SMALL_CAMERA,
+        "--format",
+        format,
+        "--perturb",
+        "gaussian_noise:3@dynamic,depth_missing:2,misalign:3@dynamic",
+        "--seed",
+        "5",
+        "--out",
+        "ds",
+    ]
+}
+
+/// Starts `rslam ARGS` in `ws` and SIGKILLs it once `watch` holds more than `files_before_kill`
+/// entries starting with `prefix`.
+fn kill_mid_run(ws: &Workspace, args: &[&str], watch: &str, prefix: &str) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rslam"))
+        .args(args)
+        .current_dir(ws.path(""))
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let watched = ws.path(watch);
+    for _ in 0..1200 {
+        if watched.is_dir() && files(&watched, prefix).len() > 40 {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(25));
+    }
+    child.kill().unwrap(); // SIGKILL: no handler runs, nothing is tidied up
+    child.wait().unwrap();
+    let written = files(&watched, prefix).len();
+    assert!(
+        written > 40 && !ws.path("ds/rslam.json").exists(),
+        "the run was not killed mid-way ({written} files); raise FRAMES"
+    );
+    assert!(
+        ws.path("ds/rslam.run.json").exists(),
+        "a killed run is marked unfinished"
+    );
+}
+
+#[test]
+fn a_killed_render_resumes_to_the_bytes_of_an_uninterrupted_one() {
+    for (format, watch, prefix) in [("replica", "ds/results", "frame"), ("tum", "ds/rgb", "")] {
+        let whole = Workspace::new();
+        whole.rslam(&render_args(format)).success();
+        let killed = Workspace::new();
+        kill_mid_run(&killed, &render_args(format), watch, prefix);
+        let resumed = killed.rslam(&render_args(format));
+        resumed.success();
+        assert!(resumed.stderr().contains("resumed"), "{}", resumed.stderr());
+        let again = killed.rslam(&render_args(format));
+        again.success();
+        assert!(
+            again.stderr().contains("already complete"),
+            "{}",
+            again.stderr()
+        );
+        assert_same_tree(&whole.path("ds"), &killed.path("ds"));
+        assert!(!killed.path("ds/rslam.run.json").exists());
+    }
+}
+
+#[test]
+fn another_job_is_refused_and_force_starts_over() {
+    let ws = Workspace::new();
+    let small = [
+        "--scene",
+        "room0",
+        "--frames",
+        "4",
+        "--camera",
+        SMALL_CAMERA,
+        "--out",
+        "ds",
+    ];
+    let run = |extra: &[&str]| ws.rslam(&[&["render"][..], &small, extra].concat());
+    run(&["--seed", "1"]).success();
+    let before = tree(&ws.path("ds"));
+    run(&["--seed", "2"]).fails_with(2, &["ds", "another job", "seed 1", "--force"]);
+    assert_eq!(
+        tree(&ws.path("ds")),
+        before,
+        "a refused run changes nothing"
+    );
+    run(&["--seed", "2", "--force"]).success();
+    assert_eq!(crate::dataset_check::manifest(&ws.path("ds")).seed, 2);
+
+    ws.write("mine/notes.txt", "not rslam's");
+    ws.rslam(&[&["render"][..], &small[..7], &["--out", "mine", "--force"]].concat())
+        .fails_with(2, &["mine", "holds no rslam output"]);
+    assert!(
+        ws.path("mine/notes.txt").exists(),
+        "--force never deletes other files"
+    );
+}
+
+#[test]
+fn verify_accepts_a_fresh_dataset_and_names_a_changed_or_missing_file() {
+    let ws = Workspace::new();
+    ws.rslam(&[
+        "render",
+        "--scene",
+        "room0",
+        "--frames",
+        "3",
+        "--camera",
+        SMALL_CAMERA,
+        "--format",
+        "tum",
+        "--out",
+        "ds",
+    ])
+    .success();
+    let ok = ws.rslam(&["verify", "ds"]).success();
+    assert!(ok.contains("ok"), "{ok}");
+    let depth = files(&ws.path("ds/depth"), "")[1].clone();
+    let mut bytes = std::fs::read(&depth).unwrap();
+    let last = bytes.len() - 20;
+    bytes[last] ^= 1;
+    std::fs::write(&depth, bytes).unwrap();
+    std::fs::remove_file(ws.path("ds/groundtruth.txt")).unwrap();
+    let run = ws.rslam(&["verify", "ds"]);
+    assert_eq!(run.output.status.code(), Some(1));
+    let out = run.stdout();
+    let name = depth
+        .strip_prefix(ws.path("ds"))
+        .unwrap()
+        .display()
+        .to_string();
+    assert!(out.contains(&format!("{name}: content changed")), "{out}");
+    assert!(out.contains("groundtruth.txt: missing"), "{out}");
+    ws.rslam(&["verify", "nothing"])
+        .fails_with(2, &["nothing", "rslam.json"]);
+}
