@@ -140,7 +140,7 @@ fn another_job_is_refused_and_force_starts_over() {
     assert_eq!(crate::dataset_check::manifest(&ws.path("ds")).seed, 2);
 
     ws.write("mine/notes.txt", "not rslam's");
-    ws.rslam(&[&["render"][..], &small[..7], &["--out", "mine", "--force"]].concat())
+    ws.rslam(&[&["render"][..], &small[..6], &["--out", "mine", "--force"]].concat())
         .fails_with(2, &["mine", "holds no rslam output"]);
     assert!(
         ws.path("mine/notes.txt").exists(),
