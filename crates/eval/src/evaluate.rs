@@ -91,7 +91,7 @@ pub fn evaluate(
         .map(|(e, g)| (e.translation - *g).length())
         .collect();
     let rpe = relative_pose_errors(&gt_poses, &aligned, &options.rpe)?;
-    let success_rate = success_rate(est, gt, &association, alignment.scale);
+    let success_rate = success_rate(est, gt, &options.matching, alignment.scale);
 
     let stats = |errors: &[f64]| {
         ErrorStatistics::of(errors).expect("association and RPE pairs are non-empty")

@@ -4,14 +4,15 @@
 use rslam_core::Trajectory;
 use serde::Serialize;
 
-use crate::association::Association;
+use crate::association::{tracked_ground_truth, Matching};
 
 /// How much of the ground truth the estimate tracks (metrics.md, "SR"). No reference tool
 /// computes these; they are rslam's definitions.
 ///
 /// The evaluated span is the whole ground truth, every pose of its file: an estimate that starts
 /// late or stops early is not forgiven the part it missed. A ground-truth pose is *tracked* when
-/// it is in a pair of the association (the pairs ATE uses, same `max_diff`).
+/// an estimate pose lies within `max_diff` of it (the matching ATE uses, but from every
+/// ground-truth pose: a ground truth recorded faster than the estimate is covered too).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SuccessRate {
     /// Covered over whole ground-truth path, in [0, 1]: a segment between consecutive
@@ -40,16 +41,16 @@ pub struct PathLengths {
     pub covered: f64,
 }
 
-/// `association` pairs `est` with `gt`; `scale` is the fitted Sim(3) scale (1 otherwise) and only
-/// enters `sr_path_ratio`.
+/// `matching` pairs `est` with `gt` as for ATE; `scale` is the fitted Sim(3) scale (1 otherwise)
+/// and only enters `sr_path_ratio`.
 pub fn success_rate(
     est: &Trajectory,
     gt: &Trajectory,
-    association: &Association,
+    matching: &Matching,
     scale: f64,
 ) -> SuccessRate {
     let mut tracked = vec![false; gt.len()];
-    for &i in &association.gt_indices {
+    for i in tracked_ground_truth(est, gt, matching) {
         tracked[i] = true;
     }
     let tracked_poses = tracked.iter().filter(|&&t| t).count();
@@ -81,7 +82,7 @@ pub fn success_rate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::association::{associate, Matching};
+    use crate::association::Matching;
     use glam::{DQuat, DVec3};
     use rslam_core::Pose;
 
@@ -106,8 +107,7 @@ mod tests {
     }
 
     fn of(est: &Trajectory, gt: &Trajectory, scale: f64) -> SuccessRate {
-        let association = associate(est, gt, &Matching::default()).unwrap();
-        success_rate(est, gt, &association, scale)
+        success_rate(est, gt, &Matching::default(), scale)
     }
 
     #[test]
@@ -149,6 +149,28 @@ mod tests {
         let sr = of(&dense, &gt, 1.0);
         assert_eq!(sr.tracked_fraction, 1.0);
         assert_eq!(sr.sr, Some(1.0));
+    }
+
+    #[test]
+    fn a_sparser_estimate_covers_the_denser_ground_truth_it_spans() {
+        // 100 Hz motion capture against a 30 Hz camera (TUM): every ground-truth pose has an
+        // estimate pose within 1/60 s, inside a max_diff of 0.02 s.
+        let gt = Trajectory::from_poses_at_rate(along_x(301, |i| 0.001 * i).poses, 100.0);
+        let camera = Trajectory::from_poses_at_rate(along_x(91, |i| 0.01 / 3.0 * i).poses, 30.0);
+        let matching = Matching::Time {
+            max_diff: 0.02,
+            t_offset: 0.0,
+        };
+        let full = success_rate(&camera, &gt, &matching, 1.0);
+        assert_eq!(full.sr, Some(1.0));
+        assert_eq!(full.tracked_fraction, 1.0);
+        let first_third = keep(&camera, |i| i <= 30);
+        let part = success_rate(&first_third, &gt, &matching, 1.0);
+        // Camera poses up to t = 1 s track ground truth up to t = 1.02 s: 102 of 300 segments.
+        assert!(
+            (part.sr.unwrap() - 102.0 / 300.0).abs() < SUM_TOL,
+            "{part:?}"
+        );
     }
 
     #[test]
