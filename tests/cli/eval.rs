@@ -50,6 +50,8 @@ fn prints_evo_style_statistics_pairs_sr_and_alignment() {
         "RPE w.r.t. rotation angle in degrees (deg)",
         "      rmse\t0.000000",
         "SR (success rate of tracking)\t0.7",
+        "tracked fraction\t0.750000\n  = 150 of 200 ground-truth poses",
+        "SR path ratio (the paper's SR formula; grows with jitter, not a success rate)\t0.7",
         "alignment (p_gt = scale * R * p_est + t)",
         "      scale\t1.000000000",
     ] {
@@ -78,7 +80,13 @@ fn json_has_the_documented_keys_and_sim3_finds_the_scale() {
     let scale = json["alignment"]["scale"].as_f64().unwrap();
     assert!((scale - 4.0).abs() < 1e-6, "scale {scale}");
     assert!(json["ate"]["rmse"].as_f64().unwrap() < 1e-6);
-    assert!((json["sr"].as_f64().unwrap() - 1.0).abs() < 1e-6);
+    assert_eq!(json["sr"], 1.0);
+    assert_eq!(json["tracked_fraction"], 1.0);
+    let path_ratio = json["sr_path_ratio"].as_f64().unwrap();
+    assert!(
+        (path_ratio - 1.0).abs() < 1e-6,
+        "Sim(3)-scaled: {path_ratio}"
+    );
     let rotation = json["alignment"]["rotation"].as_array().unwrap();
     assert_eq!(rotation.len(), 3);
     assert!(
@@ -228,14 +236,40 @@ fn bad_flags_and_degenerate_input_are_clear_errors() {
 }
 
 #[test]
-fn help_states_the_sr_definition() {
+fn an_estimate_with_a_gap_loses_coverage_and_reports_its_tracked_fraction() {
+    let ws = Workspace::new();
+    let gt = tum(200, 0.0, identity);
+    ws.write("gt.txt", &gt);
+    // Header, then poses 0..50 and 100..200: a 50-frame gap.
+    let lines: Vec<&str> = gt.lines().collect();
+    let est = [&lines[..51], &lines[101..]].concat().join("\n");
+    ws.write("est.txt", &est);
+    let json = json_of(&ws.rslam(&["eval", "est.txt", "gt.txt", "--json"]).success());
+    assert_eq!(json["tracked_fraction"], 0.75);
+    assert_eq!(json["tracked_poses"], 150);
+    assert_eq!(json["ground_truth_poses"], 200);
+    let sr = json["sr"].as_f64().unwrap();
+    let covered = json["path_length"]["covered"].as_f64().unwrap();
+    let whole = json["path_length"]["ground_truth"].as_f64().unwrap();
+    assert!((sr - covered / whole).abs() < 1e-12);
+    // 51 of 199 segments lost, on a path whose speed varies by a few percent.
+    assert!((sr - 148.0 / 199.0).abs() < 0.03, "SR {sr}");
+    // The path ratio counts the straight jump across the gap as travelled.
+    assert!(json["sr_path_ratio"].as_f64().unwrap() > sr);
+}
+
+#[test]
+fn help_states_both_sr_definitions() {
     let ws = Workspace::new();
     let help = ws.rslam(&["eval", "--help"]).success();
-    assert!(
-        help.contains("SR (success rate of tracking) = L_est / L_gt"),
-        "{help}"
-    );
-    assert!(help.contains("No reference tool computes SR"));
+    for fragment in [
+        "SR (success rate of tracking) = covered ground-truth path / ground-truth path",
+        "SR path ratio (sr_path_ratio) = L_est / L_gt, the paper's literal SR formula",
+        "Tracked fraction = ground-truth poses with an associated estimate pose",
+        "No reference tool computes these",
+    ] {
+        assert!(help.contains(fragment), "missing '{fragment}' in:\n{help}");
+    }
 }
 
 #[test]
@@ -289,6 +323,8 @@ fn runs_mode_writes_the_tables_and_marks_failures() {
         "report.json",
         "ate.csv",
         "sr.csv",
+        "sr_path_ratio.csv",
+        "tracked_fraction.csv",
         "csr.csv",
         "csr_curve.csv",
         "welch.csv",
@@ -307,6 +343,25 @@ fn runs_mode_writes_the_tables_and_marks_failures() {
     assert!(
         md.contains("runs/slam_b/room0__fog-3.txt: no estimate"),
         "{md}"
+    );
+    for section in [
+        "## SR (covered fraction of the ground-truth path) per method × setting",
+        "## SR path ratio (the paper's SR formula) per method × setting",
+        "## Tracked fraction of frames per method × setting",
+    ] {
+        assert!(md.contains(section), "missing '{section}' in:\n{md}");
+    }
+    // Each method: clean tracked every frame, fog-3 failed.
+    assert!(
+        md.contains("| slam_a | 1.000 | 0.000 | 0.500 | 0.000 |"),
+        "{md}"
+    );
+    let runs_csv = std::fs::read_to_string(ws.path("report/runs.csv")).unwrap();
+    assert!(
+        runs_csv.starts_with(
+            "method,sequence,scene,setting,repeat,status,ate,sr,sr_path_ratio,tracked_fraction,"
+        ),
+        "{runs_csv}"
     );
 
     ws.rslam(&["eval", "--runs", "runs"])

@@ -106,6 +106,19 @@ pub fn associate(
     Ok(association)
 }
 
+/// The ground-truth poses the estimate tracks: by time, those with an estimate pose within
+/// `max_diff` (after `t_offset`), each ground-truth pose looking for its nearest estimate pose
+/// whichever trajectory is longer, so that 100 Hz motion capture against a 30 Hz estimate counts
+/// every covered pose; by index, the first min(n) poses. Ascending.
+pub fn tracked_ground_truth(est: &Trajectory, gt: &Trajectory, matching: &Matching) -> Vec<usize> {
+    match *matching {
+        Matching::Index => (0..est.len().min(gt.len())).collect(),
+        Matching::Time { max_diff, t_offset } => {
+            matching_time_indices(&gt.timestamps, &est.timestamps, max_diff, t_offset).0
+        }
+    }
+}
+
 fn associate_by_index(est: &Trajectory, gt: &Trajectory) -> Association {
     let n = est.len().min(gt.len());
     Association {

@@ -32,26 +32,19 @@ pub struct Evaluation {
     pub rpe_trans: ErrorStatistics,
     /// RPE rotation angle (degrees).
     pub rpe_rot_deg: ErrorStatistics,
-    /// Success rate, see [`SuccessRate`]; `null` when the ground truth does not move.
-    pub sr: Option<f64>,
+    /// SR, the SR path ratio, the tracked fraction and the path lengths behind them; their
+    /// fields sit at the top level of the JSON object.
+    #[serde(flatten)]
+    pub success_rate: SuccessRate,
     /// Associated pose pairs.
     pub pairs: usize,
     /// Estimate-to-ground-truth alignment (identity for `none`; scale 1 unless `sim3`).
     pub alignment: Similarity,
     /// The most pairs there could be (poses of the shorter trajectory).
     pub max_pairs: usize,
-    pub path_length: PathLengths,
     pub options: EvalOptions,
     #[serde(skip)]
     pub series: EvalSeries,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct PathLengths {
-    /// The estimate's (whole file, scaled by the Sim(3) scale when fitted), metres.
-    pub estimate: f64,
-    /// The ground truth's (whole file), metres.
-    pub ground_truth: f64,
 }
 
 /// Per-pose data behind the statistics, for plots.
@@ -98,11 +91,7 @@ pub fn evaluate(
         .map(|(e, g)| (e.translation - *g).length())
         .collect();
     let rpe = relative_pose_errors(&gt_poses, &aligned, &options.rpe)?;
-    let SuccessRate {
-        sr,
-        estimate_path,
-        ground_truth_path,
-    } = success_rate(est, gt, alignment.scale);
+    let success_rate = success_rate(est, gt, &options.matching, alignment.scale);
 
     let stats = |errors: &[f64]| {
         ErrorStatistics::of(errors).expect("association and RPE pairs are non-empty")
@@ -112,14 +101,10 @@ pub fn evaluate(
         ate: stats(&ate_errors),
         rpe_trans: stats(&rpe.translation),
         rpe_rot_deg: stats(&rpe.rotation_deg),
-        sr,
+        success_rate,
         pairs: association.len(),
         alignment,
         max_pairs: association.max_pairs,
-        path_length: PathLengths {
-            estimate: estimate_path,
-            ground_truth: ground_truth_path,
-        },
         options: *options,
         series: EvalSeries {
             gt_positions: gt.poses.iter().map(|p| p.translation).collect(),

@@ -3,12 +3,13 @@
 //! Data flow for one run: two trajectory files → `rslam_core::trajectory_io` readers →
 //! [`associate`] (nearest timestamp, or index) → [`fit_alignment`] (Umeyama on positions:
 //! SE(3), Sim(3) or none) → ATE per pose, [`relative_pose_errors`] over the pairs of
-//! [`RpeOptions`], [`success_rate`] on the whole paths → [`Evaluation`] (statistics as evo
-//! prints them), shown by [`text_report`], serialised as JSON, drawn by [`plot_evaluation`].
+//! [`RpeOptions`], [`success_rate`] over the whole ground truth → [`Evaluation`] (statistics as
+//! evo prints them), shown by [`text_report`], serialised as JSON, drawn by [`plot_evaluation`].
 //!
 //! For many runs, [`runs`] walks `<runs>/<method>/<sequence>.txt`, finds each sequence's ground
 //! truth in the datasets folder, counts failures with the benchmark's convention and writes the
-//! tables (ATE, SR, CSR, survival upper bound, Welch's t-test) as Markdown, CSV and JSON.
+//! tables (ATE, SR, SR path ratio, tracked fraction, CSR, survival upper bound, Welch's t-test)
+//! as Markdown, CSV and JSON.
 
 mod alignment;
 mod association;
@@ -30,12 +31,12 @@ pub use alignment::{fit_alignment, AlignMode, Similarity};
 pub use association::{associate, Association, Matching, DEFAULT_MAX_DIFF};
 pub use error::EvalError;
 pub use evaluate::{
-    evaluate, evaluate_files, read_and_evaluate, EvalOptions, EvalSeries, Evaluation, PathLengths,
+    evaluate, evaluate_files, read_and_evaluate, EvalOptions, EvalSeries, Evaluation,
 };
 pub use plot::plot_evaluation;
 pub use rpe::{relative_pose_errors, DeltaUnit, RpeErrors, RpeOptions};
 pub use rpe_pairs::pose_pairs;
 pub use statistics::ErrorStatistics;
-pub use success_rate::{success_rate, SuccessRate};
+pub use success_rate::{success_rate, PathLengths, SuccessRate};
 pub use text_report::text_report;
 pub use umeyama::umeyama;

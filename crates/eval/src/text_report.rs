@@ -49,16 +49,40 @@ pub fn text_report(e: &Evaluation) -> String {
         &format!("RPE w.r.t. rotation angle in degrees (deg)\n{rpe_title}"),
         &e.rpe_rot_deg,
     );
-    let sr = e.sr.map_or_else(
-        || "n/a (the ground truth does not move)".to_string(),
-        |v| format!("{v:.6}"),
+    let s = &e.success_rate;
+    let lengths = &s.path_length;
+    let ratio = |v: Option<f64>| {
+        v.map_or_else(
+            || "n/a (the ground truth does not move)".to_string(),
+            |v| format!("{v:.6}"),
+        )
+    };
+    let _ = writeln!(
+        out,
+        "SR (success rate of tracking)\t{}\n  = covered ground-truth path {:.6} m / ground-truth \
+         path {:.6} m\n    (segments between consecutive ground-truth poses both paired with an \
+         estimate pose)",
+        ratio(s.sr),
+        lengths.covered,
+        lengths.ground_truth
     );
     let _ = writeln!(
         out,
-        "SR (success rate of tracking)\t{sr}\n  = estimate path {:.6} m{} / ground-truth path {:.6} m\n",
-        e.path_length.estimate,
-        if e.options.align == AlignMode::Sim3 { " (Sim(3)-scaled)" } else { "" },
-        e.path_length.ground_truth
+        "tracked fraction\t{:.6}\n  = {} of {} ground-truth poses paired with an estimate pose",
+        s.tracked_fraction, s.tracked_poses, s.ground_truth_poses
+    );
+    let _ = writeln!(
+        out,
+        "SR path ratio (the paper's SR formula; grows with jitter, not a success rate)\t{}\n  \
+         = estimate path {:.6} m{} / ground-truth path {:.6} m\n",
+        ratio(s.sr_path_ratio),
+        lengths.estimate,
+        if e.options.align == AlignMode::Sim3 {
+            " (Sim(3)-scaled)"
+        } else {
+            ""
+        },
+        lengths.ground_truth
     );
     let a = &e.alignment;
     let _ = writeln!(out, "alignment (p_gt = scale * R * p_est + t)");

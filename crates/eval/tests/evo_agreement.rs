@@ -337,11 +337,12 @@ fn synthetic_fixture_matches_evo() {
         assert_stats(case.name, "ATE", &e.ate, &case.ate);
         assert_stats(case.name, "RPE trans", &e.rpe_trans, &case.rpe_trans);
         assert_stats(case.name, "RPE rot", &e.rpe_rot_deg, &case.rpe_rot_deg);
-        assert_close(case.name, "GT path", e.path_length.ground_truth, GT_PATH);
+        let lengths = &e.success_rate.path_length;
+        assert_close(case.name, "GT path", lengths.ground_truth, GT_PATH);
         assert_close(
             case.name,
-            "SR",
-            e.sr.unwrap(),
+            "SR path ratio",
+            e.success_rate.sr_path_ratio.unwrap(),
             EST_PATH * case.scale / GT_PATH,
         );
     }

@@ -56,7 +56,9 @@ fn rigidly_moved_copy_has_zero_error_after_se3_alignment() {
     assert_eq!(e.pairs, 300);
     assert!(e.ate.max < ZERO_TOL, "ATE {}", e.ate.max);
     assert!(e.rpe_trans.max < ZERO_TOL && e.rpe_rot_deg.max < 1e-6);
-    assert!((e.sr.unwrap() - 1.0).abs() < ZERO_TOL);
+    assert_eq!(e.success_rate.sr, Some(1.0));
+    assert_eq!(e.success_rate.tracked_fraction, 1.0);
+    assert!((e.success_rate.sr_path_ratio.unwrap() - 1.0).abs() < ZERO_TOL);
     // The alignment found is the inverse of the applied transform.
     let inverse = some_transform().inverse();
     let applied = e.alignment.apply(DVec3::new(1.0, 2.0, 3.0));
@@ -83,22 +85,73 @@ fn sim3_recovers_a_known_scale() {
     assert!(e.ate.max < ZERO_TOL);
     assert!(e.rpe_trans.max < ZERO_TOL);
     assert!(
-        (e.sr.unwrap() - 1.0).abs() < ZERO_TOL,
-        "SR is scaled by the Sim(3) scale"
+        (e.success_rate.sr_path_ratio.unwrap() - 1.0).abs() < ZERO_TOL,
+        "the path ratio is scaled by the Sim(3) scale"
     );
-    // SE(3) cannot fix the scale.
+    // SE(3) cannot fix the scale; SR does not depend on it.
     let se3 = evaluate(&est, &gt, &EvalOptions::default()).unwrap();
-    assert!(se3.ate.rmse > 0.1 && (se3.sr.unwrap() - 0.37).abs() < ZERO_TOL);
+    assert!(se3.ate.rmse > 0.1);
+    assert!((se3.success_rate.sr_path_ratio.unwrap() - 0.37).abs() < ZERO_TOL);
+    assert_eq!(
+        (e.success_rate.sr, se3.success_rate.sr),
+        (Some(1.0), Some(1.0))
+    );
+}
+
+/// The ground truth with every position pushed `amplitude` metres along z, up and down on
+/// alternate frames.
+fn jittered(t: &Trajectory, amplitude: f64) -> Trajectory {
+    let poses = t
+        .poses
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+            Pose::new(p.rotation, p.translation + DVec3::Z * sign * amplitude)
+        })
+        .collect();
+    Trajectory::new(t.timestamps.clone(), poses)
 }
 
 #[test]
-fn estimate_that_stops_early_has_sr_below_one() {
+fn heavy_jitter_keeps_sr_at_one_and_inflates_the_path_ratio() {
+    let gt = loop_trajectory(300);
+    // ±1 cm on ~3.3 cm of motion per frame: each step gains a 2 cm detour.
+    let e = evaluate(&jittered(&gt, 0.01), &gt, &EvalOptions::default()).unwrap();
+    assert_eq!(e.success_rate.sr, Some(1.0));
+    let ratio = e.success_rate.sr_path_ratio.unwrap();
+    assert!(ratio > 1.1, "path ratio {ratio}");
+    assert!((e.ate.rmse - 0.01).abs() < 1e-3, "ATE {}", e.ate.rmse);
+}
+
+#[test]
+fn a_lost_tracker_repeating_its_last_pose_covers_the_path_but_shows_in_ate() {
+    let gt = loop_trajectory(300);
+    let mut est = gt.clone();
+    let last_tracked = est.poses[149];
+    est.poses[150..].fill(last_tracked);
+    let e = evaluate(&est, &gt, &EvalOptions::default()).unwrap();
+    assert_eq!(e.success_rate.sr, Some(1.0));
+    assert_eq!(e.success_rate.tracked_fraction, 1.0);
+    assert!(e.ate.rmse > 0.5, "ATE {}", e.ate.rmse);
+    let first_half = Trajectory::new(gt.timestamps[..150].to_vec(), gt.poses[..150].to_vec());
+    let expected = first_half.path_length() / gt.path_length();
+    assert!((e.success_rate.sr_path_ratio.unwrap() - expected).abs() < ZERO_TOL);
+}
+
+#[test]
+fn estimate_that_stops_early_covers_the_path_it_tracked() {
     let gt = loop_trajectory(300);
     let est = Trajectory::new(gt.timestamps[..150].to_vec(), gt.poses[..150].to_vec());
     let e = evaluate(&est, &gt, &EvalOptions::default()).unwrap();
     assert_eq!((e.pairs, e.max_pairs), (150, 150));
+    let s = &e.success_rate;
     let expected = est.path_length() / gt.path_length();
-    assert!((e.sr.unwrap() - expected).abs() < 1e-15 && expected < 0.6);
+    assert!(expected < 0.6);
+    assert!((s.sr.unwrap() - expected).abs() < 1e-15);
+    assert!((s.sr_path_ratio.unwrap() - expected).abs() < 1e-15);
+    assert_eq!((s.tracked_poses, s.ground_truth_poses), (150, 300));
+    assert_eq!(s.tracked_fraction, 0.5);
 }
 
 #[test]
@@ -140,7 +193,10 @@ fn static_ground_truth_cannot_be_aligned() {
         ..EvalOptions::default()
     };
     let e = evaluate(&still, &still, &none).unwrap();
-    assert_eq!(e.sr, None);
+    assert_eq!(
+        (e.success_rate.sr, e.success_rate.sr_path_ratio),
+        (None, None)
+    );
 }
 
 #[test]

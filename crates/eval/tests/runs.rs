@@ -108,13 +108,29 @@ fn aggregates_runs_with_failures_marked() {
         good.cells[0].ate_mean
     );
     assert!((good.cells[1].ate_mean - (0.05 + 0.01 + 0.03) / 3.0).abs() < 1e-6);
+    // Jitter leaves SR at 1 and inflates the path ratio: ±5 cm on 5 cm steps doubles the path.
+    assert_eq!((good.sr.mean, good.sr.min), (Some(1.0), Some(1.0)));
+    assert_eq!(good.tracked_fraction.min, Some(1.0));
+    let ratio = good.cells[1].sr_path_ratio_mean.unwrap();
+    assert!(ratio > 1.5, "path ratio {ratio}");
 
     // bad: room0 fine; office0 broken, room0__fog-3 unassociable, office0__fog-3 missing.
     let bad = &s.methods[0];
     assert_eq!((bad.runs, bad.failures), (4, 3));
     assert!((bad.cells[0].ate_mean - (0.002 + 1.0) / 2.0).abs() < 1e-6);
     assert_eq!(bad.cells[1].ate_mean, 1.0);
-    assert_eq!(bad.cells[1].sr_mean, Some(0.0));
+    // Failures count 0 for SR, path ratio and tracked fraction.
+    assert_eq!(bad.cells[0].sr_mean, Some(0.5));
+    assert_eq!(bad.cells[0].tracked_fraction_mean, Some(0.5));
+    let fog = &bad.cells[1];
+    assert_eq!(
+        (
+            fog.sr_mean,
+            fog.sr_path_ratio_mean,
+            fog.tracked_fraction_mean
+        ),
+        (Some(0.0), Some(0.0), Some(0.0))
+    );
     assert_eq!(
         bad.csr[2].csr, 25.0,
         "failures never count as successes, even at 1 m"
@@ -169,6 +185,8 @@ fn writes_every_table() {
         "report.json",
         "ate.csv",
         "sr.csv",
+        "sr_path_ratio.csv",
+        "tracked_fraction.csv",
         "csr.csv",
         "csr_curve.csv",
         "welch.csv",
@@ -193,8 +211,18 @@ fn writes_every_table() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(json["summary"]["methods"][0]["failures"], 3);
+    let sr_csv = std::fs::read_to_string(out.join("sr.csv")).unwrap();
+    assert!(
+        sr_csv.starts_with("method,clean,fog-3,mean,min\nbad,0.5,0,0.25,0\ngood,1,1,1,1\n"),
+        "{sr_csv}"
+    );
     let runs_csv = std::fs::read_to_string(out.join("runs.csv")).unwrap();
     assert_eq!(runs_csv.lines().filter(|l| l.contains(",F,")).count(), 3);
+    let failed = runs_csv.lines().find(|l| l.contains(",F,")).unwrap();
+    assert!(
+        failed.contains(",1,0,0,0,,,,"),
+        "ATE 1, SR 0, ratio 0, tracked 0: {failed}"
+    );
 }
 
 #[test]

@@ -23,20 +23,30 @@ ATE: Umeyama alignment on positions (--align), then |p_est - p_gt| per pose.
 RPE: pose pairs (i, j) chosen on the estimate (consecutive unless --all-pairs),
 E = (Q_i^-1 Q_j)^-1 (P_i^-1 P_j); translation |t_E| in m, rotation angle of R_E in degrees.
 
-SR (success rate of tracking) = L_est / L_gt: the path length of the whole estimate (multiplied by the
-Sim(3) scale with --align sim3) over the path length of the whole ground truth, from its first to its
-last timestamp. An estimate that stops early gets SR < 1. No reference tool computes SR; this is
-rslam's definition (spec metrics.md).
+SR (success rate of tracking) = covered ground-truth path / ground-truth path: the summed length of
+the segments between consecutive ground-truth poses that both have an associated estimate pose (the
+pairs above, same --max-diff), over the path length of the whole ground truth (every pose of its
+file). In [0, 1], scale-free, and jitter does not change it; an estimate that starts late, stops
+early or has gaps gets less. A lost tracker that keeps reporting a pose still covers: ATE shows it.
+It needs an estimate pose per ground-truth pose: against a ground truth sampled faster than the
+estimate (TUM's 100 Hz motion capture) or with a keyframe-only estimate, few segments are covered.
+SR path ratio (sr_path_ratio) = L_est / L_gt, the paper's literal SR formula: the path length of the
+whole estimate (multiplied by the Sim(3) scale with --align sim3) over that of the whole ground
+truth. Jitter adds path length, so it grows when tracking gets worse and can exceed 1; it is kept
+only for comparing with the paper.
+Tracked fraction = ground-truth poses with an associated estimate pose / all ground-truth poses.
+No reference tool computes these; they are rslam's definitions (spec metrics.md).
 
 --runs DIR --datasets DIR: evaluates DIR/<method>/<sequence>.txt (or DIR/<method>/<sequence>/<repeat>.txt)
 against the ground truth in DATASETS/<sequence>/traj.txt or groundtruth.txt. A sequence named
 <scene>__<setting> belongs to that setting (room0__fog-3), a bare <scene> is clean. Missing, empty,
-unreadable or unassociable estimates are failures (ATE = --failure-ate, SR = 0, marked F).
-Writes report.md, report.json, ate.csv, sr.csv, csr.csv, csr_curve.csv, welch.csv, runs.csv,
-csr.png and csr.svg into --out: ATE and SR per method x setting with mean/max (mean/min for SR), the
-survival upper bound (best method per setting, and its mean per category), CSR at 0.02/0.1/1.0 m and
-as curves (failures stay in the denominator and never count as successes), and Welch's t-test of
-ln ATE of each setting against clean per method, over scenes and repeats.";
+unreadable or unassociable estimates are failures (ATE = --failure-ate; SR, SR path ratio and
+tracked fraction 0; marked F). Writes report.md, report.json, ate.csv, sr.csv, sr_path_ratio.csv,
+tracked_fraction.csv, csr.csv, csr_curve.csv, welch.csv, runs.csv, csr.png and csr.svg into --out:
+ATE, SR, SR path ratio and tracked fraction per method x setting with mean/max (mean/min for the
+last three), the survival upper bound (best method per setting, and its mean per category), CSR
+at 0.02/0.1/1.0 m and as curves (failures stay in the denominator and never count as successes),
+and Welch's t-test of ln ATE of each setting against clean per method, over scenes and repeats.";
 
 #[derive(clap::Args)]
 #[command(after_long_help = DETAILS)]

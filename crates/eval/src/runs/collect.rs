@@ -10,7 +10,8 @@ use super::layout::{find_estimates, find_methods, find_sequences, find_unmatched
 use super::RunsOptions;
 use crate::{evaluate_files, EvalError};
 
-/// One run's result. A failed run carries the failure ATE, SR 0 and the reason.
+/// One run's result. A failed run tracked nothing: it carries the failure ATE, 0 for SR, SR path
+/// ratio and tracked fraction, and the reason.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RunRecord {
     pub method: String,
@@ -21,8 +22,12 @@ pub struct RunRecord {
     pub repeat: Option<String>,
     /// ATE rmse in metres, or the failure ATE.
     pub ate: f64,
-    /// `None` when the ground truth does not move.
+    /// Covered fraction of the ground-truth path; `None` when the ground truth does not move.
     pub sr: Option<f64>,
+    /// The paper's SR formula, L_est / L_gt; `None` when the ground truth does not move.
+    pub sr_path_ratio: Option<f64>,
+    /// Ground-truth poses paired with an estimate pose / ground-truth poses.
+    pub tracked_fraction: f64,
     pub rpe_trans: Option<f64>,
     pub rpe_rot_deg: Option<f64>,
     pub pairs: Option<usize>,
@@ -73,7 +78,9 @@ pub fn collect_runs(options: &RunsOptions) -> Result<CollectedRuns, EvalError> {
                 runs.push(match outcome {
                     Ok(e) => RunRecord {
                         ate: e.ate.rmse,
-                        sr: e.sr,
+                        sr: e.success_rate.sr,
+                        sr_path_ratio: e.success_rate.sr_path_ratio,
+                        tracked_fraction: e.success_rate.tracked_fraction,
                         rpe_trans: Some(e.rpe_trans.rmse),
                         rpe_rot_deg: Some(e.rpe_rot_deg.rmse),
                         pairs: Some(e.pairs),
@@ -112,6 +119,8 @@ fn identity(method: &str, sequence: &Sequence, repeat: Option<String>) -> RunRec
         repeat,
         ate: f64::NAN,
         sr: None,
+        sr_path_ratio: None,
+        tracked_fraction: f64::NAN,
         rpe_trans: None,
         rpe_rot_deg: None,
         pairs: None,
@@ -129,6 +138,8 @@ fn failed_run(
     RunRecord {
         ate: failure_ate,
         sr: Some(0.0),
+        sr_path_ratio: Some(0.0),
+        tracked_fraction: 0.0,
         failure: Some(reason),
         ..identity(method, sequence, repeat)
     }

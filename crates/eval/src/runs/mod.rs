@@ -4,7 +4,7 @@
 //! Sequence names carry the setting: `<scene>__<setting>` (`room0__fog-3`), a bare `<scene>` is
 //! clean. A setting's category is its leading perturbation name (`fog-3-dynamic` → `fog`).
 //! A missing, empty, unreadable or unassociable estimate is a failed run: ATE = the failure ATE
-//! (1.0 m by default), SR = 0, marked F.
+//! (1.0 m by default); SR, SR path ratio and tracked fraction 0; marked F.
 
 mod collect;
 mod csr_plot;
@@ -23,8 +23,8 @@ pub use collect::{collect_runs, CollectedRuns, RunRecord};
 pub use layout::{find_estimates, find_methods, find_sequences, Estimate, Sequence};
 pub use naming::{category, scene_and_setting, CLEAN};
 pub use summary::{
-    csr, summarize, CategoryBound, CsrPoint, MethodSummary, RunsSummary, SettingCell, SettingTest,
-    SurvivalBound, CSR_THRESHOLDS,
+    csr, summarize, CategoryBound, CsrPoint, MeanAndMin, MethodSummary, RunsSummary, SettingCell,
+    SettingTest, SurvivalBound, CSR_THRESHOLDS,
 };
 pub use welch::{welch_t_test, WelchTest};
 pub use write::{summary_text, write_report};

@@ -17,7 +17,7 @@ const CURVE_STEPS_PER_DECADE: i32 = 20;
 const LOG_ATE_FLOOR: f64 = 1e-6;
 
 /// Runs of one method in one setting (over scenes and repeats); failures count with the
-/// failure ATE and SR 0.
+/// failure ATE and 0 for the other metrics.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SettingCell {
     pub runs: usize,
@@ -25,6 +25,27 @@ pub struct SettingCell {
     pub ate_mean: f64,
     /// `None` when no run has an SR (ground truth without motion).
     pub sr_mean: Option<f64>,
+    /// `None` when no run has one (ground truth without motion).
+    pub sr_path_ratio_mean: Option<f64>,
+    /// `None` when the cell has no run.
+    pub tracked_fraction_mean: Option<f64>,
+}
+
+/// Over the settings of one method, the mean and the min of the per-setting means; `None` when
+/// no setting has a value.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MeanAndMin {
+    pub mean: Option<f64>,
+    pub min: Option<f64>,
+}
+
+impl MeanAndMin {
+    fn of(values: &[f64]) -> Self {
+        Self {
+            mean: mean(values),
+            min: values.iter().copied().reduce(f64::min),
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -43,9 +64,9 @@ pub struct MethodSummary {
     /// Mean and max over settings of the per-setting mean ATE.
     pub ate_mean: f64,
     pub ate_max: f64,
-    /// Mean and min over settings of the per-setting mean SR.
-    pub sr_mean: Option<f64>,
-    pub sr_min: Option<f64>,
+    pub sr: MeanAndMin,
+    pub sr_path_ratio: MeanAndMin,
+    pub tracked_fraction: MeanAndMin,
     pub runs: usize,
     pub failures: usize,
     /// CSR over all runs of the method at [`CSR_THRESHOLDS`].
@@ -136,13 +157,16 @@ fn summarize_method(
         .collect();
     let present: Vec<&SettingCell> = cells.iter().filter(|c| c.runs > 0).collect();
     let ates: Vec<f64> = present.iter().map(|c| c.ate_mean).collect();
-    let srs: Vec<f64> = present.iter().filter_map(|c| c.sr_mean).collect();
+    let over_settings = |cell: fn(&SettingCell) -> Option<f64>| {
+        MeanAndMin::of(&present.iter().filter_map(|c| cell(c)).collect::<Vec<_>>())
+    };
     MethodSummary {
         method: method.to_string(),
         ate_mean: mean(&ates).unwrap_or(f64::NAN),
         ate_max: ates.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        sr_mean: mean(&srs),
-        sr_min: srs.iter().copied().reduce(f64::min),
+        sr: over_settings(|c| c.sr_mean),
+        sr_path_ratio: over_settings(|c| c.sr_path_ratio_mean),
+        tracked_fraction: over_settings(|c| c.tracked_fraction_mean),
         runs: runs.len(),
         failures: runs.iter().filter(|r| r.failed()).count(),
         csr: CSR_THRESHOLDS
@@ -160,12 +184,16 @@ fn summarize_method(
 fn setting_cell<'a>(runs: impl Iterator<Item = &'a RunRecord>) -> SettingCell {
     let runs: Vec<&RunRecord> = runs.collect();
     let ates: Vec<f64> = runs.iter().map(|r| r.ate).collect();
-    let srs: Vec<f64> = runs.iter().filter_map(|r| r.sr).collect();
+    let mean_of = |value: fn(&RunRecord) -> Option<f64>| {
+        mean(&runs.iter().filter_map(|r| value(r)).collect::<Vec<_>>())
+    };
     SettingCell {
         runs: runs.len(),
         failures: runs.iter().filter(|r| r.failed()).count(),
         ate_mean: mean(&ates).unwrap_or(f64::NAN),
-        sr_mean: mean(&srs),
+        sr_mean: mean_of(|r| r.sr),
+        sr_path_ratio_mean: mean_of(|r| r.sr_path_ratio),
+        tracked_fraction_mean: mean_of(|r| Some(r.tracked_fraction)),
     }
 }
 
@@ -254,7 +282,10 @@ fn mean(values: &[f64]) -> Option<f64> {
 mod tests {
     use super::*;
 
+    /// Every successful run tracked 95 % of its frames over 90 % of the path, jittering to 1.2×
+    /// the path length; a failure (`ate` None) has 0 for all three.
     fn run(method: &str, scene: &str, setting: &str, ate: Option<f64>) -> RunRecord {
+        let ok = |v: f64| if ate.is_some() { v } else { 0.0 };
         RunRecord {
             method: method.into(),
             sequence: format!("{scene}__{setting}"),
@@ -262,7 +293,9 @@ mod tests {
             setting: setting.into(),
             repeat: None,
             ate: ate.unwrap_or(1.0),
-            sr: Some(if ate.is_some() { 0.9 } else { 0.0 }),
+            sr: Some(ok(0.9)),
+            sr_path_ratio: Some(ok(1.2)),
+            tracked_fraction: ok(0.95),
             rpe_trans: None,
             rpe_rot_deg: None,
             pairs: None,
@@ -295,8 +328,24 @@ mod tests {
         assert_eq!((a.cells[1].runs, a.cells[1].failures), (2, 1));
         assert!((a.ate_mean - 0.2725).abs() < 1e-15);
         assert_eq!(a.ate_max, 0.525);
-        assert_eq!(a.cells[1].sr_mean, Some(0.45));
-        assert_eq!(a.sr_min, Some(0.45));
+    }
+
+    #[test]
+    fn tracking_means_count_failures_as_zero() {
+        let s = summarize(&fixture(), 1.0);
+        let a = &s.methods[0];
+        let fog = &a.cells[1];
+        assert_eq!(fog.sr_mean, Some(0.45));
+        assert_eq!(fog.sr_path_ratio_mean, Some(0.6));
+        assert_eq!(fog.tracked_fraction_mean, Some(0.475));
+        assert_eq!(a.sr.min, Some(0.45));
+        assert!((a.sr.mean.unwrap() - 0.675).abs() < 1e-15);
+        assert_eq!(a.sr_path_ratio.min, Some(0.6));
+        let b = &s.methods[1];
+        assert_eq!(
+            (b.tracked_fraction.mean, b.tracked_fraction.min),
+            (Some(0.95), Some(0.95))
+        );
     }
 
     #[test]

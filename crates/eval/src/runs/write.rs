@@ -4,9 +4,46 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::collect::RunRecord;
-use super::summary::{RunsSummary, SettingCell};
+use super::summary::{MeanAndMin, MethodSummary, RunsSummary, SettingCell};
 use super::RunsReport;
 use crate::EvalError;
+
+/// A per-setting table of one tracking metric, written as CSV and as a Markdown section, with the
+/// mean and min over settings.
+struct TrackingTable {
+    csv: &'static str,
+    title: &'static str,
+    note: &'static str,
+    cell: fn(&SettingCell) -> Option<f64>,
+    over_settings: fn(&MethodSummary) -> MeanAndMin,
+}
+
+const TRACKING_TABLES: [TrackingTable; 3] = [
+    TrackingTable {
+        csv: "sr.csv",
+        title: "SR (covered fraction of the ground-truth path) per method × setting",
+        note: "Ground-truth segments whose two ends are paired with an estimate pose, over the \
+               whole ground-truth path: in [0, 1], jitter does not change it.",
+        cell: |c| c.sr_mean,
+        over_settings: |m| m.sr,
+    },
+    TrackingTable {
+        csv: "sr_path_ratio.csv",
+        title: "SR path ratio (the paper's SR formula) per method × setting",
+        note: "Estimate path length over ground-truth path length, as the paper writes SR, for \
+               comparing with it: jitter adds path length, so it grows when tracking gets worse \
+               and can exceed 1.",
+        cell: |c| c.sr_path_ratio_mean,
+        over_settings: |m| m.sr_path_ratio,
+    },
+    TrackingTable {
+        csv: "tracked_fraction.csv",
+        title: "Tracked fraction of frames per method × setting",
+        note: "Ground-truth poses paired with an estimate pose, over all ground-truth poses.",
+        cell: |c| c.tracked_fraction_mean,
+        over_settings: |m| m.tracked_fraction,
+    },
+];
 
 /// Writes every report file into `out` (created if needed); returns the paths written.
 pub fn write_report(report: &RunsReport, out: &Path) -> Result<Vec<PathBuf>, EvalError> {
@@ -16,7 +53,7 @@ pub fn write_report(report: &RunsReport, out: &Path) -> Result<Vec<PathBuf>, Eva
         path: out.join("report.json"),
         message: e.to_string(),
     })?;
-    let files = [
+    let mut files = vec![
         ("report.md", markdown(report)),
         ("report.json", json),
         (
@@ -24,26 +61,32 @@ pub fn write_report(report: &RunsReport, out: &Path) -> Result<Vec<PathBuf>, Eva
             matrix_csv(
                 s,
                 |c| Some(c.ate_mean),
-                ("mean", |m| Some(m.ate_mean)),
-                ("max", |m| Some(m.ate_max)),
+                [
+                    ("mean", &|m| Some(m.ate_mean)),
+                    ("max", &|m| Some(m.ate_max)),
+                ],
                 true,
             ),
         ),
-        (
-            "sr.csv",
-            matrix_csv(
-                s,
-                |c| c.sr_mean,
-                ("mean", |m| m.sr_mean),
-                ("min", |m| m.sr_min),
-                false,
-            ),
-        ),
+    ];
+    for table in &TRACKING_TABLES {
+        let text = matrix_csv(
+            s,
+            table.cell,
+            [
+                ("mean", &|m| (table.over_settings)(m).mean),
+                ("min", &|m| (table.over_settings)(m).min),
+            ],
+            false,
+        );
+        files.push((table.csv, text));
+    }
+    files.extend([
         ("csr.csv", csr_csv(s)),
         ("csr_curve.csv", csr_curve_csv(s)),
         ("welch.csv", welch_csv(s)),
         ("runs.csv", runs_csv(&report.runs)),
-    ];
+    ]);
     let mut written = Vec::new();
     for (name, text) in files {
         let path = out.join(name);
@@ -58,13 +101,13 @@ pub fn write_report(report: &RunsReport, out: &Path) -> Result<Vec<PathBuf>, Eva
     Ok(written)
 }
 
-type MethodValue = fn(&super::summary::MethodSummary) -> Option<f64>;
+/// A method's value over its settings, named by its CSV column.
+type OverSettingsColumn<'a> = (&'a str, &'a dyn Fn(&MethodSummary) -> Option<f64>);
 
 fn matrix_csv(
     s: &RunsSummary,
     cell: fn(&SettingCell) -> Option<f64>,
-    first: (&str, MethodValue),
-    second: (&str, MethodValue),
+    [first, second]: [OverSettingsColumn; 2],
     with_survival: bool,
 ) -> String {
     let mut out = format!(
@@ -158,12 +201,13 @@ fn welch_csv(s: &RunsSummary) -> String {
 
 fn runs_csv(runs: &[RunRecord]) -> String {
     let mut out = String::from(
-        "method,sequence,scene,setting,repeat,status,ate,sr,rpe_trans,rpe_rot_deg,pairs,failure\n",
+        "method,sequence,scene,setting,repeat,status,ate,sr,sr_path_ratio,tracked_fraction,rpe_trans,\
+         rpe_rot_deg,pairs,failure\n",
     );
     for r in runs {
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             csv_field(&r.method),
             csv_field(&r.sequence),
             csv_field(&r.scene),
@@ -172,6 +216,8 @@ fn runs_csv(runs: &[RunRecord]) -> String {
             if r.failed() { "F" } else { "ok" },
             number(Some(r.ate)),
             number(r.sr),
+            number(r.sr_path_ratio),
+            number(Some(r.tracked_fraction)),
             number(r.rpe_trans),
             number(r.rpe_rot_deg),
             r.pairs.map_or(String::new(), |p| p.to_string()),
@@ -186,7 +232,8 @@ fn markdown(report: &RunsReport) -> String {
     let runs = report.runs.len();
     let failures = report.runs.iter().filter(|r| r.failed()).count();
     let mut out = format!(
-        "# rslam eval: {} methods × {} settings\n\n{runs} runs, {failures} failed (F: counted as ATE {} m, SR 0).\n\n",
+        "# rslam eval: {} methods × {} settings\n\n{runs} runs, {failures} failed (F: counted as \
+         ATE {} m; SR, SR path ratio and tracked fraction 0).\n\n",
         s.methods.len(),
         s.settings.len(),
         s.failure_ate
@@ -231,20 +278,29 @@ fn markdown(report: &RunsReport) -> String {
         let _ = writeln!(out, "| {} | {} | {:.4} |", c.category, c.settings, c.mean);
     }
 
-    out.push_str(
-        "\n## SR per method × setting\n\nMean over scenes and repeats (failures count 0).\n\n",
-    );
-    out.push_str(&header("method", ["mean", "min"]));
-    for m in &s.methods {
-        let cells: Vec<String> = m.cells.iter().map(|c| optional(c.sr_mean, 3)).collect();
-        let _ = writeln!(
+    for table in &TRACKING_TABLES {
+        let _ = write!(
             out,
-            "| {} | {} | {} | {} |",
-            m.method,
-            cells.join(" | "),
-            optional(m.sr_mean, 3),
-            optional(m.sr_min, 3)
+            "\n## {}\n\n{} Mean over scenes and repeats (failures count 0).\n\n",
+            table.title, table.note
         );
+        out.push_str(&header("method", ["mean", "min"]));
+        for m in &s.methods {
+            let cells: Vec<String> = m
+                .cells
+                .iter()
+                .map(|c| optional((table.cell)(c), 3))
+                .collect();
+            let over_settings = (table.over_settings)(m);
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} |",
+                m.method,
+                cells.join(" | "),
+                optional(over_settings.mean, 3),
+                optional(over_settings.min, 3)
+            );
+        }
     }
 
     out.push_str("\n## CSR [%] over all runs of a method\n\n| method | runs | failed |");
@@ -311,7 +367,7 @@ fn markdown(report: &RunsReport) -> String {
 pub fn summary_text(report: &RunsReport) -> String {
     let s = &report.summary;
     let mut out = format!(
-        "{} methods, {} settings, {} runs ({} failed)\n\n{:<16} {:>5} {:>6} {:>10} {:>10} {:>7}",
+        "{} methods, {} settings, {} runs ({} failed)\n\n{:<16} {:>5} {:>6} {:>10} {:>10} {:>7} {:>7}",
         s.methods.len(),
         s.settings.len(),
         report.runs.len(),
@@ -321,7 +377,8 @@ pub fn summary_text(report: &RunsReport) -> String {
         "failed",
         "ATE mean",
         "ATE max",
-        "SR mean"
+        "SR mean",
+        "tracked"
     );
     for t in super::summary::CSR_THRESHOLDS {
         let _ = write!(out, " {:>9}", format!("CSR@{t}"));
@@ -330,13 +387,14 @@ pub fn summary_text(report: &RunsReport) -> String {
     for m in &s.methods {
         let _ = write!(
             out,
-            "{:<16} {:>5} {:>6} {:>10.4} {:>10.4} {:>7}",
+            "{:<16} {:>5} {:>6} {:>10.4} {:>10.4} {:>7} {:>7}",
             m.method,
             m.runs,
             m.failures,
             m.ate_mean,
             m.ate_max,
-            optional(m.sr_mean, 3)
+            optional(m.sr.mean, 3),
+            optional(m.tracked_fraction.mean, 3)
         );
         for p in &m.csr {
             let _ = write!(out, " {:>8.1}%", p.csr);
