@@ -14,7 +14,8 @@
 //! quantises). For motion_blur and fog the reference's `np.random.uniform` is fed rslam's draws
 //! for seed 0, frame 0 (the script re-states `rng.rs`): motion_blur's angle (−13.19°), and in
 //! fog every point of imagecorruptions' own `plasma_fractal`. glass_blur is left out: its
-//! sequential random pixel swaps have no fixed counterpart in rslam's parallel gather.
+//! sequential random pixel swaps have no fixed counterpart in rslam's parallel gather; the
+//! noises, snow, frost, spatter and elastic_transform are matched in statistics, not pixels.
 
 use std::path::{Path, PathBuf};
 
@@ -28,33 +29,37 @@ const SEVERITIES: [u8; 3] = [1, 3, 5];
 const SEED: u64 = 0;
 const FRAME: u32 = 0;
 
-/// Least PSNR (dB, peak 255, over all pixels and channels) against the golden, at every
-/// severity. Each float pipeline's bound sits 3–7 dB below the lowest PSNR measured on lavapipe
-/// (in brackets) and above the ~51 dB that rounding instead of truncating would give (half the
-/// values one level off); a wrong severity's parameters give 8–37 dB. Integer pipelines that
-/// reproduce the reference to the bit must stay bit-identical.
-const MIN_PSNR: [(&str, f64); 10] = [
-    // SciPy gaussian_filter in f64 vs two f32 passes: rare one-level flips [68.5].
-    ("gaussian_blur", 62.0),
-    // OpenCV filter2D in f64 vs f32 running row sums of the same kernel: one-level flips [56.2].
-    ("defocus_blur", 53.0),
-    // SciPy zoom (order 1) per factor in f64 vs f32 bilinear taps [60.6].
-    ("zoom_blur", 56.0),
+/// Least PSNR (dB, peak 255, over all pixels and channels) against the golden at severities
+/// 1, 3, 5. All measured differences are single 8-bit levels. Each float pipeline's bound sits
+/// about 4 dB below the PSNR measured on lavapipe (in brackets) and above what rounding instead
+/// of truncating gives (~51 dB, saturate ~55 dB); a wrong severity gives 8–37 dB, a parameter
+/// off by a few percent 22–55 dB. Pipelines that reproduce the reference's integer arithmetic
+/// must stay bit-identical.
+const MIN_PSNR: [(&str, [f64; 3]); 10] = [
+    // SciPy gaussian_filter in f64 vs two f32 passes [68.5, 77.8, 78.5].
+    ("gaussian_blur", [64.0, 73.0, 74.0]),
+    // OpenCV filter2D with imagecorruptions' float32 disk kernel, which sums to 1 − 4e-9 at
+    // severity 1: results that are exactly a level truncate one lower there (16% of values;
+    // rslam's kernel is normalised exactly), vs f32 running row sums [56.2, 64.1, 83.0].
+    ("defocus_blur", [53.0, 60.0, 78.0]),
+    // SciPy zoom (order 1) per factor in float32 vs f32 bilinear taps [60.6, 61.5, 62.1].
+    ("zoom_blur", [56.0, 57.0, 58.0]),
     // PIL BOX + NEAREST reproduced in PIL's 8-bit fixed point.
-    ("pixelate", BIT_EXACT),
-    // Per-channel mean reduced in f32 (exact here; the summation order may differ on other
-    // GPUs), then one multiply-add per pixel.
-    ("contrast", 60.0),
-    // skimage rgb2hsv / hsv2rgb in f64 vs f32 [64.5].
-    ("brightness", 60.0),
-    // The same HSV round trip, lowest at S×2 (severity 3) [59.3].
-    ("saturate", 55.0),
+    ("pixelate", [BIT_EXACT; 3]),
+    // Per-channel mean reduced in f32 (bit-identical here; the summation order may differ on
+    // other GPUs), then one multiply-add per pixel.
+    ("contrast", [60.0; 3]),
+    // skimage rgb2hsv / hsv2rgb in f64 vs f32 [64.9, 64.6, 64.5].
+    ("brightness", [60.0; 3]),
+    // The same HSV round trip [70.4, 59.3, 72.7]; at severity 3 only 2.3 dB of margin, to stay
+    // above rounding (55.3).
+    ("saturate", [66.0, 57.0, 68.0]),
     // libjpeg-turbo's integer codec (Pillow 11.3.0's) reproduced to the bit.
-    ("jpeg_compression", BIT_EXACT),
-    // imagecorruptions' sum of shifted copies (f64) with rslam's angle vs f32 taps [63.7].
-    ("motion_blur", 58.0),
-    // plasma_fractal on rslam's draws in f64 vs the f32 GPU plasma [77.4].
-    ("fog", 70.0),
+    ("jpeg_compression", [BIT_EXACT; 3]),
+    // imagecorruptions' sum of shifted copies with rslam's angle vs f32 taps [63.7, 67.3, 69.0].
+    ("motion_blur", [59.0, 63.0, 64.0]),
+    // plasma_fractal on rslam's draws in f64 vs the f32 GPU plasma [77.4, 77.6, 80.0].
+    ("fog", [73.0, 73.0, 75.0]),
 ];
 
 /// Bit-identical: infinite PSNR.
@@ -143,8 +148,8 @@ fn gpu_corruptions_match_imagecorruptions_goldens() {
     let clean = load(&dir.join("input.png")).unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
     let mut table = String::new();
-    for (name, bound) in MIN_PSNR {
-        for severity in SEVERITIES {
+    for (name, bounds) in MIN_PSNR {
+        for (severity, bound) in SEVERITIES.into_iter().zip(bounds) {
             let stem = format!("{name}-{severity}");
             let result = load(&dir.join(format!("{stem}.png"))).and_then(|expected| {
                 let actual = run(&ctx, name, severity, &clean)?;
