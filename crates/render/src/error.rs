@@ -23,6 +23,21 @@ pub enum RenderError {
         texture: String,
         message: String,
     },
+    #[error("{name}: texture layer {layer}: {message}")]
+    BadTextureData {
+        name: String,
+        layer: usize,
+        message: String,
+    },
+    #[error(
+        "{name}: vertex {vertex} samples texture layer {layer}, but the scene has {count} textures"
+    )]
+    LayerOutOfRange {
+        name: String,
+        vertex: usize,
+        layer: u32,
+        count: usize,
+    },
     #[error(transparent)]
     Gpu(#[from] rslam_gpu::GpuError),
     #[error("{name}: {count} textures exceed the GPU's limit of {limit} texture layers")]

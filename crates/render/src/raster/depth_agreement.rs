@@ -21,7 +21,7 @@ pub struct DepthAgreement {
 
 /// A pixel is on a silhouette when a 3×3 neighbour of it misses while it hits
 /// (or the reverse), or when inverse depth bends through it more than a smooth surface does.
-fn on_silhouette(oracle: &DepthImage, x: u32, y: u32) -> bool {
+pub(crate) fn on_silhouette(oracle: &DepthImage, x: u32, y: u32) -> bool {
     let (w, h) = (oracle.width as i32, oracle.height as i32);
     let at = |x: i32, y: i32| oracle.at(x.clamp(0, w - 1) as u32, y.clamp(0, h - 1) as u32);
     let (x, y) = (x as i32, y as i32);

@@ -1,10 +1,12 @@
 //! The wgpu rasterizer: camera projection, scene upload, and the render pass.
 
 mod camera;
+mod color_agreement;
 mod depth_agreement;
 mod rasterizer;
 mod texture_array;
 
 pub use camera::{clip_from_camera, CameraUniform, NEAR};
+pub use color_agreement::{color_agreement, edge_mask, ColorAgreement};
 pub use depth_agreement::{depth_agreement, DepthAgreement};
 pub use rasterizer::Rasterizer;

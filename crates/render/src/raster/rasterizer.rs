@@ -41,6 +41,17 @@ impl Rasterizer {
         intrinsics: Intrinsics,
     ) -> Result<Self, RenderError> {
         let device = &ctx.device;
+        // The shader clamps an out-of-range array index to the last layer: a silent wrong texture.
+        if let Some((vertex, v)) = (scene.mesh.vertices.iter().enumerate())
+            .find(|(_, v)| v.layer as usize >= scene.textures.len())
+        {
+            return Err(RenderError::LayerOutOfRange {
+                name: scene.name.clone(),
+                vertex,
+                layer: v.layer,
+                count: scene.textures.len(),
+            });
+        }
         let gpu_vertices: Vec<GpuVertex> = scene
             .mesh
             .vertices

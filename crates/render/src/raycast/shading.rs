@@ -1,24 +1,39 @@
-//! Surface colour at a hit: vertex colour × texture, with a box-filtered mip chain per texture so
-//! low-resolution views see the average of the texels a pixel covers rather than aliasing.
-
-use obvhs::triangle::Triangle;
+//! Surface colour at a hit: vertex colour × texture, the texture filtered the way the rasterizer's
+//! sampler does (repeat wrap, bilinear within a level, linear between mip levels, the level chosen
+//! from the uv derivatives across the pixel), on a mip chain box-filtered in linear light.
 
 use super::Hit;
 use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
 use crate::{Mesh, Texture, Vertex};
 
+/// How uv changes from one pixel to the next, in texture repeats per pixel: what a fragment
+/// shader's implicit derivatives `dpdx(uv)`, `dpdy(uv)` give, and what picks the mip level.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UvDerivatives {
+    /// uv one pixel to the right minus uv here.
+    pub dx: [f32; 2],
+    /// uv one pixel down minus uv here.
+    pub dy: [f32; 2],
+}
+
+impl UvDerivatives {
+    /// No change across the pixel: the full-resolution level (magnification).
+    pub const ZERO: Self = Self {
+        dx: [0.0; 2],
+        dy: [0.0; 2],
+    };
+}
+
 pub(super) struct Shading {
     vertices: Vec<Vertex>,
     indices: Vec<u32>,
     textures: Vec<MipChain>,
-    /// Per triangle: texels per metre of level 0 of its texture, for the mip choice.
-    texel_density: Vec<f32>,
 }
 
 struct Level {
     width: usize,
     height: usize,
-    /// sRGB; filtered in linear light.
+    /// sRGB, as the rasterizer's texture stores every level; filtered in linear light.
     rgb: Vec<[u8; 3]>,
 }
 
@@ -27,55 +42,43 @@ struct MipChain {
 }
 
 impl Shading {
-    pub(super) fn new(mesh: &Mesh, textures: &[Texture], triangles: &[Triangle]) -> Self {
-        let textures: Vec<MipChain> = textures.iter().map(MipChain::new).collect();
-        let texel_density = mesh
-            .indices
-            .chunks_exact(3)
-            .zip(triangles)
-            .map(|(idx, tri)| {
-                let v = [0, 1, 2].map(|k| mesh.vertices[idx[k] as usize]);
-                let base = textures
-                    .get(v[0].layer as usize)
-                    .map_or((1, 1), |t| (t.levels[0].width, t.levels[0].height));
-                let (d1, d2) = (
-                    [v[1].uv[0] - v[0].uv[0], v[1].uv[1] - v[0].uv[1]],
-                    [v[2].uv[0] - v[0].uv[0], v[2].uv[1] - v[0].uv[1]],
-                );
-                let uv_area = (d1[0] * d2[1] - d1[1] * d2[0]).abs() * 0.5;
-                let world_area = (tri.v1 - tri.v0).cross(tri.v2 - tri.v0).length() * 0.5;
-                if world_area > 0.0 {
-                    (uv_area * (base.0 * base.1) as f32 / world_area).sqrt()
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+    pub(super) fn new(mesh: &Mesh, textures: &[Texture]) -> Self {
         Self {
             vertices: mesh.vertices.clone(),
             indices: mesh.indices.clone(),
-            textures,
-            texel_density,
+            textures: textures.iter().map(MipChain::new).collect(),
         }
     }
 
-    pub(super) fn color_at(&self, hit: &Hit, footprint: f32) -> [u8; 3] {
-        let t = hit.triangle as usize;
-        let v = [0, 1, 2].map(|i| self.vertices[self.indices[3 * t + i] as usize]);
+    fn corners(&self, triangle: u32) -> [Vertex; 3] {
+        let t = triangle as usize;
+        [0, 1, 2].map(|i| self.vertices[self.indices[3 * t + i] as usize])
+    }
+
+    /// Texture layer of a triangle (the first vertex's, as the rasterizer's flat interpolation).
+    pub(super) fn layer(&self, triangle: u32) -> u32 {
+        self.corners(triangle)[0].layer
+    }
+
+    /// uv at barycentric weights `b` of `triangle`; `b` may lie outside the triangle
+    /// (extrapolation, as a GPU does for the helper pixels of a 2×2 quad).
+    pub(super) fn uv(&self, triangle: u32, b: [f32; 3]) -> [f32; 2] {
+        let v = self.corners(triangle);
+        std::array::from_fn(|c| b[0] * v[0].uv[c] + b[1] * v[1].uv[c] + b[2] * v[2].uv[c])
+    }
+
+    pub(super) fn color_at(&self, hit: &Hit, d: &UvDerivatives) -> [u8; 3] {
+        let v = self.corners(hit.triangle);
         let b = hit.barycentrics;
-        let lerp = |f: &dyn Fn(&Vertex) -> f32| b[0] * f(&v[0]) + b[1] * f(&v[1]) + b[2] * f(&v[2]);
-        let uv = [lerp(&|v| v.uv[0]), lerp(&|v| v.uv[1])];
-        let vertex_rgb: [f32; 3] = std::array::from_fn(|c| lerp(&|v| srgb_to_linear(v.color[c])));
+        let uv = self.uv(hit.triangle, b);
+        // Vertex colours are decoded per vertex, then interpolated (as the vertex shader does).
+        let vertex_rgb: [f32; 3] = std::array::from_fn(|c| {
+            (0..3)
+                .map(|k| b[k] * srgb_to_linear(v[k].color[c]))
+                .sum::<f32>()
+        });
         let texel = match self.textures.get(v[0].layer as usize) {
-            Some(chain) => {
-                let texels = footprint * self.texel_density[t];
-                let lod = if texels > 1.0 {
-                    texels.log2().round() as usize
-                } else {
-                    0
-                };
-                chain.sample(lod, uv)
-            }
+            Some(chain) => chain.sample(uv, d),
             None => [1.0; 3],
         };
         std::array::from_fn(|c| linear_to_srgb(vertex_rgb[c] * texel[c]))
@@ -99,13 +102,35 @@ impl MipChain {
         Self { levels }
     }
 
-    fn sample(&self, lod: usize, uv: [f32; 2]) -> [f32; 3] {
-        self.levels[lod.min(self.levels.len() - 1)].bilinear(uv)
+    /// Level of detail λ = log2 ρ, ρ the longer of the two pixel steps measured in level-0
+    /// texels (Vulkan spec, "Scale Factor Operation, Level-of-Detail Operation"); −∞ for no change.
+    fn lod(&self, d: &UvDerivatives) -> f32 {
+        let (w, h) = (self.levels[0].width as f32, self.levels[0].height as f32);
+        let rho = |s: [f32; 2]| (s[0] * w).hypot(s[1] * h);
+        rho(d.dx).max(rho(d.dy)).log2()
+    }
+
+    /// Trilinear: bilinear in the two levels around λ, blended linearly by its fraction; level 0
+    /// when magnified (λ ≤ 0), the last level beyond it.
+    fn sample(&self, uv: [f32; 2], d: &UvDerivatives) -> [f32; 3] {
+        let lod = self.lod(d);
+        let last = self.levels.len() - 1;
+        if lod.is_nan() || lod <= 0.0 {
+            return self.levels[0].bilinear(uv);
+        }
+        if lod >= last as f32 {
+            return self.levels[last].bilinear(uv);
+        }
+        let fine = lod.floor();
+        let a = self.levels[fine as usize].bilinear(uv);
+        let b = self.levels[fine as usize + 1].bilinear(uv);
+        let t = lod - fine;
+        std::array::from_fn(|c| a[c] + (b[c] - a[c]) * t)
     }
 }
 
 impl Level {
-    /// 2×2 box filter; `None` once 1×1.
+    /// 2×2 box filter in linear light, stored as sRGB; `None` once 1×1.
     fn halved(&self) -> Option<Level> {
         if self.width == 1 && self.height == 1 {
             return None;

@@ -201,37 +201,153 @@ fn nearest_surface_matches_brute_force() {
     }
 }
 
-#[test]
-fn colour_multiplies_vertex_colour_and_texture_and_filters_with_footprint() {
+/// One unit square at z = 1 (layer 1, vertex colour (255, 128, 255)) with a 2×2 black/white
+/// checker: one texel is 0.5 m.
+fn checker_scene() -> Scene {
     let mut mesh = Mesh::default();
     square(&mut mesh, [0.0, 1.0], [0.0, 1.0], 1.0, 1);
     for v in &mut mesh.vertices {
         v.color = [255, 128, 255, 255];
     }
-    // 2×2 checker, black and white; one texel is 0.5 m.
     let checker = Texture {
         width: 2,
         height: 2,
         rgba: [[255; 4], [0, 0, 0, 255], [0, 0, 0, 255], [255; 4]].concat(),
     };
-    let scene = Scene {
+    Scene {
         name: "t".into(),
         mesh,
         textures: vec![Texture::white(), checker],
         default_trajectory: None,
-    };
-    let rc = RayCaster::new(&scene);
+    }
+}
+
+/// uv steps of `texels` level-0 texels per pixel of the 2×2 checker, along x.
+fn step(texels: f32) -> UvDerivatives {
+    UvDerivatives {
+        dx: [texels / 2.0, 0.0],
+        dy: [0.0, 0.0],
+    }
+}
+
+#[test]
+fn colour_multiplies_vertex_colour_and_texture_and_filters_by_level_of_detail() {
+    use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
+    let rc = RayCaster::new(&checker_scene());
     // uv (0.25, 0.25) is the centre of the white top-left texel: y = 0.75 in this square.
     let hit = rc.cast(Vec3::new(0.25, 0.75, 0.0), Vec3::Z).unwrap();
-    assert_eq!(rc.color_at(&hit, 0.0), [255, 128, 255]);
-    let black = rc.cast(Vec3::new(0.75, 0.75, 0.0), Vec3::Z).unwrap();
-    assert_eq!(rc.color_at(&black, 0.0), [0, 0, 0]);
-    // A footprint of 1 m covers the whole texture: 50 % linear grey (sRGB 188, as mip levels are
-    // stored) × vertex colour; an sRGB-space average would give 128.
-    let blurred = rc.color_at(&hit, 1.0);
+    assert_eq!(rc.color_at(&hit, &UvDerivatives::ZERO), [255, 128, 255]);
     assert_eq!(
-        blurred,
-        [188, 93, 188],
-        "mean of the checker in linear light"
+        rc.color_at(&hit, &step(1.0)),
+        [255, 128, 255],
+        "λ = 0: level 0"
     );
+    let black = rc.cast(Vec3::new(0.75, 0.75, 0.0), Vec3::Z).unwrap();
+    assert_eq!(rc.color_at(&black, &UvDerivatives::ZERO), [0, 0, 0]);
+    // Half-way between the two texel centres: the linear-light mean.
+    let g = srgb_to_linear(128);
+    let between = rc.cast(Vec3::new(0.5, 0.75, 0.0), Vec3::Z).unwrap();
+    let mean = [0.5, 0.5 * g, 0.5].map(linear_to_srgb);
+    assert_eq!(rc.color_at(&between, &UvDerivatives::ZERO), mean);
+    // Two texels per pixel (λ = 1) is the 1×1 level: 50 % linear grey (sRGB 188, as mip levels
+    // are stored) × vertex colour; an sRGB-space average would give 128.
+    assert_eq!(rc.color_at(&hit, &step(2.0)), [188, 93, 188]);
+    assert_eq!(
+        rc.color_at(&hit, &step(64.0)),
+        [188, 93, 188],
+        "beyond the last level"
+    );
+    // The longer of the two steps decides, whichever axis it is on.
+    let along_y = UvDerivatives {
+        dx: [0.01, 0.0],
+        dy: [0.0, 1.0],
+    };
+    assert_eq!(rc.color_at(&hit, &along_y), [188, 93, 188]);
+    // λ = 0.5 blends level 0 (white here) and level 1 (50 %) half and half, in linear light.
+    let blend = [0.75, 0.75 * g, 0.75].map(linear_to_srgb);
+    assert_eq!(rc.color_at(&hit, &step(2f32.sqrt())), blend);
+}
+
+/// A camera 2 m in front of the checker square (texture repeats every metre) sees uv change by
+/// z / f per pixel; on a plane tilted about the camera's y axis the x step grows to the
+/// right, and every pixel of a 2×2 quad gets its top-left pixel's derivatives.
+#[test]
+fn uv_derivatives_are_the_quads_differences_on_the_triangles_plane() {
+    let rc = RayCaster::new(&checker_scene());
+    let k = Intrinsics {
+        width: 8,
+        height: 8,
+        fx: 40.0,
+        fy: 40.0,
+        cx: 3.5,
+        cy: 3.5,
+    };
+    // Looking along +z from (0.5, 0.5, −1): camera axes are the world's.
+    let pose = Pose::new(DQuat::IDENTITY, DVec3::new(0.5, 0.5, -1.0));
+    let (origin, dir) = camera_ray(&pose, &k, 4, 4);
+    let hit = rc.cast(origin, dir).unwrap();
+    let d = rc.uv_derivatives(hit.triangle, &pose, &k, 4, 4);
+    let expected = 2.0 / 40.0;
+    // uv u grows with x; v = 1 − y in the square's layout, so it falls as pixel y grows.
+    assert!(
+        (d.dx[0] - expected).abs() < 1e-6 && d.dx[1].abs() < 1e-6,
+        "{d:?}"
+    );
+    assert!(
+        d.dy[0].abs() < 1e-6 && (d.dy[1] + expected).abs() < 1e-6,
+        "{d:?}"
+    );
+    // Tilt the camera: derivatives change across the image but not within a quad.
+    let tilted = Pose::new(DQuat::from_rotation_y(0.6), DVec3::new(-0.4, 0.5, -0.5));
+    let at = |x: usize, y: usize| {
+        let (o, d) = camera_ray(&tilted, &k, x, y);
+        let hit = rc.cast(o, d).expect("tilted view still sees the square");
+        rc.uv_derivatives(hit.triangle, &tilted, &k, x, y)
+    };
+    assert_eq!(at(2, 4), at(3, 5), "one quad, one level of detail");
+    assert!(
+        at(6, 4).dx[0] > at(2, 4).dx[0] * 1.05,
+        "farther to the right"
+    );
+}
+
+#[test]
+fn surface_edges_mark_layer_plane_and_silhouette_changes_only() {
+    // At z = 2: A (top left, layer 1), B (top right, layer 1: A continued), C (bottom left,
+    // layer 2); D (bottom right) is a step forward to z = 1.5. Around them, nothing.
+    let mut mesh = Mesh::default();
+    square(&mut mesh, [-1.0, 0.0], [-1.0, 0.0], 2.0, 1);
+    square(&mut mesh, [0.0, 1.0], [-1.0, 0.0], 2.0, 1);
+    square(&mut mesh, [-1.0, 0.0], [0.0, 1.0], 2.0, 2);
+    square(&mut mesh, [0.0, 1.0], [0.0, 1.0], 1.5, 1);
+    let scene = Scene {
+        name: "edges".into(),
+        mesh,
+        textures: vec![Texture::white(); 3],
+        default_trajectory: None,
+    };
+    let rc = RayCaster::new(&scene);
+    let k = Intrinsics {
+        width: 40,
+        height: 40,
+        fx: 20.0,
+        fy: 20.0,
+        cx: 19.5,
+        cy: 19.5,
+    };
+    let frame = rc.render(&Pose::new(DQuat::IDENTITY, DVec3::ZERO), &k);
+    let edges = rc.surface_edges(&frame);
+    let at = |x: usize, y: usize| edges[y * 40 + x];
+    // Camera axes are the world's; at z = 2 pixel x = 19.5 + 10·X: A is x, y in 10..=19.
+    assert!(!at(14, 14), "inside A, across its diagonal");
+    assert!(
+        !at(19, 14) && !at(20, 14),
+        "A continues into B: same layer, same plane"
+    );
+    assert!(at(14, 19) && at(14, 20), "A meets C: another layer");
+    assert!(at(24, 19) && at(24, 20), "B meets D: another plane");
+    assert!(at(9, 14) && at(10, 14), "the silhouette at X = −1");
+    assert!(!at(14, 24) && !at(26, 26), "inside C and D");
+    assert!(!at(2, 2), "nothing but misses");
+    assert!(frame.triangles[2 * 40 + 2].is_none() && frame.triangles[14 * 40 + 14].is_some());
 }

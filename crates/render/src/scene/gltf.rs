@@ -1,10 +1,12 @@
 //! glTF 2.0 / GLB reader: every triangle primitive of the default scene, node transforms applied,
 //! colour = base-colour factor × COLOR_0 (linear in glTF, stored as sRGB here) × base-colour texture.
+//! Only the images a base-colour texture uses are decoded; one that is missing or does not decode
+//! is an error naming it, never a stand-in.
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use ::gltf::image::Format;
+use ::gltf::image::{Format, Source};
 use ::gltf::mesh::Mode;
 use glam::{Mat4, Vec3};
 
@@ -14,15 +16,23 @@ use crate::RenderError;
 
 /// Reads the meshes and base-colour textures of a .gltf or .glb file.
 pub fn read_gltf(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
-    let (document, buffers, images) =
-        ::gltf::import(path).map_err(|e| RenderError::bad_mesh(path, e.to_string()))?;
+    let bad = |e: ::gltf::Error| RenderError::bad_mesh(path, e.to_string());
+    let ::gltf::Gltf { document, blob } = ::gltf::Gltf::open(path).map_err(bad)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    // gltf panics on a relative URI whose %-escapes do not decode to UTF-8.
+    for buffer in document.buffers() {
+        if let ::gltf::buffer::Source::Uri(uri) = buffer.source() {
+            check_uri(path, uri)?;
+        }
+    }
+    let buffers = ::gltf::import_buffers(&document, Some(base), blob).map_err(bad)?;
     let mut out = Collector {
         path,
+        base,
         mesh: Mesh::default(),
         textures: vec![Texture::white()],
         layer_of_image: HashMap::new(),
         buffers: &buffers,
-        images: &images,
     };
     let roots: Vec<::gltf::Node> = match document
         .default_scene()
@@ -39,11 +49,12 @@ pub fn read_gltf(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
 
 struct Collector<'a> {
     path: &'a Path,
+    /// Where relative URIs point from.
+    base: &'a Path,
     mesh: Mesh,
     textures: Vec<Texture>,
     layer_of_image: HashMap<usize, u32>,
     buffers: &'a [::gltf::buffer::Data],
-    images: &'a [::gltf::image::Data],
 }
 
 impl Collector<'_> {
@@ -79,18 +90,41 @@ impl Collector<'_> {
                 RenderError::bad_mesh(self.path, "a triangle primitive has no POSITION attribute")
             })?
             .collect();
-        let uvs: Vec<[f32; 2]> = reader
-            .read_tex_coords(0)
-            .map(|t| t.into_f32().collect())
-            .unwrap_or_default();
+        let pbr = primitive.material().pbr_metallic_roughness();
+        let texture = pbr.base_color_texture();
+        let uvs: Vec<[f32; 2]> = match &texture {
+            Some(info) => reader
+                .read_tex_coords(info.tex_coord())
+                .ok_or_else(|| {
+                    RenderError::bad_mesh(
+                        self.path,
+                        format!(
+                            "a primitive with a base colour texture has no TEXCOORD_{} attribute",
+                            info.tex_coord()
+                        ),
+                    )
+                })?
+                .into_f32()
+                .collect(),
+            None => Vec::new(),
+        };
+        if texture.is_some() && uvs.len() != positions.len() {
+            return Err(RenderError::bad_mesh(
+                self.path,
+                format!(
+                    "{} texture coordinates for {} positions",
+                    uvs.len(),
+                    positions.len()
+                ),
+            ));
+        }
         let colors: Vec<[f32; 4]> = reader
             .read_colors(0)
             .map(|c| c.into_rgba_f32().collect())
             .unwrap_or_default();
-        let pbr = primitive.material().pbr_metallic_roughness();
         let factor = pbr.base_color_factor();
-        let layer = match pbr.base_color_texture() {
-            Some(info) => self.layer(info.texture().source().index())?,
+        let layer = match &texture {
+            Some(info) => self.layer(&info.texture().source())?,
             None => 0,
         };
         let base = self.mesh.vertices.len() as u32;
@@ -142,20 +176,82 @@ impl Collector<'_> {
         Ok(())
     }
 
-    fn layer(&mut self, image: usize) -> Result<u32, RenderError> {
-        if let Some(&layer) = self.layer_of_image.get(&image) {
+    /// The texture layer of an image, decoding it on first use.
+    fn layer(&mut self, image: &::gltf::Image) -> Result<u32, RenderError> {
+        if let Some(&layer) = self.layer_of_image.get(&image.index()) {
             return Ok(layer);
         }
-        let data = &self.images[image];
-        let texture = to_rgba8(data).ok_or_else(|| RenderError::BadTexture {
+        let bad = |message: String| RenderError::BadTexture {
             path: self.path.to_path_buf(),
-            texture: format!("image {image}"),
-            message: format!("unsupported pixel format {:?}", data.format),
-        })?;
+            texture: self.describe(image),
+            message,
+        };
+        if let Source::Uri { uri, .. } = image.source() {
+            check_uri(self.path, uri)?;
+        }
+        let data = ::gltf::image::Data::from_source(image.source(), Some(self.base), self.buffers)
+            .map_err(|e| bad(e.to_string()))?;
+        let texture = to_rgba8(&data)
+            .ok_or_else(|| bad(format!("unsupported pixel format {:?}", data.format)))?;
+        if texture.width == 0 || texture.height == 0 {
+            return Err(bad(format!(
+                "empty image ({}×{})",
+                texture.width, texture.height
+            )));
+        }
         self.textures.push(texture);
         let layer = self.textures.len() as u32 - 1;
-        self.layer_of_image.insert(image, layer);
+        self.layer_of_image.insert(image.index(), layer);
         Ok(layer)
+    }
+
+    /// The image file an error is about: its path, or where in the glTF it is embedded.
+    fn describe(&self, image: &::gltf::Image) -> String {
+        match image.source() {
+            Source::Uri { uri, .. } if uri.starts_with("data:") => {
+                format!("image {} (data URI)", image.index())
+            }
+            Source::Uri { uri, .. } => self.base.join(uri).display().to_string(),
+            Source::View { view, mime_type } => format!(
+                "image {} (buffer view {}, {mime_type})",
+                image.index(),
+                view.index()
+            ),
+        }
+    }
+}
+
+/// A relative URI is %-decoded by gltf, which panics unless the result is UTF-8: an error here.
+fn check_uri(path: &Path, uri: &str) -> Result<(), RenderError> {
+    if uri.contains(':') {
+        return Ok(()); // data: and file: URIs are not %-decoded
+    }
+    let bytes = uri.as_bytes();
+    let hex = |b: u8| (b as char).to_digit(16);
+    let mut decoded = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        match (
+            bytes[i],
+            bytes.get(i + 1).copied().and_then(hex),
+            bytes.get(i + 2).copied().and_then(hex),
+        ) {
+            (b'%', Some(hi), Some(lo)) => {
+                decoded.push((hi * 16 + lo) as u8);
+                i += 3;
+            }
+            (b, _, _) => {
+                decoded.push(b);
+                i += 1;
+            }
+        }
+    }
+    match std::str::from_utf8(&decoded) {
+        Ok(_) => Ok(()),
+        Err(_) => Err(RenderError::bad_mesh(
+            path,
+            format!("URI '{uri}' does not %-decode to UTF-8"),
+        )),
     }
 }
 

@@ -142,3 +142,130 @@ fn broken_gltf_names_the_file() {
         .to_string();
     assert!(err.starts_with(missing_buffer.to_str().unwrap()), "{err}");
 }
+
+/// A base-colour texture that is missing or does not decode is an error naming the texture file
+/// and the glTF file, never a white stand-in.
+#[test]
+fn unreadable_texture_is_an_error_naming_texture_and_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let buffer = triangle_buffer();
+    std::fs::write(dir.path().join("tri.bin"), &buffer).unwrap();
+    let buffer_json = format!(r#"{{"uri": "tri.bin", "byteLength": {}}}"#, buffer.len());
+    let path = dir.path().join("scene.gltf");
+    std::fs::write(&path, document(&buffer_json, r#"{"uri": "tex.png"}"#)).unwrap();
+    let texture = dir.path().join("tex.png");
+    let expect_error = |what: &str| {
+        let err = load_scene(path.to_str().unwrap()).unwrap_err();
+        assert!(
+            matches!(err, RenderError::BadTexture { .. }),
+            "{what}: {err:?}"
+        );
+        let err = err.to_string();
+        assert!(
+            err.starts_with(path.to_str().unwrap())
+                && err.contains(texture.to_str().unwrap())
+                && !err.contains('\n'),
+            "{what}: {err}"
+        );
+    };
+    expect_error("missing");
+    std::fs::write(&texture, b"\x89PNG\r\n\x1a\nnot really a png").unwrap();
+    expect_error("corrupt");
+    let mut cut = png_2x1();
+    cut.truncate(cut.len() - 20);
+    std::fs::write(&texture, cut).unwrap();
+    expect_error("truncated");
+    std::fs::write(&texture, png_2x1()).unwrap();
+    assert!(
+        load_scene(path.to_str().unwrap()).is_ok(),
+        "the fixture itself loads"
+    );
+}
+
+#[test]
+fn corrupt_embedded_image_names_its_buffer_view() {
+    let mut bin = triangle_buffer();
+    bin.extend(b"garbage!");
+    let json = document(
+        &format!(r#"{{"uri": "tri.bin", "byteLength": {}}}"#, bin.len()),
+        r#"{"bufferView": 3, "mimeType": "image/png"}"#,
+    )
+    .replace(
+        r#"{"buffer": 0, "byteOffset": 60, "byteLength": 6}"#,
+        r#"{"buffer": 0, "byteOffset": 60, "byteLength": 6}, {"buffer": 0, "byteOffset": 68, "byteLength": 8}"#,
+    );
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("tri.bin"), &bin).unwrap();
+    let path = dir.path().join("embedded.gltf");
+    std::fs::write(&path, json).unwrap();
+    let err = load_scene(path.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.starts_with(path.to_str().unwrap()) && err.contains("image 0 (buffer view 3"),
+        "{err}"
+    );
+}
+
+/// Untextured primitives keep loading with no image at all; a texture needs its TEXCOORD set.
+#[test]
+fn texture_coordinates_follow_the_textures_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let buffer = triangle_buffer();
+    std::fs::write(dir.path().join("tri.bin"), &buffer).unwrap();
+    std::fs::write(dir.path().join("tex.png"), png_2x1()).unwrap();
+    let buffer_json = format!(r#"{{"uri": "tri.bin", "byteLength": {}}}"#, buffer.len());
+    let json = document(&buffer_json, r#"{"uri": "tex.png"}"#);
+    let second_set = json.replace(r#""TEXCOORD_0": 1"#, r#""TEXCOORD_1": 1"#);
+    let second_set = second_set.replace(
+        r#""baseColorTexture": {"index": 0}"#,
+        r#""baseColorTexture": {"index": 0, "texCoord": 1}"#,
+    );
+    let path = dir.path().join("set1.gltf");
+    std::fs::write(&path, &second_set).unwrap();
+    let (mesh, _) = read_gltf(&path).unwrap();
+    assert_eq!(
+        mesh.vertices[1].uv,
+        [1.0, 0.0],
+        "uv from TEXCOORD_1, not _0"
+    );
+
+    let missing_set = json.replace(r#", "TEXCOORD_0": 1"#, "");
+    let path = dir.path().join("nouv.gltf");
+    std::fs::write(&path, &missing_set).unwrap();
+    let err = read_gltf(&path).unwrap_err().to_string();
+    assert!(err.contains("TEXCOORD_0"), "{err}");
+
+    let untextured = missing_set.replace(r#", "baseColorTexture": {"index": 0}"#, "");
+    let path = dir.path().join("plain.gltf");
+    std::fs::write(&path, &untextured).unwrap();
+    std::fs::remove_file(dir.path().join("tex.png")).unwrap();
+    let (mesh, textures) = read_gltf(&path).unwrap();
+    assert_eq!(textures.len(), 1, "only the white layer");
+    assert!(mesh.vertices.iter().all(|v| v.layer == 0));
+}
+
+/// gltf's URI decoding panics on %-escapes that are not UTF-8; that must come back as an error.
+#[test]
+fn undecodable_uri_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let buffer = triangle_buffer();
+    std::fs::write(dir.path().join("tri.bin"), &buffer).unwrap();
+    let buffer_json = format!(r#"{{"uri": "tri.bin", "byteLength": {}}}"#, buffer.len());
+    let path = dir.path().join("uri.gltf");
+    std::fs::write(&path, document(&buffer_json, r#"{"uri": "tex%FF.png"}"#)).unwrap();
+    let err = read_gltf(&path).unwrap_err().to_string();
+    assert!(
+        err.starts_with(path.to_str().unwrap()) && err.contains("tex%FF.png"),
+        "{err}"
+    );
+    let bad_buffer = dir.path().join("buf.gltf");
+    std::fs::write(
+        &bad_buffer,
+        document(
+            r#"{"uri": "tri%C3.bin", "byteLength": 68}"#,
+            r#"{"uri": "tex.png"}"#,
+        ),
+    )
+    .unwrap();
+    let err = read_gltf(&bad_buffer).unwrap_err().to_string();
+    assert!(err.contains("tri%C3.bin"), "{err}");
+}

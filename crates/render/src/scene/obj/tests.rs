@@ -64,3 +64,39 @@ fn obj_problems_name_the_file() {
         "{err}"
     );
 }
+
+/// A texture file that exists but does not decode is an error naming it and the OBJ, like a
+/// missing one; a material without `map_Kd` still loads untextured.
+#[test]
+fn undecodable_texture_is_an_error_naming_texture_and_obj() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("quad.obj");
+    std::fs::write(&obj, QUAD_OBJ).unwrap();
+    std::fs::write(
+        dir.path().join("quad.mtl"),
+        "newmtl painted\nKd 1 1 1\nmap_Kd broken.png\n",
+    )
+    .unwrap();
+    let texture = dir.path().join("broken.png");
+    for (what, bytes) in [
+        ("garbage", b"this is not an image".to_vec()),
+        ("bad png", b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR broken".to_vec()),
+        ("empty", Vec::new()),
+    ] {
+        std::fs::write(&texture, bytes).unwrap();
+        let err = load_scene(obj.to_str().unwrap()).unwrap_err();
+        assert!(
+            matches!(err, crate::RenderError::BadTexture { .. }),
+            "{what}: {err:?}"
+        );
+        let err = err.to_string();
+        assert!(
+            err.starts_with(obj.to_str().unwrap()) && err.contains(texture.to_str().unwrap()),
+            "{what}: {err}"
+        );
+    }
+    std::fs::write(dir.path().join("quad.mtl"), "newmtl painted\nKd 1 1 1\n").unwrap();
+    let scene = load_scene(obj.to_str().unwrap()).unwrap();
+    assert_eq!(scene.textures.len(), 1);
+    assert!(scene.mesh.vertices.iter().all(|v| v.layer == 0));
+}
