@@ -8,9 +8,14 @@
 //! [`CATALOGUE`] transforming the textures in place, and reports the severity each got. Stream
 //! items (`fast`, `misalign`) choose which rendered frames are written ([`stream`]). Randomness
 //! comes from one counter-based hash keyed by (seed, perturbation, frame, purpose) ([`rng`]),
-//! the same in Rust and WGSL. Every shader has a CPU twin next to it, the oracle of its tests.
+//! the same in Rust and WGSL. Every shader has a CPU twin next to it, reached through its entry
+//! ([`Twin`]): the oracle of one table-driven test over the catalogue. Each entry also lists the
+//! layouts of the parameter structs it writes into uniform blocks ([`uniform_layout`]), which a
+//! test checks against naga's layout of the WGSL structs.
 
 mod catalogue;
+#[cfg(test)]
+mod catalogue_tests;
 pub mod depth;
 mod error;
 pub mod image;
@@ -25,6 +30,10 @@ pub mod stream;
 #[cfg(test)]
 pub(crate) mod testing;
 pub mod trajectory;
+mod twin;
+pub mod uniform_layout;
+#[cfg(test)]
+mod uniform_layout_tests;
 
 pub use catalogue::{find, names, CATALOGUE};
 pub use error::PerturbError;
@@ -34,3 +43,4 @@ pub use perturbation::{
 };
 pub use perturber::{dynamic_severity, severity_on, FrameSeverities, ItemSeverity, Perturber};
 pub use spec::{all_names, parse_severity, Deviation, FrameItem, Level, Misalign, PerturbSpec};
+pub use twin::{Tolerance, Twin};

@@ -5,6 +5,8 @@ use rslam_gpu::{FrameTextures, GpuContext};
 use serde::Serialize;
 
 use crate::rng::RngKey;
+use crate::twin::{Tolerance, Twin};
+use crate::uniform_layout::UniformLayout;
 use crate::PerturbError;
 
 /// Which frame texture a perturbation transforms.
@@ -19,6 +21,8 @@ pub enum Group {
 pub struct ExplicitForm {
     /// The syntax shown in errors and in `rslam list`, e.g. "MIN-MAX (metres)".
     pub syntax: &'static str,
+    /// A text `parse` accepts, the one `syntax` shows; the twin test runs it.
+    pub example: &'static str,
     /// Parses the text after the colon into the values the perturbation reads from
     /// [`FrameKey::explicit`]; the error says what was expected.
     pub parse: fn(&str) -> Result<Vec<f64>, String>,
@@ -39,6 +43,13 @@ pub struct CatalogueEntry {
     pub build: fn(&Kit) -> Result<Box<dyn GpuPerturbation>, PerturbError>,
     /// An explicit parameter form, where the perturbation has one.
     pub explicit: Option<ExplicitForm>,
+    /// The CPU twin: what `build`'s pass does, on the CPU.
+    pub twin: Twin,
+    /// How far the GPU pass may be from `twin`.
+    pub twin_tolerance: Tolerance,
+    /// Every parameter struct `build`'s passes write into a uniform block, with the WGSL struct
+    /// it binds to.
+    pub uniforms: &'static [UniformLayout],
 }
 
 impl CatalogueEntry {

@@ -228,7 +228,7 @@ mod tests {
             seen[severity as usize] = true;
             let expected = match severity {
                 0 => clean.clone(),
-                s => brightness::twin(&RgbF32::from_rgb8(&clean), s).to_rgb8(),
+                s => brightness::twin(&RgbF32::from_rgb8(&clean), &testing::key(0, s)).to_rgb8(),
             };
             testing::assert_close(&color, &expected, 1, &format!("perturber-frame{index}"));
             assert!(out_depth

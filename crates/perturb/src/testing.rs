@@ -1,5 +1,5 @@
 //! Shared test helpers: one GPU context, deterministic test frames, running one catalogue entry
-//! on a frame and reading it back, and comparisons that write images to look at on failure.
+//! on frames and reading them back, and comparisons that write images to look at on failure.
 
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -7,7 +7,8 @@ use std::sync::OnceLock;
 use rslam_core::{DepthImage, RgbImage};
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
 
-use crate::perturbation::{CatalogueEntry, FrameKey, Kit, Scratch};
+use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Kit, Scratch};
+use crate::twin::Tolerance;
 
 /// The process-wide context. No adapter is a failure, never a skip.
 pub fn context() -> &'static GpuContext {
@@ -18,37 +19,87 @@ pub fn context() -> &'static GpuContext {
     })
 }
 
+/// A colour and depth frame on the CPU.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    pub color: RgbImage,
+    pub depth: DepthImage,
+}
+
+/// One catalogue entry built once for a frame size and applied to frame after frame, each in
+/// its own submission, as the [`crate::Perturber`] does.
+pub struct EntryOnGpu {
+    scratch: Scratch,
+    perturbation: Box<dyn GpuPerturbation>,
+    frame: FrameTextures,
+    readback: FrameReadback,
+    width: u32,
+    height: u32,
+}
+
+impl EntryOnGpu {
+    pub fn new(entry: &CatalogueEntry, width: u32, height: u32) -> Result<Self, String> {
+        let ctx = context();
+        let scratch = Scratch::new(ctx, width, height);
+        let kit = Kit {
+            ctx,
+            width,
+            height,
+            scratch: &scratch,
+        };
+        let perturbation = (entry.build)(&kit).map_err(|e| format!("building: {e}"))?;
+        Ok(Self {
+            perturbation,
+            frame: FrameTextures::new(ctx, width, height),
+            readback: FrameReadback::new(ctx, width, height, true),
+            scratch,
+            width,
+            height,
+        })
+    }
+
+    /// Uploads `color` and `depth`, applies the entry with `key` and reads the frame back.
+    pub fn apply(
+        &mut self,
+        key: &FrameKey,
+        color: &RgbImage,
+        depth: Option<&DepthImage>,
+    ) -> Result<Frame, String> {
+        let ctx = context();
+        let kit = Kit {
+            ctx,
+            width: self.width,
+            height: self.height,
+            scratch: &self.scratch,
+        };
+        self.frame.upload(ctx, color, depth);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.perturbation
+            .encode(&kit, &mut encoder, &self.frame, key)
+            .map_err(|e| format!("encoding: {e}"))?;
+        self.readback.encode_copy(&mut encoder, &self.frame);
+        let submission = ctx.queue.submit([encoder.finish()]);
+        let (color, depth) = self
+            .readback
+            .read(ctx, submission)
+            .map_err(|e| format!("running: {e}"))?;
+        Ok(Frame {
+            color,
+            depth: depth.expect("depth was asked for"),
+        })
+    }
+}
+
 /// Builds `entry` for the frame size, applies it once with `key` and reads the frame back.
 pub fn run_frame(
     entry: &CatalogueEntry,
     key: &FrameKey,
     color: &RgbImage,
     depth: Option<&DepthImage>,
-) -> (RgbImage, DepthImage) {
-    let ctx = context();
-    let (width, height) = (color.width, color.height);
-    let scratch = Scratch::new(ctx, width, height);
-    let kit = Kit {
-        ctx,
-        width,
-        height,
-        scratch: &scratch,
-    };
-    let mut perturbation =
-        (entry.build)(&kit).unwrap_or_else(|e| panic!("building {}: {e}", entry.name));
-    let frame = FrameTextures::new(ctx, width, height);
-    frame.upload(ctx, color, depth);
-    let readback = FrameReadback::new(ctx, width, height, true);
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    perturbation
-        .encode(&kit, &mut encoder, &frame, key)
-        .unwrap_or_else(|e| panic!("encoding {}: {e}", entry.name));
-    readback.encode_copy(&mut encoder, &frame);
-    let submission = ctx.queue.submit([encoder.finish()]);
-    let (color, depth) = readback
-        .read(ctx, submission)
-        .unwrap_or_else(|e| panic!("running {}: {e}", entry.name));
-    (color, depth.expect("depth was asked for"))
+) -> Frame {
+    EntryOnGpu::new(entry, color.width, color.height)
+        .and_then(|mut gpu| gpu.apply(key, color, depth))
+        .unwrap_or_else(|e| panic!("{}: {e}", entry.name))
 }
 
 /// A key for frame 0 at `severity`.
@@ -63,13 +114,13 @@ pub fn key(seed: u64, severity: u8) -> FrameKey<'static> {
 
 /// Runs an image corruption on `color` (frame 0) and returns the corrupted colour.
 pub fn run_color(entry: &CatalogueEntry, severity: u8, seed: u64, color: &RgbImage) -> RgbImage {
-    run_frame(entry, &key(seed, severity), color, None).0
+    run_frame(entry, &key(seed, severity), color, None).color
 }
 
 /// Runs a depth corruption on `depth` (frame 0, black colour) and returns the corrupted depth.
 pub fn run_depth(entry: &CatalogueEntry, key: &FrameKey, depth: &DepthImage) -> DepthImage {
     let color = RgbImage::new(depth.width, depth.height);
-    run_frame(entry, key, &color, Some(depth)).1
+    run_frame(entry, key, &color, Some(depth)).depth
 }
 
 /// A deterministic photo-like test image: smooth shading, hard edges, saturated and grey
@@ -146,9 +197,15 @@ fn save_rgb(image: &RgbImage, path: &PathBuf) {
     }
 }
 
-/// Asserts every channel of `actual` is within `tolerance` levels of `expected`; on failure
-/// writes `<name>-actual.png`, `<name>-expected.png` and `<name>-diff.png` (diff ×32).
-pub fn assert_close(actual: &RgbImage, expected: &RgbImage, tolerance: u8, name: &str) {
+/// Checks every colour value of `actual` against `expected` within `tolerance` (levels, and
+/// the fraction of values allowed beyond them); on failure writes `<name>-actual.png`,
+/// `<name>-expected.png` and `<name>-diff.png` (diff ×32) and says where.
+pub fn compare_color(
+    actual: &RgbImage,
+    expected: &RgbImage,
+    tolerance: &Tolerance,
+    name: &str,
+) -> Result<(), String> {
     assert_eq!(
         (actual.width, actual.height),
         (expected.width, expected.height)
@@ -159,12 +216,15 @@ pub fn assert_close(actual: &RgbImage, expected: &RgbImage, tolerance: u8, name:
         .zip(&expected.data)
         .map(|(a, b)| a.abs_diff(*b))
         .collect();
-    let worst = diffs.iter().copied().max().unwrap_or(0);
-    if worst <= tolerance {
-        return;
+    let bad = diffs.iter().filter(|&&d| d > tolerance.levels).count();
+    if bad as f64 <= tolerance.outliers * diffs.len() as f64 {
+        return Ok(());
     }
-    let bad = diffs.iter().filter(|&&d| d > tolerance).count();
-    let first = diffs.iter().position(|&d| d > tolerance).unwrap_or(0);
+    let worst = diffs.iter().copied().max().unwrap_or(0);
+    let first = diffs
+        .iter()
+        .position(|&d| d > tolerance.levels)
+        .unwrap_or(0);
     let (pixel, channel) = (first / 3, first % 3);
     let (x, y) = (pixel as u32 % actual.width, pixel as u32 / actual.width);
     let dir = failure_dir();
@@ -176,35 +236,63 @@ pub fn assert_close(actual: &RgbImage, expected: &RgbImage, tolerance: u8, name:
         data: diffs.iter().map(|d| d.saturating_mul(32)).collect(),
     };
     save_rgb(&diff_image, &dir.join(format!("{name}-diff.png")));
-    panic!(
-        "{name}: {bad} values differ by more than {tolerance} (worst {worst}); first at \
+    Err(format!(
+        "{name}: {bad} colour values differ by more than {} (worst {worst}); first at \
          ({x}, {y}) channel {channel}: actual {} expected {}; images in {}",
+        tolerance.levels,
         actual.data[first],
         expected.data[first],
         dir.display()
-    );
+    ))
 }
 
-/// Asserts two depth frames agree within `tolerance` metres, and have the same invalid pixels.
-pub fn assert_depth_close(actual: &DepthImage, expected: &DepthImage, tolerance: f32, name: &str) {
+/// Asserts every channel of `actual` is within `levels` of `expected` (see [`compare_color`]).
+pub fn assert_close(actual: &RgbImage, expected: &RgbImage, levels: u8, name: &str) {
+    let tolerance = Tolerance {
+        levels,
+        ..Tolerance::EXACT
+    };
+    if let Err(message) = compare_color(actual, expected, &tolerance, name) {
+        panic!("{message}");
+    }
+}
+
+/// Checks two depth frames agree within `metres` and have the same invalid pixels.
+pub fn compare_depth(
+    actual: &DepthImage,
+    expected: &DepthImage,
+    metres: f32,
+    name: &str,
+) -> Result<(), String> {
     assert_eq!(
         (actual.width, actual.height),
         (expected.width, expected.height)
     );
-    let mut bad = Vec::new();
-    for (i, (a, e)) in actual.data.iter().zip(&expected.data).enumerate() {
-        let validity_differs = (*a == 0.0) != (*e == 0.0);
-        if validity_differs || (a - e).abs() > tolerance {
-            bad.push((i, *a, *e));
+    let bad: Vec<(usize, f32, f32)> = actual
+        .data
+        .iter()
+        .zip(&expected.data)
+        .enumerate()
+        .filter(|(_, (a, e))| (**a == 0.0) != (**e == 0.0) || (*a - *e).abs() > metres)
+        .map(|(i, (a, e))| (i, *a, *e))
+        .collect();
+    match bad.first() {
+        None => Ok(()),
+        Some(&(i, a, e)) => {
+            let (x, y) = (i as u32 % actual.width, i as u32 / actual.width);
+            Err(format!(
+                "{name}: {} depth values differ (tolerance {metres} m); first at ({x}, {y}): \
+                 actual {a} expected {e}",
+                bad.len()
+            ))
         }
     }
-    if let Some(&(i, a, e)) = bad.first() {
-        let (x, y) = (i as u32 % actual.width, i as u32 / actual.width);
-        panic!(
-            "{name}: {} depth values differ (tolerance {tolerance} m); first at ({x}, {y}): \
-             actual {a} expected {e}",
-            bad.len()
-        );
+}
+
+/// Asserts two depth frames agree within `metres` (see [`compare_depth`]).
+pub fn assert_depth_close(actual: &DepthImage, expected: &DepthImage, metres: f32, name: &str) {
+    if let Err(message) = compare_depth(actual, expected, metres, name) {
+        panic!("{message}");
     }
 }
 
@@ -280,45 +368,18 @@ pub fn assert_seeded(entry: &CatalogueEntry, severity: u8) {
         };
         run_frame(entry, &key, &clean, Some(&test_depth(64, 48)))
     };
-    let (a_color, a_depth) = run(11, 0);
-    let (b_color, b_depth) = run(11, 0);
+    let a = run(11, 0);
     assert!(
-        a_color == b_color && a_depth == b_depth,
+        a == run(11, 0),
         "{}: same seed, different output",
         entry.name
     );
-    let (c_color, c_depth) = run(12, 0);
+    assert!(a != run(12, 0), "{}: another seed, same output", entry.name);
     assert!(
-        a_color != c_color || a_depth != c_depth,
-        "{}: another seed, same output",
-        entry.name
-    );
-    let (d_color, d_depth) = run(11, 1);
-    assert!(
-        a_color != d_color || a_depth != d_depth,
+        a != run(11, 1),
         "{}: another frame, same output",
         entry.name
     );
-}
-
-/// Like [`assert_close`] but lets a `max_fraction` of values differ more (stochastic passes
-/// whose GPU transcendentals may tip a rare rejection-sampling decision the other way).
-pub fn assert_mostly_close(
-    actual: &RgbImage,
-    expected: &RgbImage,
-    tolerance: u8,
-    max_fraction: f64,
-    name: &str,
-) {
-    let bad = actual
-        .data
-        .iter()
-        .zip(&expected.data)
-        .filter(|(a, b)| a.abs_diff(**b) > tolerance)
-        .count();
-    if bad as f64 > max_fraction * actual.data.len() as f64 {
-        assert_close(actual, expected, tolerance, name);
-    }
 }
 
 /// Probabilities of each 8-bit level of trunc8(clip(x + N(0, σ), 0, 1)).

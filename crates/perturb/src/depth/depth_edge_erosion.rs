@@ -14,6 +14,7 @@ use rslam_gpu::FrameTextures;
 
 use crate::image::color_pass::KeyedParams;
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::twin::{Tolerance, Twin};
 use crate::{rng, PerturbError};
 
 const NAME: &str = "depth_edge_erosion";
@@ -39,6 +40,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     parameters: |s| format!("rate={}", RATE[s as usize - 1]),
     build: |kit| Ok(Box::new(EdgeErosion::new(kit)?)),
     explicit: None,
+    twin: Twin::Depth(twin),
+    // Integer Canny on the 8-bit depth: the same pixels voided, the others untouched.
+    twin_tolerance: Tolerance::EXACT,
+    uniforms: &[KeyedParams::layout(SHADER)],
 };
 
 struct EdgeErosion {
@@ -340,21 +345,6 @@ pub fn twin(depth: &DepthImage, key: &FrameKey) -> DepthImage {
 mod tests {
     use super::*;
     use crate::testing;
-
-    #[test]
-    fn gpu_matches_twin() {
-        let depth = testing::test_depth(150, 110);
-        for severity in [1, 5] {
-            let key = testing::key(6, severity);
-            let gpu = testing::run_depth(&ENTRY, &key, &depth);
-            testing::assert_depth_close(
-                &gpu,
-                &twin(&depth, &key),
-                0.0,
-                &format!("erosion-{severity}"),
-            );
-        }
-    }
 
     /// A box at 1.8 m before a 4 m wall: edges lie on its outline, one pixel thick, and not on
     /// the flat wall or box face; invalid pixels stay invalid.

@@ -8,6 +8,7 @@ use super::depth_pass::DepthPass;
 use crate::image::color_pass::KeyedParams;
 use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::reduce::Reduction;
+use crate::twin::{Tolerance, Twin};
 use crate::{rng, PerturbError};
 
 const NAME: &str = "depth_noise";
@@ -26,6 +27,14 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     parameters: |s| format!("c={}", FACTOR[s as usize - 1]),
     build: |kit| Ok(Box::new(DepthNoise::new(kit)?)),
     explicit: None,
+    twin: Twin::Depth(twin),
+    // The GPU's f32 Kahan sums of the depth std vs the twin's f64 ones, and GPU log/cos vs
+    // Rust's in the Box-Muller draw.
+    twin_tolerance: Tolerance {
+        metres: 1e-4,
+        ..Tolerance::EXACT
+    },
+    uniforms: &[KeyedParams::layout(SHADER)],
 };
 
 struct DepthNoise {
@@ -105,24 +114,6 @@ pub fn twin(depth: &DepthImage, key: &FrameKey) -> DepthImage {
 mod tests {
     use super::*;
     use crate::testing;
-
-    /// Metres: the f32 GPU reduction vs the f64 CPU std, and GPU log/cos vs Rust's.
-    const TOLERANCE_M: f32 = 1e-4;
-
-    #[test]
-    fn gpu_matches_twin() {
-        let depth = testing::test_depth(101, 75);
-        for severity in [1, 5] {
-            let key = testing::key(8, severity);
-            let gpu = testing::run_depth(&ENTRY, &key, &depth);
-            testing::assert_depth_close(
-                &gpu,
-                &twin(&depth, &key),
-                TOLERANCE_M,
-                &format!("depth_noise-{severity}"),
-            );
-        }
-    }
 
     /// On a slanted plane 5..7 m (no clamping), the added noise has mean 0 and std c·std(z);
     /// invalid pixels stay 0.

@@ -6,6 +6,7 @@ use rslam_core::DepthImage;
 use super::depth_pass::DepthPointwise;
 use crate::image::color_pass::KeyedParams;
 use crate::perturbation::{CatalogueEntry, ExplicitForm, FrameKey, Group};
+use crate::twin::{Tolerance, Twin};
 
 const SHADER: &str = "perturb/depth/depth_range.wgsl";
 
@@ -24,9 +25,14 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     build: |kit| DepthPointwise::boxed(kit, SHADER, |_, key| params(key)),
     explicit: Some(ExplicitForm {
         syntax: "MIN-MAX in metres, e.g. depth_range:0.42-10",
+        example: "0.42-10",
         parse: parse_range,
         format: |v| format!("{}-{}", v[0], v[1]),
     }),
+    twin: Twin::Depth(twin),
+    // The same f32 comparisons on both sides.
+    twin_tolerance: Tolerance::EXACT,
+    uniforms: &[KeyedParams::layout(SHADER)],
 };
 
 /// `MIN-MAX` with 0 ≤ MIN < MAX, finite.
@@ -75,30 +81,20 @@ mod tests {
     use crate::testing;
 
     #[test]
-    fn gpu_matches_twin_for_levels_and_explicit_range() {
-        let depth = testing::test_depth(80, 60);
-        for severity in 1..=5 {
-            let key = testing::key(0, severity);
-            let gpu = testing::run_depth(&ENTRY, &key, &depth);
-            testing::assert_depth_close(
-                &gpu,
-                &twin(&depth, &key),
-                0.0,
-                &format!("depth_range-{severity}"),
-            );
-        }
+    fn depth_outside_the_explicit_range_is_voided() {
+        let depth = DepthImage {
+            width: 5,
+            height: 1,
+            data: vec![0.0, 1.4, 1.5, 3.0, 3.1],
+        };
         let values = [1.5, 3.0];
         let key = FrameKey {
             explicit: Some(&values),
             ..testing::key(0, 5)
         };
-        let gpu = testing::run_depth(&ENTRY, &key, &depth);
-        testing::assert_depth_close(&gpu, &twin(&depth, &key), 0.0, "depth_range-explicit");
-        assert!(gpu
-            .data
-            .iter()
-            .all(|&z| z == 0.0 || (1.5..=3.0).contains(&z)));
-        assert!(gpu.data.contains(&1.8), "in-range depth kept");
+        assert_eq!(twin(&depth, &key).data, [0.0, 0.0, 1.5, 3.0, 0.0]);
+        // Severity 1 keeps [0.2, 4.4] m.
+        assert_eq!(twin(&depth, &testing::key(0, 1)), depth);
     }
 
     #[test]

@@ -6,6 +6,7 @@ use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
 
 use crate::perturbation::{view, FrameKey, GpuPerturbation, Kit};
+use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
 use crate::PerturbError;
 
 /// One pass `source (scratch colour) → frame colour` with parameters `P` at binding 2;
@@ -81,6 +82,19 @@ pub struct KeyedParams {
     pub values: [f32; 4],
 }
 
+impl KeyedParams {
+    const LAYOUT: RustLayout = rust_layout!(KeyedParams { key, values });
+
+    /// Its layout as `struct Params` of `shader`.
+    pub const fn layout(shader: &'static str) -> UniformLayout {
+        UniformLayout {
+            rust: Self::LAYOUT,
+            wgsl: "Params",
+            shader,
+        }
+    }
+}
+
 /// A per-pixel corruption whose parameters are a function of the frame key only; its shader
 /// defines `corrupt` and includes `pointwise_runs.wgsl` (runs of 8 pixels per invocation).
 pub struct PointwisePass {
@@ -112,45 +126,5 @@ impl GpuPerturbation for PointwisePass {
         self.pass
             .encode(kit, encoder, frame, &(self.params)(key), &[]);
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::image::{
-        defocus_blur, elastic_transform, fog, frost, gaussian_blur, glass_blur, jpeg_compression,
-        motion_blur, snow, spatter, zoom_blur,
-    };
-    use crate::image_f32::RgbF32;
-    use crate::testing;
-
-    /// Frames whose sides are not multiples of 8 (runs) or 16 (JPEG MCUs) still match the twins
-    /// everywhere, including the last partial run of each row and column.
-    #[test]
-    fn odd_frame_sizes_match_the_twins() {
-        let clean = testing::test_image(77, 53);
-        let image = RgbF32::from_rgb8(&clean);
-        let (seed, s) = (5, 3);
-        let cases: [(&crate::CatalogueEntry, RgbF32); 11] = [
-            (&gaussian_blur::ENTRY, gaussian_blur::twin(&image, s)),
-            (&glass_blur::ENTRY, glass_blur::twin(&image, s, seed, 0)),
-            (&defocus_blur::ENTRY, defocus_blur::twin(&image, s)),
-            (&motion_blur::ENTRY, motion_blur::twin(&image, s, seed, 0)),
-            (&zoom_blur::ENTRY, zoom_blur::twin(&image, s)),
-            (&snow::ENTRY, snow::twin(&image, s, seed, 0)),
-            (&frost::ENTRY, frost::twin(&image, s, seed, 0)),
-            (&fog::ENTRY, fog::twin(&image, s, seed, 0)),
-            (&spatter::ENTRY, spatter::twin(&image, s, seed, 0)),
-            (&jpeg_compression::ENTRY, jpeg_compression::twin(&image, s)),
-            (
-                &elastic_transform::ENTRY,
-                elastic_transform::twin(&image, s, seed, 0),
-            ),
-        ];
-        for (entry, expected) in cases {
-            let gpu = testing::run_color(entry, s, seed, &clean);
-            let name = format!("{}-77x53", entry.name);
-            testing::assert_close(&gpu, &expected.to_rgb8(), 1, &name);
-        }
     }
 }

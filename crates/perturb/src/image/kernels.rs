@@ -2,6 +2,8 @@
 //! CPU-twin filters that apply them. Kernels are built on the CPU exactly as the reference
 //! (SciPy / OpenCV / imagecorruptions) builds them and handed to the shaders in uniform buffers.
 
+use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
+
 /// Mirrors `SUM_EPSILON` of `shaders/perturb/image/filter.wgsl`: added to a weighted sum before
 /// truncating to 8 bits, so that f32 rounding does not drop flat regions by one level.
 pub const SUM_EPSILON: f32 = 4e-6;
@@ -64,6 +66,24 @@ pub struct Kernel1dUniform {
     taps: [[f32; 4]; KERNEL_1D_TAPS],
 }
 
+impl Kernel1dUniform {
+    const LAYOUT: RustLayout = rust_layout!(Kernel1dUniform {
+        radius,
+        count,
+        edge,
+        taps
+    });
+
+    /// Its layout as `struct Kernel1d` in `shader`.
+    pub const fn layout(shader: &'static str) -> UniformLayout {
+        UniformLayout {
+            rust: Self::LAYOUT,
+            wgsl: "Kernel1d",
+            shader,
+        }
+    }
+}
+
 /// One tap of imagecorruptions' motion-blur line kernel: the output at (x, y) adds
 /// `weight × input(x + dx, y + dy)` (edges replicated).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -122,6 +142,17 @@ pub struct LineKernelUniform {
 }
 
 impl LineKernelUniform {
+    const LAYOUT: RustLayout = rust_layout!(LineKernelUniform { count, taps });
+
+    /// Its layout as `struct LineKernel` in `shader`.
+    pub const fn layout(shader: &'static str) -> UniformLayout {
+        UniformLayout {
+            rust: Self::LAYOUT,
+            wgsl: "LineKernel",
+            shader,
+        }
+    }
+
     /// `None` when there are more than [`LINE_TAPS`] taps.
     pub fn new(taps: &[LineTap]) -> Option<Self> {
         let count = taps.len();

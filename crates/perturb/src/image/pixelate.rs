@@ -8,6 +8,8 @@ use rslam_core::RgbImage;
 use rslam_gpu::FrameTextures;
 
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::twin::{Tolerance, Twin};
+use crate::uniform_layout::{rust_layout, UniformLayout};
 use crate::PerturbError;
 
 const SHADER: &str = "perturb/image/pixelate.wgsl";
@@ -22,6 +24,14 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     parameters: |s| format!("scale={}", SCALE[s as usize - 1]),
     build: |kit| Ok(Box::new(Pixelate::new(kit)?)),
     explicit: None,
+    twin: Twin::Color8(twin),
+    // PIL's fixed-point integer arithmetic on both sides.
+    twin_tolerance: Tolerance::EXACT,
+    uniforms: &[UniformLayout {
+        rust: rust_layout!(Params { sizes }),
+        wgsl: "Params",
+        shader: SHADER,
+    }],
 };
 
 /// PIL's fixed-point precision for 8-bit resampling.
@@ -222,9 +232,9 @@ impl GpuPerturbation for Pixelate {
 }
 
 /// CPU twin: PIL's BOX down (rows, then columns, each rounded to 8 bits) and NEAREST up.
-pub fn twin(image: &RgbImage, severity: u8) -> RgbImage {
+pub fn twin(image: &RgbImage, key: &FrameKey) -> RgbImage {
     let (w, h) = (image.width, image.height);
-    let [sw, sh] = small_size(w, h, SCALE[severity as usize - 1]);
+    let [sw, sh] = small_size(w, h, SCALE[key.level()]);
     let columns = box_runs(w, sw);
     let rows = box_runs(h, sh);
     let mut horizontal = vec![[0u8; 3]; (sw * h) as usize];
@@ -262,20 +272,6 @@ mod tests {
     use super::*;
     use crate::testing;
 
-    #[test]
-    fn gpu_matches_twin_exactly() {
-        let clean = testing::test_image(97, 61);
-        for severity in 1..=5 {
-            let gpu = testing::run_color(&ENTRY, severity, 0, &clean);
-            testing::assert_close(
-                &gpu,
-                &twin(&clean, severity),
-                0,
-                &format!("pixelate-{severity}"),
-            );
-        }
-    }
-
     /// Hand-checked against Pillow 13: `Image.resize((4, 1), BOX)` of 10 pixels takes runs
     /// [0,3) [3,5) [5,8) [8,10) (scale 2.5: centres 1.25, 3.75, 6.25, 8.75).
     #[test]
@@ -297,7 +293,7 @@ mod tests {
     fn flat_image_stays_flat() {
         let grey = testing::uniform_image(50, 40, 77);
         for severity in 1..=5 {
-            assert_eq!(twin(&grey, severity), grey);
+            assert_eq!(twin(&grey, &testing::key(0, severity)), grey);
         }
     }
 }

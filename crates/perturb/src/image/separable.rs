@@ -32,10 +32,13 @@ pub(crate) fn gaussian_runs(
 }
 
 impl SeparableFilter {
+    pub const ROWS_SHADER: &str = "perturb/image/filter_rows.wgsl";
+    pub const COLUMNS_SHADER: &str = "perturb/image/filter_columns.wgsl";
+
     pub fn new(kit: &Kit) -> Result<Self, PerturbError> {
         Ok(Self {
-            rows: kit.pipeline("perturb/image/filter_rows.wgsl")?,
-            columns: kit.pipeline("perturb/image/filter_columns.wgsl")?,
+            rows: kit.pipeline(Self::ROWS_SHADER)?,
+            columns: kit.pipeline(Self::COLUMNS_SHADER)?,
             row_kernel: kit.uniform_buffer::<Kernel1dUniform>("separable row kernel"),
             column_kernel: kit.uniform_buffer::<Kernel1dUniform>("separable column kernel"),
         })

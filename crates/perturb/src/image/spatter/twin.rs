@@ -3,7 +3,8 @@
 use super::{Liquid, JUMPS, MUD_COLOR, NAME, PARAMS, TRUNCATE, WATER_COLOR};
 use crate::image::kernels::{gaussian_half_kernel, symmetric_filter, Axis, Edge};
 use crate::image_f32::{truncate8, RgbF32};
-use crate::rng::{normal_pair, RngKey};
+use crate::perturbation::FrameKey;
+use crate::rng::normal_pair;
 
 /// A single-channel plane with the shaders' edge rules.
 struct Plane {
@@ -42,9 +43,9 @@ impl Plane {
 }
 
 /// The liquid layer: blurred noise with values under the threshold set to 0.
-fn liquid_layer(width: u32, height: u32, severity: u8, seed: u64, frame: u32) -> Plane {
-    let (mean, deviation, sigma, threshold, _, _) = PARAMS[severity as usize - 1];
-    let rng = RngKey::new(seed, NAME, frame, 0);
+fn liquid_layer(width: u32, height: u32, key: &FrameKey) -> Plane {
+    let (mean, deviation, sigma, threshold, _, _) = PARAMS[key.level()];
+    let rng = key.rng(NAME, 0);
     let noise: Vec<f32> = (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
         .map(|(x, y)| {
@@ -221,11 +222,11 @@ fn water_shade(liquid: &Plane) -> Plane {
     })
 }
 
-/// CPU twin of spatter for frame `frame` of seed `seed`.
-pub fn twin(image: &RgbF32, severity: u8, seed: u64, frame: u32) -> RgbF32 {
-    let (_, _, _, threshold, intensity, kind) = PARAMS[severity as usize - 1];
+/// CPU twin of spatter.
+pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
+    let (_, _, _, threshold, intensity, kind) = PARAMS[key.level()];
     let (w, h) = (image.width, image.height);
-    let liquid = liquid_layer(w, h, severity, seed, frame);
+    let liquid = liquid_layer(w, h, key);
     let mut out = image.clone();
     match kind {
         Liquid::Water => {
@@ -282,7 +283,7 @@ mod tests {
     fn droplets_are_blobs_with_rims_not_noise() {
         // Severity 1: the liquid layer covers a minority of the frame in connected blobs (a
         // pixel's liquid neighbours are mostly liquid too), and edges trace their outlines.
-        let liquid = liquid_layer(160, 120, 1, 3, 0);
+        let liquid = liquid_layer(160, 120, &crate::testing::key(3, 1));
         let wet: Vec<bool> = liquid.data.iter().map(|&v| v > 0.0).collect();
         let fraction = wet.iter().filter(|&&b| b).count() as f32 / wet.len() as f32;
         assert!((0.02..0.5).contains(&fraction), "wet fraction {fraction}");
