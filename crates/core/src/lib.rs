@@ -7,6 +7,7 @@
 
 pub mod dataset;
 mod error;
+pub mod hash;
 mod image_buffer;
 mod intrinsics;
 mod nearest_time;

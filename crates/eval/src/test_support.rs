@@ -1,6 +1,7 @@
 //! Deterministic random fixtures for unit tests (SplitMix64; no global RNG).
 
 use glam::{DMat3, DQuat, DVec3};
+use rslam_core::hash::{splitmix64, splitmix64_next};
 
 pub struct TestRng(u64);
 
@@ -10,11 +11,9 @@ impl TestRng {
     }
 
     fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+        let out = splitmix64(self.0);
+        self.0 = splitmix64_next(self.0);
+        out
     }
 
     /// Uniform in [0, 1).

@@ -29,20 +29,7 @@ impl FrameTextures {
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::COPY_DST;
         let make = |label, format, view_formats: &[wgpu::TextureFormat]| {
-            ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats,
-            })
+            ctx.texture_2d(label, format, (width, height), usage, view_formats)
         };
         let color = make(
             "frame colour",

@@ -11,6 +11,7 @@ mod frame;
 mod frame_ring;
 mod readback;
 pub mod shader;
+mod texture;
 
 pub use context::{AdapterChoice, GpuContext};
 pub use error::GpuError;

@@ -111,25 +111,7 @@ pub struct Scratch {
 
 impl Scratch {
     pub fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
-        let texture = |label, format| {
-            ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC
-                    | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            })
-        };
+        let texture = |label, format| ctx.storage_texture(label, format, (width, height));
         use wgpu::TextureFormat as F;
         Self {
             color: texture("scratch colour", F::Rgba8Unorm),

@@ -25,8 +25,7 @@ fn mix(v: &mut [u32; 4]) {
 
 /// 32-bit FNV-1a of a perturbation name: the name's part of every key.
 pub fn name_hash(name: &str) -> u32 {
-    name.bytes()
-        .fold(0x811c_9dc5, |h, b| (h ^ b as u32).wrapping_mul(0x0100_0193))
+    rslam_core::hash::fnv1a32(name.as_bytes())
 }
 
 /// The key of one stream of draws: (seed, perturbation, frame, purpose) hashed twice.

@@ -154,20 +154,11 @@ impl Pixelate {
             columns: kit.pipeline(SHADER)?,
             params: kit.uniform_buffer::<Params>(SHADER),
             tables: kit.storage_buffer(SHADER, largest as u64 * 4),
-            intermediate: kit.ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("pixelate rows"),
-                size: wgpu::Extent3d {
-                    width: widest,
-                    height: kit.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba8Unorm,
-                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            }),
+            intermediate: kit.ctx.storage_texture(
+                "pixelate rows",
+                wgpu::TextureFormat::Rgba8Unorm,
+                (widest, kit.height),
+            ),
             plans,
         })
     }

@@ -11,23 +11,7 @@ pub fn storage_texture(
     width: u32,
     height: u32,
 ) -> wgpu::Texture {
-    kit.ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    })
+    kit.ctx.storage_texture(label, format, (width, height))
 }
 
 /// A frame-sized `Rgba32Float` texture for full-precision intermediate results.

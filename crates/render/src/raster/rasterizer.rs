@@ -158,21 +158,14 @@ impl Rasterizer {
             }
             .into());
         }
-        let depth_buffer = device
-            .create_texture(&wgpu::TextureDescriptor {
-                label: Some("z-buffer"),
-                size: wgpu::Extent3d {
-                    width: intrinsics.width,
-                    height: intrinsics.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: DEPTH_BUFFER_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            })
+        let depth_buffer = ctx
+            .texture_2d(
+                "z-buffer",
+                DEPTH_BUFFER_FORMAT,
+                (intrinsics.width, intrinsics.height),
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+                &[],
+            )
             .create_view(&Default::default());
         Ok(Self {
             intrinsics,

@@ -57,6 +57,7 @@ pub fn build(name: &str) -> Option<Scene> {
         half: room_half - Vec2::splat(plan.track_margin) - plan.track_centre.abs(),
         room_half,
     };
-    let trajectory = trajectory::default_trajectory(&track, rng::mix64(seed ^ 0x7472_616a));
+    let trajectory =
+        trajectory::default_trajectory(&track, rslam_core::hash::splitmix64(seed ^ 0x7472_616a));
     Some(b.finish(name, trajectory))
 }

@@ -1,13 +1,7 @@
 //! Counter-based randomness for the procedural scenes: every value is a hash of (seed, counter),
 //! so a scene depends on its name only, never on call order across threads or a global RNG.
 
-/// SplitMix64's finaliser (Steele, Lea & Flood 2014), a good 64-bit mixer.
-pub fn mix64(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
+use rslam_core::hash::{fnv1a64, splitmix64};
 
 /// Hash of a seed and up to three integer coordinates: one mixing round over the coordinates
 /// spread by large odd constants (the noise of every texture pixel goes through here).
@@ -15,7 +9,7 @@ pub fn hash3(seed: u64, a: i64, b: i64, c: i64) -> u64 {
     let key = (a as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15)
         ^ (b as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f)
         ^ (c as u64).wrapping_mul(0x1656_67b1_9e37_79f9);
-    mix64(seed ^ mix64(key))
+    splitmix64(seed ^ splitmix64(key))
 }
 
 /// Uniform in [0, 1) from a hash.
@@ -25,9 +19,7 @@ pub fn unit(h: u64) -> f32 {
 
 /// FNV-1a 64 of a name: the seed of a scene.
 pub fn seed_from_name(name: &str) -> u64 {
-    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
+    fnv1a64(name.as_bytes())
 }
 
 /// A stream of values `hash(seed, 0), hash(seed, 1), …`.
@@ -44,12 +36,12 @@ impl Rng {
 
     /// An independent stream for a named purpose.
     pub fn fork(&self, purpose: &str) -> Rng {
-        Rng::new(mix64(self.seed ^ seed_from_name(purpose)))
+        Rng::new(splitmix64(self.seed ^ seed_from_name(purpose)))
     }
 
     pub fn next_u64(&mut self) -> u64 {
         self.counter += 1;
-        mix64(self.seed ^ mix64(self.counter))
+        splitmix64(self.seed ^ splitmix64(self.counter))
     }
 
     /// Uniform in [0, 1).
