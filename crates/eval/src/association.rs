@@ -1,7 +1,7 @@
 //! Pairs estimate poses with ground-truth poses, exactly as evo 1.38.1
 //! (`evo.core.sync.associate_trajectories` with the default `nearest_time` method).
 
-use rslam_core::Trajectory;
+use rslam_core::{nearest_time, Trajectory};
 use serde::Serialize;
 
 use crate::EvalError;
@@ -150,7 +150,7 @@ fn matching_time_indices(
             }
             nearest_in_sorted(&stamps_2, stamp_1, max_diff)
         } else {
-            nearest_linear(&stamps_2, stamp_1, max_diff)
+            nearest_time(stamps_2.iter().copied(), stamp_1, max_diff)
         };
         if let Some(index_2) = best {
             indices_1.push(index_1);
@@ -179,15 +179,6 @@ fn nearest_in_sorted(stamps: &[f64], stamp: f64, max_diff: f64) -> Option<usize>
     } else {
         None
     }
-}
-
-/// `argmin |stamps − stamp|` (first minimum), kept within `max_diff`.
-fn nearest_linear(stamps: &[f64], stamp: f64, max_diff: f64) -> Option<usize> {
-    let (index, diff) = stamps.iter().map(|t| (t - stamp).abs()).enumerate().fold(
-        (0, f64::INFINITY),
-        |best, (i, d)| if d < best.1 { (i, d) } else { best },
-    );
-    (diff <= max_diff).then_some(index)
 }
 
 fn no_matches(est: &Trajectory, gt: &Trajectory, max_diff: f64, t_offset: f64) -> EvalError {

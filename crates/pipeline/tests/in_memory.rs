@@ -1,0 +1,158 @@
+//! The in-memory API against the files a run writes: the same frames, whether asked for as a
+//! range, one at a time, or written as a dataset; buffers go through the GPU unchanged when
+//! nothing perturbs them.
+
+use std::sync::OnceLock;
+
+use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFormat};
+use rslam_core::Intrinsics;
+use rslam_gpu::{AdapterChoice, GpuContext};
+use rslam_perturb::PerturbSpec;
+use rslam_pipeline::source::BufferSource;
+use rslam_pipeline::{render_dataset, FramesInMemory, RenderJob, RgbdFrame, SceneJob, Silent};
+
+const CAMERA: Intrinsics = Intrinsics {
+    width: 72,
+    height: 40,
+    fx: 40.0,
+    fy: 40.0,
+    cx: 35.5,
+    cy: 19.5,
+};
+/// TUM depth PNGs store round(z · 5000).
+const DEPTH_STEP_M: f32 = 0.5 / 5000.0 + 1e-6;
+
+fn context() -> &'static GpuContext {
+    static CONTEXT: OnceLock<GpuContext> = OnceLock::new();
+    CONTEXT.get_or_init(|| {
+        GpuContext::new(&AdapterChoice::default())
+            .unwrap_or_else(|e| panic!("these tests need an adapter (lavapipe is fine): {e}"))
+    })
+}
+
+fn scene_job(spec: &str) -> SceneJob {
+    SceneJob {
+        scene: "room0".into(),
+        trajectory: None,
+        frames: Some(8),
+        camera: CAMERA,
+        rate_hz: 20.0,
+        spec: match spec {
+            "" => PerturbSpec::default(),
+            text => PerturbSpec::parse(text).unwrap(),
+        },
+        seed: 3,
+    }
+}
+
+fn collect(
+    frames: &mut FramesInMemory<impl rslam_pipeline::source::FrameSource>,
+    range: std::ops::Range<usize>,
+) -> Vec<RgbdFrame> {
+    let mut got = Vec::new();
+    frames
+        .frames(context(), range, |frame| {
+            got.push(frame);
+            Ok(())
+        })
+        .unwrap();
+    got
+}
+
+#[test]
+fn scene_frames_in_memory_are_the_frames_a_render_writes() {
+    let ctx = context();
+    let job = scene_job("gaussian_noise:2@dynamic,depth_noise:3,fast:2,misalign:1");
+    let mut frames = FramesInMemory::scene(ctx, &job).unwrap();
+    assert_eq!(frames.plan().len(), 4, "fast:2 keeps 4 of 8");
+    let all = collect(&mut frames, 0..4);
+    assert_eq!(
+        all.iter().map(|f| f.index).collect::<Vec<_>>(),
+        vec![0, 1, 2, 3]
+    );
+    let alone = frames.frame(ctx, 2).unwrap();
+    assert_eq!(
+        alone, all[2],
+        "a frame does not depend on which others were made"
+    );
+
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ds");
+    let report = render_dataset(
+        ctx,
+        &RenderJob {
+            scene: job,
+            out: out.clone(),
+            format: DatasetFormat::Tum,
+            force: false,
+            command: vec!["test".into()],
+        },
+        &Silent,
+    )
+    .unwrap();
+    assert_eq!(report.frames, 4);
+    for frame in &all {
+        let png = out.join(format!("rgb/{:.6}.png", frame.rgb_time));
+        assert_eq!(
+            read_rgb(&png).unwrap(),
+            frame.color,
+            "frame {}",
+            frame.index
+        );
+        let depth_png = out.join(format!("depth/{:.6}.png", frame.depth_time));
+        let written = decode_depth_png(&depth_png, 5000.0).unwrap();
+        let depth = frame.depth.as_ref().expect("scenes have depth");
+        for (a, b) in written.data.iter().zip(&depth.data) {
+            assert!(
+                (a - b.min(65535.0 / 5000.0)).abs() <= DEPTH_STEP_M,
+                "frame {}: {a} vs {b}",
+                frame.index
+            );
+        }
+    }
+    // misalign:1 on the fast stream: output 2 carries the depth captured with output 1, and
+    // output 1 that of output 0, which output 0 (clamped at the start) carries too.
+    assert_eq!(all[2].depth_time, all[1].rgb_time);
+    assert_eq!(all[1].depth, all[0].depth);
+    assert_ne!(all[2].depth, all[1].depth);
+}
+
+#[test]
+fn buffers_pass_through_unchanged_and_are_perturbed_per_frame() {
+    let ctx = context();
+    let mut scene = FramesInMemory::scene(ctx, &scene_job("")).unwrap();
+    let rendered = collect(&mut scene, 0..3);
+    let buffers = || {
+        BufferSource::new(
+            rendered
+                .iter()
+                .map(|f| (f.color.clone(), f.depth.clone()))
+                .collect(),
+        )
+        .unwrap()
+    };
+    let mut clean = FramesInMemory::buffers(ctx, buffers(), &PerturbSpec::default(), 0).unwrap();
+    for (back, original) in collect(&mut clean, 0..3).iter().zip(&rendered) {
+        assert_eq!(back.color, original.color);
+        assert_eq!(back.depth, original.depth);
+    }
+    let spec = PerturbSpec::parse("gaussian_noise:3,depth_missing:4").unwrap();
+    let mut noisy = FramesInMemory::buffers(ctx, buffers(), &spec, 0).unwrap();
+    let once = collect(&mut noisy, 0..3);
+    let again = collect(&mut noisy, 0..3);
+    assert_eq!(once, again, "same seed, same bytes");
+    assert_ne!(once[0].color, rendered[0].color);
+    assert_ne!(once[1].depth, rendered[1].depth);
+
+    let mut odd = rendered[0].color.clone();
+    odd.width -= 1;
+    odd.data
+        .truncate(odd.width as usize * odd.height as usize * 3);
+    let error = BufferSource::new(vec![(rendered[0].color.clone(), None), (odd, None)]).err();
+    assert!(error.unwrap().to_string().contains("frame 1"));
+    let no_depth = BufferSource::new(vec![(rendered[0].color.clone(), None)]).unwrap();
+    let refused = FramesInMemory::buffers(ctx, no_depth, &spec, 0)
+        .err()
+        .unwrap();
+    assert!(refused.to_string().contains("depth"), "{refused}");
+}
