@@ -63,13 +63,7 @@ impl FrameSource for SceneSource {
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
-        match sources.iter().find(|&&s| s >= self.poses.len()) {
-            Some(s) => Err(PipelineError::option(
-                "frame",
-                format!("{s} is past the path's {} poses", self.poses.len()),
-            )),
-            None => Ok(()),
-        }
+        check_in_range(sources, self.poses.len(), "poses of the path")
     }
 
     fn record(
@@ -120,17 +114,11 @@ impl FrameSource for DatasetSource {
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+        check_in_range(sources, self.frames.len(), "frames of the dataset")?;
         let needed: Vec<(usize, DatasetFrame)> = sources
             .iter()
-            .map(|&s| {
-                self.frames.get(s).cloned().map(|f| (s, f)).ok_or_else(|| {
-                    PipelineError::option(
-                        "frame",
-                        format!("{s} is past the dataset's {} frames", self.frames.len()),
-                    )
-                })
-            })
-            .collect::<Result<_, _>>()?;
+            .map(|&s| (s, self.frames[s].clone()))
+            .collect();
         let scale = self.depth_scale;
         self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
             Ok(Decoded {
@@ -175,6 +163,17 @@ impl FrameSource for DatasetSource {
         }
         frame.upload(ctx, &decoded.color, decoded.depth.as_ref());
         Ok(())
+    }
+}
+
+/// Every source frame asked for is one of the `count` there are.
+fn check_in_range(sources: &[usize], count: usize, what: &str) -> Result<(), PipelineError> {
+    match sources.iter().find(|&&s| s >= count) {
+        Some(s) => Err(PipelineError::option(
+            "frame",
+            format!("{s} is past the {count} {what}"),
+        )),
+        None => Ok(()),
     }
 }
 
@@ -258,13 +257,7 @@ impl FrameSource for BufferSource {
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
-        match sources.iter().find(|&&s| s >= self.frames.len()) {
-            Some(s) => Err(PipelineError::option(
-                "frame",
-                format!("{s} is past the {} frames given", self.frames.len()),
-            )),
-            None => Ok(()),
-        }
+        check_in_range(sources, self.frames.len(), "frames given")
     }
 
     fn record(
