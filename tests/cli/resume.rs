@@ -130,7 +130,10 @@ fn another_job_is_refused_and_force_starts_over() {
     let run = |extra: &[&str]| ws.rslam(&[&["render"][..], &small, extra].concat());
     run(&["--seed", "1"]).success();
     let before = tree(&ws.path("ds"));
-    run(&["--seed", "2"]).fails_with(2, &["ds", "another job", "seed 1", "--force"]);
+    run(&["--seed", "2"]).fails_with(
+        2,
+        &["ds", "another job", "seed 1", "differs in seed", "--force"],
+    );
     assert_eq!(
         tree(&ws.path("ds")),
         before,

@@ -28,7 +28,7 @@ pub fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, 
         match Manifest::read_as(root, RUN_FILE) {
             Ok(earlier) if earlier.job() == job.job() && !force => FolderState::Resume,
             Ok(_) if force => clear(root)?,
-            Ok(earlier) => return Err(other_job(root, &earlier, "an unfinished run")),
+            Ok(earlier) => return Err(other_job(root, &earlier, job, "an unfinished run")),
             Err(_) if force => clear(root)?,
             Err(e) => return Err(e.into()),
         }
@@ -43,7 +43,7 @@ pub fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, 
                 FolderState::Resume
             }
             Ok(_) if force => clear(root)?,
-            Ok(earlier) => return Err(other_job(root, &earlier, "the finished output")),
+            Ok(earlier) => return Err(other_job(root, &earlier, job, "the finished output")),
             Err(_) if force => clear(root)?,
             Err(e) => return Err(e.into()),
         }
@@ -68,16 +68,42 @@ pub fn finish(root: &Path) -> Result<(), PipelineError> {
     Ok(())
 }
 
-fn other_job(root: &Path, earlier: &Manifest, what: &str) -> PipelineError {
+fn other_job(root: &Path, earlier: &Manifest, job: &Manifest, what: &str) -> PipelineError {
     PipelineError::output(
         root,
         format!(
-            "holds {what} of another job (`{}`, perturbation '{}', seed {}); choose another output or pass --force to start over",
+            "holds {what} of another job (`{}`, perturbation '{}', seed {}; differs in {}); choose another output or pass --force to start over",
             earlier.command.join(" "),
             earlier.perturbation,
-            earlier.seed
+            earlier.seed,
+            differing_fields(&earlier.job(), &job.job()).join(", ")
         ),
     )
+}
+
+/// The manifest fields (`extra.adapter` and the like one level down) in which two jobs differ.
+fn differing_fields(a: &Manifest, b: &Manifest) -> Vec<String> {
+    let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
+        (serde_json::to_value(a), serde_json::to_value(b))
+    else {
+        return Vec::new();
+    };
+    let mut fields = Vec::new();
+    for (key, value) in &a {
+        match (value, b.get(key)) {
+            (serde_json::Value::Object(inner), Some(serde_json::Value::Object(other))) => {
+                fields.extend(
+                    inner
+                        .iter()
+                        .filter(|(k, v)| other.get(*k) != Some(*v))
+                        .map(|(k, _)| format!("{key}.{k}")),
+                );
+            }
+            (value, other) if other != Some(value) => fields.push(key.clone()),
+            _ => {}
+        }
+    }
+    fields
 }
 
 fn is_empty(root: &Path) -> Result<bool, PipelineError> {
