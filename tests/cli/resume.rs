@@ -149,6 +149,23 @@ fn another_job_is_refused_and_force_starts_over() {
         ws.path("mine/notes.txt").exists(),
         "--force never deletes other files"
     );
+
+    ws.rslam(&[
+        "perturb",
+        "--input",
+        "ds",
+        "--out",
+        "./ds",
+        "--perturb",
+        "fog:1",
+        "--force",
+    ])
+    .fails_with(2, &["ds", "is the input itself"]);
+    assert_eq!(
+        crate::dataset_check::manifest(&ws.path("ds")).seed,
+        2,
+        "input untouched"
+    );
 }
 
 #[test]

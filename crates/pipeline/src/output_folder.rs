@@ -61,6 +61,17 @@ pub fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, 
     Ok(state)
 }
 
+/// Refuses an output folder that is the input itself: `--force` would delete what is being read.
+pub fn check_not_input(out: &Path, input: &Path) -> Result<(), PipelineError> {
+    match (out.canonicalize(), input.canonicalize()) {
+        (Ok(out_path), Ok(input_path)) if out_path == input_path => Err(PipelineError::output(
+            out,
+            "is the input itself; write the perturbed copy to another folder",
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Marks the run finished: called after the manifest is written.
 pub fn finish(root: &Path) -> Result<(), PipelineError> {
     let path = root.join(RUN_FILE);

@@ -10,6 +10,7 @@ use rslam_perturb::PerturbSpec;
 
 use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
 use crate::manifest::ManifestParts;
+use crate::output_folder;
 use crate::pipeline::Pipeline;
 use crate::plan::{FramePlan, SourceTiming};
 use crate::progress::Progress;
@@ -80,6 +81,7 @@ pub fn perturb_dataset(
     job: &PerturbDatasetJob,
     progress: &dyn Progress,
 ) -> Result<RunReport, PipelineError> {
+    output_folder::check_not_input(&job.out, &job.input)?;
     let dataset = read_dataset(&job.input, &job.overrides)?;
     check_dataset_spec(&dataset, &job.spec)?;
     let plan = dataset_plan(&dataset, &job.spec, job.seed);

@@ -143,6 +143,9 @@ pub fn perturb_images(
         extra: serde_json::json!({ "files": names, "adapter": ctx.describe() }),
     }
     .build()?;
+    if let Some(input) = job.files.first().and_then(|f| f.parent()) {
+        output_folder::check_not_input(&job.out, input)?;
+    }
     let found = output_folder::prepare(&job.out, &manifest, job.force)?;
     if found == FolderState::Complete {
         return Ok(Some(RunReport {
