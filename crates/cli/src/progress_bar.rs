@@ -3,14 +3,12 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
 
 use indicatif::{ProgressBar as Bar, ProgressStyle};
 use rslam_pipeline::{PipelineError, Progress};
 
 pub struct ProgressBar {
     bar: Mutex<Option<Bar>>,
-    started: Mutex<Option<Instant>>,
     interrupted: Arc<AtomicBool>,
 }
 
@@ -22,7 +20,6 @@ impl ProgressBar {
         let _ = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst));
         Self {
             bar: Mutex::new(None),
-            started: Mutex::new(None),
             interrupted,
         }
     }
@@ -30,9 +27,8 @@ impl ProgressBar {
     /// Frames per second of the last stage, for stderr.
     pub fn rate(&self) -> Option<f64> {
         let bar = self.bar.lock().unwrap_or_else(|p| p.into_inner());
-        let started = *self.started.lock().unwrap_or_else(|p| p.into_inner());
-        let (bar, started) = (bar.as_ref()?, started?);
-        let seconds = started.elapsed().as_secs_f64();
+        let bar = bar.as_ref()?;
+        let seconds = bar.elapsed().as_secs_f64();
         (seconds > 0.0 && bar.position() > 0).then(|| bar.position() as f64 / seconds)
     }
 }
@@ -47,7 +43,6 @@ impl Progress for ProgressBar {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
         *self.bar.lock().unwrap_or_else(|p| p.into_inner()) = Some(bar);
-        *self.started.lock().unwrap_or_else(|p| p.into_inner()) = Some(Instant::now());
     }
 
     fn advance(&self) -> Result<(), PipelineError> {

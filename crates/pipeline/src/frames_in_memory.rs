@@ -8,7 +8,7 @@ use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 
 use crate::perturb_dataset::{check_dataset_spec, dataset_plan};
-use crate::perturb_images::check_image_spec;
+use crate::perturb_images::check_frame_items_only;
 use crate::pipeline::Pipeline;
 use crate::plan::FramePlan;
 use crate::progress::Silent;
@@ -64,11 +64,7 @@ impl FramesInMemory<BufferSource> {
                 format!("'{spec}': depth corruptions need depth, and the frames have none"),
             ));
         }
-        let without_depth = PerturbSpec {
-            depth: Vec::new(),
-            ..spec.clone()
-        };
-        check_image_spec(&without_depth)?;
+        check_frame_items_only(spec)?;
         let plan = FramePlan::images(source.len(), source.has_depth(), spec, seed);
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, spec, seed)?,

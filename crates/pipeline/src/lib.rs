@@ -37,7 +37,7 @@ pub use output_folder::FolderState;
 pub use perturb_dataset::{perturb_dataset, PerturbDatasetJob};
 pub use perturb_images::{image_files, perturb_images, PerturbImagesJob};
 pub use pipeline::Pipeline;
-pub use plan::{FramePlan, SourceTiming};
+pub use plan::{FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
 pub use render::{render_dataset, RenderJob};
 pub use scene_job::{ResolvedScene, SceneJob};

@@ -69,6 +69,11 @@ pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     if !spec.depth.is_empty() {
         return Err(PipelineError::option("--perturb", format!("'{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)")));
     }
+    check_frame_items_only(spec)
+}
+
+/// Refuses items that act on a sequence or a scene rather than on each frame.
+pub fn check_frame_items_only(spec: &PerturbSpec) -> Result<(), PipelineError> {
     if spec.fast.is_some() || spec.misalign.is_some() || spec.needs_scene() {
         return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
     }

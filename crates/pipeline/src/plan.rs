@@ -23,6 +23,13 @@ pub struct FramePlan {
     pub severities: Vec<ItemSeverities>,
 }
 
+/// The output frames one source frame contributes to, ascending.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SourceOutputs {
+    pub rgb: Vec<usize>,
+    pub depth: Vec<usize>,
+}
+
 /// When each source frame was captured.
 pub struct SourceTiming<'a> {
     pub rgb_times: &'a [f64],
@@ -140,14 +147,17 @@ impl FramePlan {
         sources
     }
 
-    /// The output frames whose colour comes from `source`.
-    pub fn rgb_outputs(&self, source: usize) -> Vec<usize> {
-        outputs_of(&self.rgb_source, source)
-    }
-
-    /// The output frames whose depth comes from `source`.
-    pub fn depth_outputs(&self, source: usize) -> Vec<usize> {
-        outputs_of(&self.depth_source, source)
+    /// For every source frame, the output frames showing its colour and those carrying its
+    /// depth: one pass over the plan, for sinks that look it up per frame.
+    pub fn outputs_by_source(&self) -> HashMap<usize, SourceOutputs> {
+        let mut outputs: HashMap<usize, SourceOutputs> = HashMap::new();
+        for (j, &s) in self.rgb_source.iter().enumerate() {
+            outputs.entry(s).or_default().rgb.push(j);
+        }
+        for (j, &s) in self.depth_source.iter().enumerate() {
+            outputs.entry(s).or_default().depth.push(j);
+        }
+        outputs
     }
 
     /// The ground truth of the output: the pose of each output frame's colour source, stamped
@@ -158,12 +168,6 @@ impl FramePlan {
             self.rgb_source.iter().map(|&s| poses[s]).collect(),
         )
     }
-}
-
-fn outputs_of(sources: &[usize], source: usize) -> Vec<usize> {
-    (0..sources.len())
-        .filter(|&j| sources[j] == source)
-        .collect()
 }
 
 /// Image corruptions are keyed by the colour's source frame, depth corruptions by the depth's.
@@ -227,8 +231,10 @@ mod tests {
         let plan = FramePlan::rendered(6, 10.0, &spec("misalign:2"), 0);
         assert_eq!(plan.depth_source, vec![0, 0, 0, 1, 2, 3]);
         assert_eq!(plan.frames[4].depth_time, 0.2);
-        assert_eq!(plan.depth_outputs(0), vec![0, 1, 2]);
-        assert_eq!(plan.rgb_outputs(4), vec![4]);
+        let outputs = plan.outputs_by_source();
+        assert_eq!(outputs[&0].depth, vec![0, 1, 2]);
+        assert_eq!(outputs[&4].rgb, vec![4]);
+        assert!(outputs[&5].depth.is_empty());
         assert_eq!(plan.needed_sources(), vec![0, 1, 2, 3, 4, 5]);
     }
 

@@ -13,11 +13,10 @@ mod fixtures;
 use std::path::PathBuf;
 
 use glam::{DMat3, DQuat, DVec3};
-use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
-use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
+use rslam_core::{Intrinsics, Pose, RgbImage};
 use rslam_render::raster::{color_agreement, edge_mask, ColorAgreement};
 use rslam_render::raycast::{RayCastFrame, RayCaster};
-use rslam_render::{load_scene, Rasterizer, Scene};
+use rslam_render::{load_scene, Scene};
 use serde_json::json;
 
 /// A pixel "differs" when some channel is more than this many 8-bit levels off. Both sides round
@@ -35,52 +34,32 @@ const MAX_MEAN_ABS_ERROR: f64 = 0.75;
 /// [`LEVEL_TOLERANCE`]; no mipmapping at all, a +0.5 mip bias, or mips averaged in sRGB bytes
 /// push every view to 0.035 or more.
 const MAX_OFF_FRACTION: f64 = 0.01;
+/// A small camera with pixels about as large, in angle, as the Replica camera's at 1/6 size.
+const SMALL_CAMERA: Intrinsics = Intrinsics {
+    width: 200,
+    height: 112,
+    fx: 100.0,
+    fy: 100.0,
+    cx: 99.5,
+    cy: 55.5,
+};
 /// At least this share of the image must be compared (not edges, not empty space), or the test
 /// would pass by looking at nothing.
 const MIN_COMPARED_FRACTION: f64 = 0.5;
-
-struct Rendered {
-    rgb: RgbImage,
-    depth: DepthImage,
-}
-
-fn render(scene: &Scene, poses: &[Pose], k: Intrinsics) -> Vec<Rendered> {
-    let ctx = GpuContext::new(&AdapterChoice::default())
-        .expect("a Vulkan adapter (lavapipe) is required");
-    let rasterizer = Rasterizer::new(&ctx, scene, k).expect("upload scene");
-    let frame = FrameTextures::new(&ctx, k.width, k.height);
-    let readback = FrameReadback::new(&ctx, k.width, k.height, true);
-    poses
-        .iter()
-        .map(|pose| {
-            let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            rasterizer.encode(&ctx, &mut encoder, &frame, pose);
-            readback.encode_copy(&mut encoder, &frame);
-            let submission = ctx.queue.submit([encoder.finish()]);
-            let (rgb, depth) = readback.read(&ctx, submission).expect("readback");
-            Rendered {
-                rgb,
-                depth: depth.expect("depth was asked for"),
-            }
-        })
-        .collect()
-}
 
 /// Compares every view with the oracle; returns the agreements (printed with `--nocapture`) and
 /// panics naming every view out of bounds, after writing its images.
 fn assert_colour_agrees(name: &str, scene: &Scene, poses: &[Pose], k: Intrinsics) {
     let oracle = RayCaster::new(scene);
     let mut failures = Vec::new();
-    for (i, (rendered, pose)) in render(scene, poses, k).iter().zip(poses).enumerate() {
+    for (i, ((rgb, depth), pose)) in fixtures::render(scene, poses, k)
+        .iter()
+        .zip(poses)
+        .enumerate()
+    {
         let expected = oracle.render(pose, &k);
-        let edges = edge_mask(&rendered.depth, &expected, &oracle.surface_edges(&expected));
-        let a = color_agreement(
-            &rendered.rgb,
-            &rendered.depth,
-            &expected,
-            &edges,
-            LEVEL_TOLERANCE,
-        );
+        let edges = edge_mask(depth, &expected, &oracle.surface_edges(&expected));
+        let a = color_agreement(rgb, depth, &expected, &edges, LEVEL_TOLERANCE);
         eprintln!(
             "{name} view {i}: compared {} of {} pixels, mean |error| {:.3?}, {:.4} beyond {} levels, max {}",
             a.compared,
@@ -91,7 +70,7 @@ fn assert_colour_agrees(name: &str, scene: &Scene, poses: &[Pose], k: Intrinsics
             a.max_abs_error
         );
         if let Some(problem) = problem(&a, k.pixel_count()) {
-            let dir = write_images(&format!("{name}-view{i}"), rendered, &expected, &edges);
+            let dir = write_images(&format!("{name}-view{i}"), rgb, &expected, &edges);
             failures.push(format!(
                 "{name} view {i}: {problem}; {a:?}; images in {}",
                 dir.display()
@@ -122,14 +101,13 @@ fn problem(a: &ColorAgreement, pixels: usize) -> Option<String> {
 
 fn write_images(
     name: &str,
-    rendered: &Rendered,
+    rendered: &RgbImage,
     expected: &RayCastFrame,
     edges: &[bool],
 ) -> PathBuf {
     let dir = std::env::temp_dir().join("rslam-color-vs-oracle");
     std::fs::create_dir_all(&dir).expect("create the failure image folder");
     let diff: Vec<u8> = rendered
-        .rgb
         .data
         .chunks_exact(3)
         .zip(expected.rgb.data.chunks_exact(3))
@@ -144,12 +122,12 @@ fn write_images(
         .collect();
     let save = |suffix: &str, data: &[u8]| {
         let path = dir.join(format!("{name}-{suffix}.png"));
-        image::RgbImage::from_raw(rendered.rgb.width, rendered.rgb.height, data.to_vec())
+        image::RgbImage::from_raw(rendered.width, rendered.height, data.to_vec())
             .expect("image size")
             .save(&path)
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     };
-    save("actual", &rendered.rgb.data);
+    save("actual", &rendered.data);
     save("expected", &expected.rgb.data);
     save("diff", &diff);
     dir
@@ -172,14 +150,7 @@ fn builtin_scene_colour_matches_ray_cast() {
         .as_ref()
         .expect("default trajectory");
     let poses: Vec<Pose> = traj.poses.iter().step_by(250).copied().collect();
-    let k = Intrinsics {
-        width: 200,
-        height: 112,
-        fx: 100.0,
-        fy: 100.0,
-        cx: 99.5,
-        cy: 55.5,
-    };
+    let k = SMALL_CAMERA;
     assert_colour_agrees("room0", &scene, &poses, k);
 }
 
@@ -210,14 +181,7 @@ fn textured_glb_colour_matches_ray_cast() {
 fn every_loader_renders_colour_matching_ray_cast() {
     let dir = tempfile::tempdir().unwrap();
     let room = fixtures::FixtureRoom::new();
-    let k = Intrinsics {
-        width: 200,
-        height: 112,
-        fx: 100.0,
-        fy: 100.0,
-        cx: 99.5,
-        cy: 55.5,
-    };
+    let k = SMALL_CAMERA;
     for path in room.write_all(dir.path()) {
         let scene = load_scene(path.to_str().unwrap())
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));

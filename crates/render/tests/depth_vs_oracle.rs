@@ -3,11 +3,10 @@
 
 mod fixtures;
 
-use rslam_core::{DepthImage, Intrinsics, Pose};
-use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
+use rslam_core::{Intrinsics, Pose};
 use rslam_render::raster::{depth_agreement, DepthAgreement};
 use rslam_render::raycast::RayCaster;
-use rslam_render::{load_scene, Rasterizer, Scene};
+use rslam_render::{load_scene, Scene};
 
 /// Relative depth error allowed where both hit (the bar).
 const MAX_RELATIVE_ERROR: f32 = 1e-4;
@@ -24,34 +23,16 @@ fn camera() -> Intrinsics {
     }
 }
 
-fn render_depths(scene: &Scene, poses: &[Pose], k: Intrinsics) -> Vec<DepthImage> {
-    let ctx = GpuContext::new(&AdapterChoice::default())
-        .expect("a Vulkan adapter (lavapipe) is required");
-    let rasterizer = Rasterizer::new(&ctx, scene, k).expect("upload scene");
-    let frame = FrameTextures::new(&ctx, k.width, k.height);
-    let readback = FrameReadback::new(&ctx, k.width, k.height, true);
-    poses
-        .iter()
-        .map(|pose| {
-            let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            rasterizer.encode(&ctx, &mut encoder, &frame, pose);
-            readback.encode_copy(&mut encoder, &frame);
-            let submission = ctx.queue.submit([encoder.finish()]);
-            readback
-                .read(&ctx, submission)
-                .expect("readback")
-                .1
-                .expect("depth was asked for")
-        })
-        .collect()
-}
-
 fn assert_agrees(scene: &Scene, poses: &[Pose]) {
     let k = camera();
     let oracle = RayCaster::new(scene);
-    for (i, (rendered, pose)) in render_depths(scene, poses, k).iter().zip(poses).enumerate() {
+    for (i, ((_, depth), pose)) in fixtures::render(scene, poses, k)
+        .iter()
+        .zip(poses)
+        .enumerate()
+    {
         let expected = oracle.depth_image(pose, &k);
-        let a: DepthAgreement = depth_agreement(rendered, &expected);
+        let a: DepthAgreement = depth_agreement(depth, &expected);
         let pixels = k.pixel_count();
         assert!(
             a.compared > pixels / 2,

@@ -1,6 +1,7 @@
 //! A dataset on disk: each source frame's colour and depth are encoded on worker threads into
 //! every output frame that uses them; index files, checksums and the manifest come last.
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use rslam_core::dataset::{DatasetWriter, Manifest};
@@ -8,13 +9,14 @@ use rslam_core::{DepthImage, RgbImage, Trajectory};
 
 use super::FrameSink;
 use crate::encoder_pool::EncoderPool;
-use crate::plan::FramePlan;
+use crate::plan::{FramePlan, SourceOutputs};
 use crate::PipelineError;
 
 pub struct DatasetSink<'a> {
     writer: Arc<DatasetWriter>,
     pool: EncoderPool,
     plan: &'a FramePlan,
+    outputs: HashMap<usize, SourceOutputs>,
 }
 
 impl<'a> DatasetSink<'a> {
@@ -22,6 +24,7 @@ impl<'a> DatasetSink<'a> {
         Self {
             writer: Arc::new(writer),
             pool: EncoderPool::per_core(),
+            outputs: plan.outputs_by_source(),
             plan,
         }
     }
@@ -29,20 +32,14 @@ impl<'a> DatasetSink<'a> {
     /// Whether every file source frame `source` contributes to is on disk, complete (files
     /// appear under their final name only once whole).
     pub fn is_written(&self, source: usize) -> bool {
-        let root = self.writer.root();
-        let files = |outputs: Vec<usize>, depth: bool| {
-            outputs.into_iter().map(move |j| {
-                let names = self.writer.frame_files(j, &self.plan.frames[j]);
-                if depth {
-                    names.depth
-                } else {
-                    names.rgb
-                }
-            })
+        let Some(outputs) = self.outputs.get(&source) else {
+            return true;
         };
-        files(self.plan.rgb_outputs(source), false)
-            .chain(files(self.plan.depth_outputs(source), true))
-            .all(|name| root.join(name).is_file())
+        let names = |j: usize| self.writer.frame_files(j, &self.plan.frames[j]);
+        let root = self.writer.root();
+        let rgb = outputs.rgb.iter().map(|&j| names(j).rgb);
+        let depth = outputs.depth.iter().map(|&j| names(j).depth);
+        rgb.chain(depth).all(|name| root.join(name).is_file())
     }
 
     /// Waits for the encoders, then writes trajectory, index files, checksums and the manifest.
@@ -65,22 +62,24 @@ impl FrameSink for DatasetSink<'_> {
         color: RgbImage,
         depth: Option<DepthImage>,
     ) -> Result<(), PipelineError> {
+        let Some(outputs) = self.outputs.get(&source) else {
+            return Ok(());
+        };
         let color = Arc::new(color);
-        for j in self.plan.rgb_outputs(source) {
+        for &j in &outputs.rgb {
             let (writer, color, frame) = (self.writer.clone(), color.clone(), self.plan.frames[j]);
             self.pool
                 .submit(move || Ok(writer.write_rgb(j, &frame, &color)?))?;
         }
-        let outputs: Vec<_> = self
-            .plan
-            .depth_outputs(source)
-            .into_iter()
-            .map(|j| (j, self.plan.frames[j]))
+        let depth_outputs: Vec<_> = outputs
+            .depth
+            .iter()
+            .map(|&j| (j, self.plan.frames[j]))
             .collect();
-        if let (Some(depth), false) = (depth, outputs.is_empty()) {
+        if let (Some(depth), false) = (depth, depth_outputs.is_empty()) {
             let writer = self.writer.clone();
             self.pool
-                .submit(move || Ok(writer.write_depth(&outputs, &depth)?))?;
+                .submit(move || Ok(writer.write_depth(&depth_outputs, &depth)?))?;
         }
         Ok(())
     }
