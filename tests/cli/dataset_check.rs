@@ -1,5 +1,6 @@
 //! Reading back what `rslam render` / `rslam perturb` wrote, for assertions.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use rslam_core::dataset::{decode_depth_png, read_rgb, Manifest};
@@ -62,5 +63,35 @@ pub fn assert_poses_close(actual: &[Pose], expected: &[Pose], tolerance: f64) {
             dt < tolerance && dr < tolerance,
             "pose {i}: Δt {dt}, Δrot {dr} rad"
         );
+    }
+}
+
+/// Every file under `root`, relative path → bytes.
+pub fn tree(root: &Path) -> BTreeMap<String, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    let mut pending = vec![root.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else {
+                let relative = path.strip_prefix(root).unwrap().display().to_string();
+                out.insert(relative, std::fs::read(&path).unwrap());
+            }
+        }
+    }
+    out
+}
+
+pub fn assert_same_tree(a: &Path, b: &Path) {
+    let (a, b) = (tree(a), tree(b));
+    assert_eq!(
+        a.keys().collect::<Vec<_>>(),
+        b.keys().collect::<Vec<_>>(),
+        "same files"
+    );
+    for (name, bytes) in &a {
+        assert!(bytes == &b[name], "{name} differs");
     }
 }

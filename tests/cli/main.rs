@@ -9,3 +9,4 @@ mod perturb;
 mod render;
 mod resume;
 mod scene;
+mod suite;

@@ -2,44 +2,12 @@
 //! of an uninterrupted run; another job on that folder is refused; `--force` starts over;
 //! `rslam verify` catches a changed file.
 
-use std::collections::BTreeMap;
-use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use crate::dataset_check::files;
+use crate::dataset_check::{assert_same_tree, files, tree};
 use crate::harness::Workspace;
 use crate::render::SMALL_CAMERA;
-
-/// Every file under `root`, relative path → bytes.
-fn tree(root: &Path) -> BTreeMap<String, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    let mut pending = vec![root.to_path_buf()];
-    while let Some(dir) = pending.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                pending.push(path);
-            } else {
-                let relative = path.strip_prefix(root).unwrap().display().to_string();
-                out.insert(relative, std::fs::read(&path).unwrap());
-            }
-        }
-    }
-    out
-}
-
-fn assert_same_tree(a: &Path, b: &Path) {
-    let (a, b) = (tree(a), tree(b));
-    assert_eq!(
-        a.keys().collect::<Vec<_>>(),
-        b.keys().collect::<Vec<_>>(),
-        "same files"
-    );
-    for (name, bytes) in &a {
-        assert!(bytes == &b[name], "{name} differs");
-    }
-}
 
 const FRAMES: &str = "300";
 
@@ -63,16 +31,16 @@ fn render_args(format: &str) -> Vec<&str> {
     ]
 }
 
-/// Starts `rslam ARGS` in `ws` and SIGKILLs it once `watch` holds more than `files_before_kill`
-/// entries starting with `prefix`.
-fn kill_mid_run(ws: &Workspace, args: &[&str], watch: &str, prefix: &str) {
+/// Starts `rslam ARGS` in `ws` and SIGKILLs it once the dataset `out` holds more than 40 files
+/// starting with `prefix` in its folder `watch`.
+pub fn kill_mid_run(ws: &Workspace, args: &[&str], out: &str, watch: &str, prefix: &str) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_rslam"))
         .args(args)
         .current_dir(ws.path(""))
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
-    let watched = ws.path(watch);
+    let watched = ws.path(out).join(watch);
     for _ in 0..1200 {
         if watched.is_dir() && files(&watched, prefix).len() > 40 {
             break;
@@ -83,22 +51,22 @@ fn kill_mid_run(ws: &Workspace, args: &[&str], watch: &str, prefix: &str) {
     child.wait().unwrap();
     let written = files(&watched, prefix).len();
     assert!(
-        written > 40 && !ws.path("ds/rslam.json").exists(),
+        written > 40 && !ws.path(out).join("rslam.json").exists(),
         "the run was not killed mid-way ({written} files); raise FRAMES"
     );
     assert!(
-        ws.path("ds/rslam.run.json").exists(),
+        ws.path(out).join("rslam.run.json").exists(),
         "a killed run is marked unfinished"
     );
 }
 
 #[test]
 fn a_killed_render_resumes_to_the_bytes_of_an_uninterrupted_one() {
-    for (format, watch, prefix) in [("replica", "ds/results", "frame"), ("tum", "ds/rgb", "")] {
+    for (format, watch, prefix) in [("replica", "results", "frame"), ("tum", "rgb", "")] {
         let whole = Workspace::new();
         whole.rslam(&render_args(format)).success();
         let killed = Workspace::new();
-        kill_mid_run(&killed, &render_args(format), watch, prefix);
+        kill_mid_run(&killed, &render_args(format), "ds", watch, prefix);
         let resumed = killed.rslam(&render_args(format));
         resumed.success();
         assert!(resumed.stderr().contains("resumed"), "{}", resumed.stderr());

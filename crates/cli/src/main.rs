@@ -2,7 +2,9 @@
 //! `commands/`; exit code 0 = ok, 1 = a check failed, 2 = an error.
 
 mod commands;
+mod interrupt;
 mod progress_bar;
+mod suite_progress;
 
 /// Frames are megabyte buffers made and dropped on several threads; glibc returns them to the
 /// kernel and faults them back in on every frame, mimalloc keeps reusing them.
@@ -38,6 +40,8 @@ enum Command {
     Eval(commands::eval::EvalArgs),
     /// Check a generated dataset against its checksums (rslam.b3sum) and manifest digest.
     Verify(commands::verify::VerifyArgs),
+    /// The benchmark matrix: make, shard, watch and schedule a suite of datasets.
+    Suite(commands::suite::SuiteArgs),
 }
 
 /// Mesa's Vulkan drivers probe for a Wayland display and print an "error:" line when
@@ -59,6 +63,7 @@ fn main() -> ExitCode {
         Command::Scene(args) => commands::scene::run(args),
         Command::Eval(args) => commands::eval::run(args),
         Command::Verify(args) => commands::verify::run(args),
+        Command::Suite(args) => commands::suite::run(args),
     };
     match result {
         Ok(code) => code,

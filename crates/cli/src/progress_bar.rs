@@ -1,11 +1,12 @@
-//! The terminal's view of a run: a progress bar with frames/s, and Ctrl-C turned into an orderly
-//! stop (no manifest written, the same command resumes).
+//! The terminal's view of a run: a progress bar with frames/s that stops the run on Ctrl-C.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
 use indicatif::{ProgressBar as Bar, ProgressStyle};
 use rslam_pipeline::{PipelineError, Progress};
+
+use crate::interrupt::interrupt_flag;
 
 pub struct ProgressBar {
     bar: Mutex<Option<Bar>>,
@@ -14,13 +15,9 @@ pub struct ProgressBar {
 
 impl ProgressBar {
     pub fn new() -> Self {
-        let interrupted = Arc::new(AtomicBool::new(false));
-        let flag = interrupted.clone();
-        // Only the first handler per process can be installed; one bar is made per process.
-        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst));
         Self {
             bar: Mutex::new(None),
-            interrupted,
+            interrupted: interrupt_flag(),
         }
     }
 

@@ -25,6 +25,9 @@ pub enum PipelineError {
     /// An output folder that this run may not write into.
     #[error("{}: {message}", path.display())]
     Output { path: PathBuf, message: String },
+    /// An output folder that holds (part of) another job's output; `--force` starts over.
+    #[error("{}: {message}", path.display())]
+    OtherJob { path: PathBuf, message: String },
     #[error(
         "interrupted: the output is incomplete (no rslam.json written); run the same command again to resume"
     )]

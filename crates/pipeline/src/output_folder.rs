@@ -80,16 +80,16 @@ pub fn finish(root: &Path) -> Result<(), PipelineError> {
 }
 
 fn other_job(root: &Path, earlier: &Manifest, job: &Manifest, what: &str) -> PipelineError {
-    PipelineError::output(
-        root,
-        format!(
+    PipelineError::OtherJob {
+        path: root.to_path_buf(),
+        message: format!(
             "holds {what} of another job (`{}`, perturbation '{}', seed {}; differs in {}); choose another output or pass --force to start over",
             earlier.command.join(" "),
             earlier.perturbation,
             earlier.seed,
             differing_fields(&earlier.job(), &job.job()).join(", ")
         ),
-    )
+    }
 }
 
 /// The manifest fields (`extra.adapter` and the like one level down) in which two jobs differ.

@@ -11,4 +11,4 @@ pub mod scene;
 
 pub use error::RenderError;
 pub use raster::Rasterizer;
-pub use scene::{load_scene, Mesh, Scene, Texture, Vertex};
+pub use scene::{builtin_path_length, load_scene, Mesh, Scene, Texture, Vertex, BUILTIN_SCENES};

@@ -6,6 +6,7 @@ pub mod perturb;
 pub mod render;
 mod run_summary;
 pub mod scene;
+pub mod suite;
 pub mod verify;
 
 /// The command line as typed, with the program called `rslam` whatever path started it, so that

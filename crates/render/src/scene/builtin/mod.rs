@@ -29,6 +29,11 @@ pub const BUILTIN_SCENES: [&str; 8] = [
     "room0", "room1", "room2", "office0", "office1", "office2", "office3", "office4",
 ];
 
+/// Poses on the default path of the built-in scene `name` (without building the scene).
+pub fn builtin_path_length(name: &str) -> Option<usize> {
+    layouts::blueprint(name).map(|_| trajectory::FRAMES)
+}
+
 /// The built-in scene of that name, or `None`.
 pub fn build(name: &str) -> Option<Scene> {
     let plan = layouts::blueprint(name)?;

@@ -1,0 +1,39 @@
+//! `rslam suite`: one file per subcommand.
+
+mod init;
+mod run;
+mod schedulers;
+mod status;
+
+use std::process::ExitCode;
+
+#[derive(clap::Args)]
+pub struct SuiteArgs {
+    #[command(subcommand)]
+    command: SuiteCommand,
+}
+
+#[derive(clap::Subcommand)]
+enum SuiteCommand {
+    /// Write a suite file: the paper's 1,000-sequence matrix (robust-slam) or a small one (mini).
+    Init(init::InitArgs),
+    /// Make every sequence of this shard that is not complete; resume partial ones.
+    Run(run::RunArgs),
+    /// Complete / partial / missing per setting and scene, disk used, and the plan (--plan).
+    /// Exit code 1 while anything is not complete.
+    Status(status::StatusArgs),
+    /// Write an sbatch array script, one `suite run` shard per array task.
+    Slurm(schedulers::SlurmArgs),
+    /// Write a Kubernetes Indexed Job, one `suite run` shard per completion index.
+    K8s(schedulers::KubernetesArgs),
+}
+
+pub fn run(args: SuiteArgs) -> anyhow::Result<ExitCode> {
+    match args.command {
+        SuiteCommand::Init(args) => init::run(args),
+        SuiteCommand::Run(args) => run::run(args),
+        SuiteCommand::Status(args) => status::run(args),
+        SuiteCommand::Slurm(args) => schedulers::run_slurm(args),
+        SuiteCommand::K8s(args) => schedulers::run_kubernetes(args),
+    }
+}

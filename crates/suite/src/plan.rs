@@ -1,0 +1,166 @@
+//! What a suite will cost before it runs: frames, bytes and time per sequence and in all. Bytes
+//! per frame and frames per second come from this suite's own finished sequences and timed runs
+//! when there are any, else from figures measured on the development machine (said so).
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use rslam_core::dataset::DatasetFormat;
+use serde::Serialize;
+
+use crate::disk::folder_bytes;
+use crate::sequence::{FrameCounts, Sequence};
+use crate::state::SequenceState;
+use crate::timings::Timings;
+use crate::SuiteError;
+
+/// Whole `rslam render` of room0 at 1200×680 on the development machine (2 cores, lavapipe).
+const MEASURED_FRAMES_PER_SECOND: f64 = 20.0;
+const MEASURED_PIXELS: f64 = 1200.0 * 680.0;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SequencePlan {
+    pub name: String,
+    pub frames_rendered: usize,
+    pub frames_written: usize,
+    /// On disk now (complete or partial), or estimated when missing.
+    pub bytes: u64,
+    pub bytes_measured: bool,
+    /// Bytes still to write (0 when complete).
+    pub bytes_to_write: u64,
+    pub frames_to_render: usize,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SuitePlan {
+    pub sequences: Vec<SequencePlan>,
+    pub bytes_total: u64,
+    pub bytes_to_write: u64,
+    pub frames_to_render: usize,
+    pub frames_per_second: f64,
+    /// Where `frames_per_second` comes from.
+    pub rate_source: String,
+    pub seconds_to_go: f64,
+}
+
+/// Plans `sequences` (with their states) of the suite in `suite_dir`.
+pub fn plan(
+    suite_dir: &Path,
+    sequences: &[(&Sequence, SequenceState)],
+) -> Result<SuitePlan, SuiteError> {
+    let mut measured: HashMap<(DatasetFormat, u32, u32), (u64, usize)> = HashMap::new();
+    let mut counted = Vec::with_capacity(sequences.len());
+    for (sequence, state) in sequences {
+        let frames = sequence.frame_counts(suite_dir)?;
+        let on_disk = match state {
+            SequenceState::Missing => 0,
+            _ => folder_bytes(&sequence.dir(suite_dir))?,
+        };
+        if *state == SequenceState::Complete {
+            let entry = measured.entry(size_key(sequence)).or_default();
+            entry.0 += on_disk;
+            entry.1 += frames.written;
+        }
+        counted.push((sequence, state, frames, on_disk));
+    }
+    let mut plans = Vec::with_capacity(counted.len());
+    for (sequence, state, frames, on_disk) in counted {
+        plans.push(sequence_plan(sequence, state, frames, on_disk, &measured));
+    }
+    let timings = Timings::read(suite_dir)?;
+    let (frames_per_second, rate_source) = match timings.frames_per_second() {
+        Some(rate) => (
+            rate,
+            format!(
+                "measured over {} sequence run(s) of this suite",
+                timings.len()
+            ),
+        ),
+        None => {
+            let pixels = sequences.first().map_or(MEASURED_PIXELS, |(s, _)| {
+                s.camera.width as f64 * s.camera.height as f64
+            });
+            (
+                MEASURED_FRAMES_PER_SECOND * MEASURED_PIXELS / pixels,
+                "no run timed yet: assumed from 20 frames/s at 1200x680 on a 2-core CPU (lavapipe); a GPU is faster".into(),
+            )
+        }
+    };
+    let frames_to_render = plans.iter().map(|p| p.frames_to_render).sum();
+    Ok(SuitePlan {
+        bytes_total: plans.iter().map(|p| p.bytes).sum(),
+        bytes_to_write: plans.iter().map(|p| p.bytes_to_write).sum(),
+        frames_to_render,
+        frames_per_second,
+        rate_source,
+        seconds_to_go: frames_to_render as f64 / frames_per_second,
+        sequences: plans,
+    })
+}
+
+fn sequence_plan(
+    sequence: &Sequence,
+    state: &SequenceState,
+    frames: FrameCounts,
+    on_disk: u64,
+    measured: &HashMap<(DatasetFormat, u32, u32), (u64, usize)>,
+) -> SequencePlan {
+    let (per_frame, bytes_measured) = match measured.get(&size_key(sequence)) {
+        Some(&(bytes, written)) if written > 0 => (bytes as f64 / written as f64, true),
+        _ => (estimated_bytes_per_frame(sequence), false),
+    };
+    let estimate = (per_frame * frames.written as f64).round() as u64;
+    let complete = *state == SequenceState::Complete;
+    let done_fraction = if complete {
+        1.0
+    } else {
+        (on_disk as f64 / estimate.max(1) as f64).min(1.0)
+    };
+    SequencePlan {
+        name: sequence.name.clone(),
+        frames_rendered: frames.rendered,
+        frames_written: frames.written,
+        bytes: if complete {
+            on_disk
+        } else {
+            estimate.max(on_disk)
+        },
+        bytes_measured: complete || bytes_measured,
+        bytes_to_write: if complete {
+            0
+        } else {
+            estimate.saturating_sub(on_disk)
+        },
+        frames_to_render: ((1.0 - done_fraction) * frames.rendered as f64).ceil() as usize,
+    }
+}
+
+fn size_key(sequence: &Sequence) -> (DatasetFormat, u32, u32) {
+    (
+        sequence.format,
+        sequence.camera.width,
+        sequence.camera.height,
+    )
+}
+
+fn estimated_bytes_per_frame(sequence: &Sequence) -> f64 {
+    let noisy = sequence
+        .spec
+        .image
+        .iter()
+        .any(|item| item.name.ends_with("_noise"));
+    let (clean, noise) = measured_bytes_per_pixel(sequence.format);
+    let pixels = sequence.camera.width as f64 * sequence.camera.height as f64;
+    pixels * if noisy { noise } else { clean }
+}
+
+/// Bytes per pixel of a written frame (colour and depth) of built-in room0, release build, clean
+/// and under gaussian_noise:5 (the worst case, taken for every noise corruption): Replica layout
+/// (JPEG + 16-bit PNG) 1.10 and 2.66 MB per 1200x680 frame; TUM layout (PNG + PNG) 737 kB and
+/// 1.18 MB per 640x480 frame.
+fn measured_bytes_per_pixel(format: DatasetFormat) -> (f64, f64) {
+    match format {
+        DatasetFormat::Replica => (1.35, 3.26),
+        DatasetFormat::Tum => (2.40, 3.84),
+    }
+}

@@ -1,0 +1,157 @@
+//! One row of a suite made concrete: the dataset `datasets/<name>/` that `rslam suite run` makes,
+//! as the `rslam render` job it is.
+
+use std::path::{Path, PathBuf};
+
+use rslam_core::dataset::DatasetFormat;
+use rslam_core::hash::{fnv1a64, splitmix64};
+use rslam_core::trajectory_io::read_trajectory;
+use rslam_core::Intrinsics;
+use rslam_perturb::PerturbSpec;
+use rslam_pipeline::{FramePlan, RenderJob, SceneJob};
+
+use crate::SuiteError;
+
+/// The folder of a suite that holds one dataset per sequence.
+pub const DATASETS_DIR: &str = "datasets";
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sequence {
+    /// `<scene>__<setting>`: the dataset's folder name, how `rslam eval --runs` groups it.
+    pub name: String,
+    /// Built-in scene name, or a mesh file relative to the suite folder.
+    pub scene: String,
+    pub spec: PerturbSpec,
+    pub seed: u64,
+    /// Only the first N poses of the path; `None`: all of them.
+    pub frames: Option<usize>,
+    pub format: DatasetFormat,
+    /// `replica`, `tum` or `W,H,FX,FY,CX,CY`, as written.
+    pub camera_text: String,
+    pub camera: Intrinsics,
+    pub rate_hz: f64,
+    /// Camera path file relative to the suite folder; `None`: the scene's own path.
+    pub traj: Option<PathBuf>,
+}
+
+/// Frames of a sequence: drawn from the scene, and written (fewer under `fast`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FrameCounts {
+    pub rendered: usize,
+    pub written: usize,
+}
+
+/// The seed of a row that names none: a function of the suite seed and the row's own name only,
+/// so adding, removing or reordering rows changes no other row.
+pub fn sequence_seed(suite_seed: u64, name: &str) -> u64 {
+    splitmix64(suite_seed ^ fnv1a64(name.as_bytes()))
+}
+
+impl Sequence {
+    /// The part of the name after `__`.
+    pub fn setting(&self) -> &str {
+        self.name
+            .split_once("__")
+            .map_or("", |(_, setting)| setting)
+    }
+
+    /// The part of the name before `__`.
+    pub fn scene_label(&self) -> &str {
+        self.name
+            .split_once("__")
+            .map_or(&self.name, |(scene, _)| scene)
+    }
+
+    pub fn dir(&self, suite_dir: &Path) -> PathBuf {
+        suite_dir.join(DATASETS_DIR).join(&self.name)
+    }
+
+    /// The `rslam render` command that makes this sequence, run from the suite folder; the
+    /// manifest records it, and a complete sequence is one whose manifest records exactly this.
+    pub fn command(&self) -> Vec<String> {
+        let mut args: Vec<String> = ["rslam", "render", "--scene", &self.scene]
+            .map(String::from)
+            .to_vec();
+        let mut push = |flag: &str, value: String| {
+            args.push(flag.to_string());
+            args.push(value);
+        };
+        if let Some(traj) = &self.traj {
+            push("--traj", traj.display().to_string());
+        }
+        if let Some(frames) = self.frames {
+            push("--frames", frames.to_string());
+        }
+        push("--camera", self.camera_text.clone());
+        push("--rate", self.rate_hz.to_string());
+        push("--format", self.format.to_string());
+        push("--seed", self.seed.to_string());
+        if !self.spec.is_empty() {
+            push("--perturb", self.spec.to_string());
+        }
+        push(
+            "--out",
+            Path::new(DATASETS_DIR)
+                .join(&self.name)
+                .display()
+                .to_string(),
+        );
+        args
+    }
+
+    pub fn render_job(&self, suite_dir: &Path, force: bool) -> RenderJob {
+        RenderJob {
+            scene: SceneJob {
+                scene: self.scene_path(suite_dir),
+                trajectory: self.traj.as_ref().map(|t| suite_dir.join(t)),
+                frames: self.frames,
+                camera: self.camera,
+                rate_hz: self.rate_hz,
+                spec: self.spec.clone(),
+                seed: self.seed,
+            },
+            out: self.dir(suite_dir),
+            format: self.format,
+            force,
+            command: self.command(),
+        }
+    }
+
+    /// Frames drawn and written, from the plan, without loading the scene.
+    pub fn frame_counts(&self, suite_dir: &Path) -> Result<FrameCounts, SuiteError> {
+        let poses = match self.frames {
+            Some(n) => n,
+            None => self.path_length(suite_dir)?,
+        };
+        let plan = FramePlan::rendered(poses, self.rate_hz, &self.spec, self.seed);
+        Ok(FrameCounts {
+            rendered: plan.needed_sources().len(),
+            written: plan.len(),
+        })
+    }
+
+    fn path_length(&self, suite_dir: &Path) -> Result<usize, SuiteError> {
+        if let Some(traj) = &self.traj {
+            return Ok(read_trajectory(&suite_dir.join(traj), None)?
+                .trajectory
+                .len());
+        }
+        rslam_render::builtin_path_length(&self.scene).ok_or_else(|| {
+            SuiteError::option(
+                &format!("sequence '{}'", self.name),
+                format!(
+                    "scene '{}' is a mesh without a camera path: give the row a traj",
+                    self.scene
+                ),
+            )
+        })
+    }
+
+    fn scene_path(&self, suite_dir: &Path) -> String {
+        if rslam_render::builtin_path_length(&self.scene).is_some() {
+            self.scene.clone()
+        } else {
+            suite_dir.join(&self.scene).display().to_string()
+        }
+    }
+}

@@ -1,0 +1,218 @@
+//! A suite folder: `suite.toml` resolved into sequences, each checked before any work starts.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+use rslam_core::dataset::DatasetFormat;
+use rslam_core::Intrinsics;
+use rslam_perturb::PerturbSpec;
+
+use crate::sequence::{sequence_seed, Sequence};
+use crate::suite_file::{line_of, SequenceFields, SuiteFile, SUITE_FILE};
+use crate::SuiteError;
+
+#[derive(Clone, Debug)]
+pub struct Suite {
+    /// The folder holding `suite.toml`; datasets go to `datasets/` inside it.
+    pub dir: PathBuf,
+    pub seed: u64,
+    pub sequences: Vec<Sequence>,
+}
+
+impl Suite {
+    /// Reads `dir/suite.toml` and checks every row.
+    pub fn open(dir: &Path) -> Result<Self, SuiteError> {
+        let path = dir.join(SUITE_FILE);
+        if !path.is_file() {
+            return Err(SuiteError::SuiteFile {
+                path,
+                line: 0,
+                message:
+                    "no such file: a suite folder holds suite.toml (`rslam suite init` writes one)"
+                        .into(),
+            });
+        }
+        let text = std::fs::read_to_string(&path).map_err(|e| SuiteError::io(&path, e))?;
+        let file = SuiteFile::read(&path)?;
+        let bad_row = |offset: usize, message: String| SuiteError::SuiteFile {
+            path: path.clone(),
+            line: line_of(&text, offset),
+            message,
+        };
+        if file.defaults.name.is_some() || file.defaults.seed.is_some() {
+            let at = text.find("[defaults]").unwrap_or(0);
+            return Err(bad_row(
+                at,
+                "[defaults] may not set name or seed (they belong to one sequence)".into(),
+            ));
+        }
+        if file.sequences.is_empty() {
+            return Err(bad_row(0, "no [[sequence]] rows".into()));
+        }
+        let mut names = HashSet::new();
+        let mut sequences = Vec::with_capacity(file.sequences.len());
+        for row in &file.sequences {
+            let at = row.span().start;
+            let sequence = resolve(&row.get_ref().or(&file.defaults), file.seed, dir)
+                .map_err(|message| bad_row(at, message))?;
+            if !names.insert(sequence.name.clone()) {
+                return Err(bad_row(
+                    at,
+                    format!("sequence '{}' is listed twice", sequence.name),
+                ));
+            }
+            sequences.push(sequence);
+        }
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            seed: file.seed,
+            sequences,
+        })
+    }
+}
+
+fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence, String> {
+    let name = row.name.clone().ok_or("a sequence without a name")?;
+    check_name(&name)?;
+    let scene = row
+        .scene
+        .clone()
+        .ok_or(format!("sequence '{name}': no scene"))?;
+    let in_row = |what: String| format!("sequence '{name}': {what}");
+    let spec = match row.perturb.as_deref().map(str::trim) {
+        None | Some("") => PerturbSpec::default(),
+        Some(text) => PerturbSpec::parse(text).map_err(|e| in_row(format!("perturb: {e}")))?,
+    };
+    let format: DatasetFormat = row
+        .format
+        .as_deref()
+        .unwrap_or("replica")
+        .parse()
+        .map_err(|e| in_row(format!("format: {e}")))?;
+    let camera_text = row.camera.clone().unwrap_or_else(|| "replica".into());
+    let camera = Intrinsics::parse(&camera_text).map_err(|e| in_row(format!("camera: {e}")))?;
+    let rate_hz = row
+        .rate
+        .unwrap_or_else(|| Intrinsics::preset_rate_hz(&camera_text));
+    if !(rate_hz.is_finite() && rate_hz > 0.0) {
+        return Err(in_row(format!(
+            "rate {rate_hz}: expected a positive number of Hz"
+        )));
+    }
+    if row.frames == Some(0) {
+        return Err(in_row("frames = 0: expected at least one frame".into()));
+    }
+    if row.traj.is_none() && rslam_render::builtin_path_length(&scene).is_none() {
+        let known = rslam_render::BUILTIN_SCENES.join(", ");
+        if !Path::new(&scene).extension().is_some_and(|e| !e.is_empty()) {
+            return Err(in_row(format!(
+                "scene '{scene}': neither a built-in scene ({known}) nor a mesh file"
+            )));
+        }
+        return Err(in_row(format!(
+            "scene '{scene}' is a mesh file: give the row a traj (its camera path)"
+        )));
+    }
+    let is_builtin = rslam_render::builtin_path_length(&scene).is_some();
+    let missing = |path: &Path| !dir.join(path).is_file();
+    if !is_builtin && missing(Path::new(&scene)) {
+        return Err(in_row(format!(
+            "scene '{scene}': no such file (relative to the suite folder)"
+        )));
+    }
+    if let Some(traj) = row.traj.as_deref().filter(|t| missing(t)) {
+        return Err(in_row(format!(
+            "traj '{}': no such file (relative to the suite folder)",
+            traj.display()
+        )));
+    }
+    Ok(Sequence {
+        seed: row.seed.unwrap_or_else(|| sequence_seed(suite_seed, &name)),
+        name,
+        scene,
+        spec,
+        frames: row.frames,
+        format,
+        camera_text,
+        camera,
+        rate_hz,
+        traj: row.traj.clone(),
+    })
+}
+
+/// `<scene>__<setting>`, usable as a folder name on every file system.
+fn check_name(name: &str) -> Result<(), String> {
+    let allowed = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.');
+    let well_formed = name
+        .split_once("__")
+        .is_some_and(|(scene, setting)| !scene.is_empty() && !setting.is_empty());
+    if !well_formed || !name.chars().all(allowed) || name.starts_with('.') {
+        return Err(format!(
+            "sequence name '{name}': expected <scene>__<setting> of letters, digits, '_', '-' and '.' (e.g. room0__fog-3)"
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn open(text: &str) -> Result<Suite, SuiteError> {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join(SUITE_FILE), text).unwrap();
+        Suite::open(dir.path())
+    }
+
+    #[test]
+    fn rows_take_defaults_and_a_seed_of_their_own_name() {
+        let two = "seed = 7\n[defaults]\nframes = 10\nformat = \"tum\"\ncamera = \"tum\"\n\
+                   [[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\n\
+                   [[sequence]]\nname = \"room0__b\"\nscene = \"room0\"\nframes = 3\nseed = 99\nperturb = \"fog:2\"\n";
+        let suite = open(two).unwrap();
+        let (a, b) = (&suite.sequences[0], &suite.sequences[1]);
+        assert_eq!(
+            (a.frames, a.format, a.rate_hz),
+            (Some(10), DatasetFormat::Tum, 30.0)
+        );
+        assert_eq!(
+            (b.frames, b.seed, b.spec.to_string()),
+            (Some(3), 99, "fog:2".to_string())
+        );
+        assert_eq!(a.seed, sequence_seed(7, "room0__a"));
+        let reordered = "seed = 7\n[[sequence]]\nname = \"room0__z\"\nscene = \"room0\"\n\
+                         [[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\n";
+        let reordered = open(reordered).unwrap();
+        assert_eq!(
+            reordered.sequences[1].seed, a.seed,
+            "a row's seed depends on its name alone"
+        );
+        assert_ne!(reordered.sequences[0].seed, a.seed);
+    }
+
+    #[test]
+    fn the_command_a_sequence_records_is_the_render_that_makes_it() {
+        let suite = open(
+            "[[sequence]]\nname = \"room0__fog-3\"\nscene = \"room0\"\nframes = 5\nseed = 4\nperturb = \"fog:3\"\n",
+        )
+        .unwrap();
+        assert_eq!(
+            suite.sequences[0].command().join(" "),
+            "rslam render --scene room0 --frames 5 --camera replica --rate 20 --format replica \
+             --seed 4 --perturb fog:3 --out datasets/room0__fog-3"
+        );
+    }
+
+    #[test]
+    fn defaults_may_not_name_a_sequence() {
+        let err = open(
+            "[defaults]\nname = \"x__y\"\n[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\n",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.contains("suite.toml:1: [defaults] may not set name"),
+            "{err}"
+        );
+    }
+}
