@@ -9,9 +9,11 @@
 //! suite.toml            the sequences (preset or hand-written)
 //! datasets/<name>/      one rslam dataset per sequence (manifest, checksums)
 //! logs/timings.jsonl    how long each run took, for time estimates
+//! runs/<method>/<name>/  what `suite bench` ran: estimates, failures, logs, records
 //! slurm/, k8s/          scheduler scripts and their logs
 //! ```
 
+pub mod bench;
 mod disk;
 mod error;
 mod init;
@@ -26,6 +28,7 @@ mod status;
 mod suite;
 mod suite_file;
 mod timings;
+mod work_queue;
 
 pub use disk::{available_bytes, format_bytes};
 pub use error::SuiteError;

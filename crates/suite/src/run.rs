@@ -4,8 +4,6 @@
 
 use std::fs::{File, TryLockError};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Mutex;
 use std::time::Instant;
 
 use rslam_gpu::GpuContext;
@@ -17,6 +15,7 @@ use crate::sequence::{Sequence, DATASETS_DIR};
 use crate::shard::Shard;
 use crate::state::{inspect, SequenceState};
 use crate::timings::{Timing, Timings};
+use crate::work_queue::run_queue;
 use crate::{Suite, SuiteError};
 
 const LOCKS_DIR: &str = ".locks";
@@ -114,35 +113,21 @@ fn make_all(
     options: RunOptions,
     progress: &dyn SuiteProgress,
 ) -> Result<Vec<Option<SequenceOutcome>>, SuiteError> {
-    let next = AtomicUsize::new(0);
-    let interrupted = AtomicBool::new(false);
-    let outcomes = Mutex::new(vec![None; to_make.len()]);
-    std::thread::scope(|scope| {
-        for _ in 0..options.jobs.clamp(1, to_make.len().max(1)) {
-            scope.spawn(|| {
-                while !interrupted.load(Ordering::SeqCst) {
-                    let i = next.fetch_add(1, Ordering::SeqCst);
-                    let Some((sequence, state)) = to_make.get(i) else {
-                        break;
-                    };
-                    let outcome = match make_one(ctx, suite, sequence, state, progress) {
-                        Err(SuiteError::Pipeline(PipelineError::Interrupted)) => {
-                            interrupted.store(true, Ordering::SeqCst);
-                            break;
-                        }
-                        Err(e) => SequenceOutcome::Failed(e.to_string()),
-                        Ok(outcome) => outcome,
-                    };
-                    progress.sequence_done(&sequence.name, &outcome);
-                    outcomes.lock().unwrap_or_else(|p| p.into_inner())[i] = Some(outcome);
-                }
-            });
-        }
+    let (outcomes, interrupted) = run_queue(to_make, options.jobs, |(sequence, state)| {
+        let outcome = match make_one(ctx, suite, sequence, state, progress) {
+            Err(SuiteError::Pipeline(PipelineError::Interrupted)) => {
+                return Err(PipelineError::Interrupted)
+            }
+            Err(e) => SequenceOutcome::Failed(e.to_string()),
+            Ok(outcome) => outcome,
+        };
+        progress.sequence_done(&sequence.name, &outcome);
+        Ok(outcome)
     });
-    if interrupted.load(Ordering::SeqCst) {
-        return Err(PipelineError::Interrupted.into());
+    match interrupted {
+        Some(e) => Err(e.into()),
+        None => Ok(outcomes),
     }
-    Ok(outcomes.into_inner().unwrap_or_else(|p| p.into_inner()))
 }
 
 fn make_one(

@@ -1,6 +1,8 @@
 //! `rslam suite`: one file per subcommand.
 
+mod bench;
 mod init;
+mod report;
 mod run;
 mod schedulers;
 mod status;
@@ -26,6 +28,10 @@ enum SuiteCommand {
     Slurm(schedulers::SlurmArgs),
     /// Write a Kubernetes Indexed Job, one `suite run` shard per completion index.
     K8s(schedulers::KubernetesArgs),
+    /// Run SLAM methods (method files) on every made sequence, each repeat once, resumably.
+    Bench(bench::BenchArgs),
+    /// The benchmark's tables, CSR curves, plots and an HTML page over the bench's runs.
+    Report(report::ReportArgs),
 }
 
 pub fn run(args: SuiteArgs) -> anyhow::Result<ExitCode> {
@@ -35,5 +41,7 @@ pub fn run(args: SuiteArgs) -> anyhow::Result<ExitCode> {
         SuiteCommand::Status(args) => status::run(args),
         SuiteCommand::Slurm(args) => schedulers::run_slurm(args),
         SuiteCommand::K8s(args) => schedulers::run_kubernetes(args),
+        SuiteCommand::Bench(args) => bench::run(args),
+        SuiteCommand::Report(args) => report::run(args),
     }
 }

@@ -1,0 +1,13 @@
+//! `rslam suite bench`: every method on every complete sequence of a shard, each repeat once,
+//! resumably; results where `rslam eval --runs` reads them (`runs/<method>/<sequence>/<repeat>.txt`,
+//! failures as `<repeat>.failed`).
+
+mod method;
+mod process;
+mod record;
+mod run_method;
+
+pub use method::{Method, RunPlaces, PLACEHOLDERS};
+pub use process::{run_process, Ending, ProcessReport};
+pub use record::{RunFiles, RunRecord, RUNS_DIR};
+pub use run_method::{bench_suite, BenchOptions, BenchProgress, BenchSummary, RunId};

@@ -1,0 +1,272 @@
+//! Runs methods over a suite: which runs are left, each in its own scratch folder, and what
+//! counts as a failure (a crash, a timeout, no estimate, an estimate that does not read).
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+use std::time::Duration;
+
+use rslam_core::dataset::DatasetFormat;
+use rslam_core::trajectory_io::{read_trajectory, TrajectoryFormat};
+
+use super::method::{Method, RunPlaces};
+use super::process::{run_process, Ending};
+use super::record::{RunFiles, RunRecord};
+use crate::sequence::Sequence;
+use crate::shard::Shard;
+use crate::state::{inspect, SequenceState};
+use crate::work_queue::run_queue;
+use crate::{Suite, SuiteError};
+
+#[derive(Clone, Copy, Debug)]
+pub struct BenchOptions {
+    pub shard: Shard,
+    /// Runs at once.
+    pub jobs: usize,
+    /// Run again the runs that failed before (finished successes are always kept).
+    pub retry_failed: bool,
+}
+
+/// One run: a method on a sequence, one repeat.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunId {
+    pub method: String,
+    pub sequence: String,
+    pub repeat: usize,
+}
+
+pub trait BenchProgress: Sync {
+    fn begin(&self, runs: usize);
+    fn run_done(&self, run: &RunId, record: &RunRecord);
+    /// Set on Ctrl-C: running methods are killed and the bench stops without recording them.
+    fn interrupted(&self) -> &AtomicBool;
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct BenchSummary {
+    pub already_done: usize,
+    pub succeeded: usize,
+    pub failed: Vec<(RunId, String)>,
+    /// Sequences of the shard not complete yet (make them with `rslam suite run`).
+    pub sequences_not_made: Vec<String>,
+}
+
+pub fn bench_suite(
+    suite: &Suite,
+    methods: &[Method],
+    options: BenchOptions,
+    progress: &dyn BenchProgress,
+) -> Result<BenchSummary, SuiteError> {
+    let mut summary = BenchSummary::default();
+    let mut sequences = Vec::new();
+    for sequence in suite
+        .sequences
+        .iter()
+        .filter(|s| options.shard.contains(&s.name))
+    {
+        match inspect(sequence, &suite.dir) {
+            SequenceState::Complete => sequences.push(sequence),
+            _ => summary.sequences_not_made.push(sequence.name.clone()),
+        }
+    }
+    check_layouts(methods, &sequences)?;
+    let mut to_run = Vec::new();
+    for method in methods {
+        for sequence in &sequences {
+            for repeat in 0..method.repeats {
+                let files = RunFiles::new(&suite.dir, &method.name, &sequence.name, repeat);
+                match files.read_record() {
+                    Some(r) if r.failure.is_none() || !options.retry_failed => {
+                        summary.already_done += 1
+                    }
+                    _ => to_run.push((method, *sequence, repeat)),
+                }
+            }
+        }
+    }
+    progress.begin(to_run.len());
+    let (records, interrupted) = run_queue(&to_run, options.jobs, |&(method, sequence, repeat)| {
+        let id = RunId {
+            method: method.name.clone(),
+            sequence: sequence.name.clone(),
+            repeat,
+        };
+        let record = match run_once(suite, method, sequence, repeat, progress.interrupted()) {
+            Ok(Some(record)) => record,
+            Ok(None) => {
+                return Err(SuiteError::option(
+                    "bench",
+                    "interrupted: unfinished runs are run again next time",
+                ))
+            }
+            Err(e) => return Err(e),
+        };
+        progress.run_done(&id, &record);
+        Ok((id, record))
+    });
+    if let Some(error) = interrupted {
+        return Err(error);
+    }
+    for (id, record) in records.into_iter().flatten() {
+        match record.failure {
+            None => summary.succeeded += 1,
+            Some(reason) => summary.failed.push((id, reason)),
+        }
+    }
+    Ok(summary)
+}
+
+/// A method reads one layout; every sequence it runs on must be in it.
+fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Result<(), SuiteError> {
+    for method in methods {
+        let other: Vec<&&Sequence> = sequences
+            .iter()
+            .filter(|s| s.format != method.reads)
+            .collect();
+        if let Some(first) = other.first() {
+            return Err(SuiteError::option(
+                "--methods",
+                format!(
+                    "method '{}' reads the {} layout but {} sequence(s) of the suite are {} (e.g. {}): make the suite with --format {}",
+                    method.name, method.reads, other.len(), first.format, first.name, method.reads
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// One run, recorded; `None` when it was interrupted (nothing recorded, it runs again).
+fn run_once(
+    suite: &Suite,
+    method: &Method,
+    sequence: &Sequence,
+    repeat: usize,
+    interrupted: &AtomicBool,
+) -> Result<Option<RunRecord>, SuiteError> {
+    let files = RunFiles::new(&suite.dir, &method.name, &sequence.name, repeat);
+    files.clear()?;
+    let work = files.work();
+    std::fs::create_dir_all(&work).map_err(|e| SuiteError::io(&work, e))?;
+    let dataset = sequence
+        .dir(&suite.dir)
+        .canonicalize()
+        .map_err(|e| SuiteError::io(sequence.dir(&suite.dir), e))?;
+    let work = work.canonicalize().map_err(|e| SuiteError::io(&work, e))?;
+    let estimate = work.join("estimate.txt");
+    let log = files.log();
+    let log = std::path::absolute(&log).unwrap_or(log);
+    let camera = dataset.join(camera_file(sequence.format));
+    let places = RunPlaces {
+        dataset: &dataset,
+        estimate: &estimate,
+        camera: &camera,
+        sequence: &sequence.name,
+        repeat,
+        log: &log,
+        work: &work,
+    };
+    let command = method.command_for(&places);
+    let report = run_process(
+        &command,
+        &work,
+        &log,
+        Duration::from_secs_f64(method.timeout_s),
+        interrupted,
+    );
+    let report = match report {
+        Ok(report) => report,
+        Err(e) => {
+            let record = failed_record(method, sequence, repeat, command, e.to_string());
+            return finish(&files, record).map(Some);
+        }
+    };
+    if report.ending == Ending::Interrupted {
+        files.clear()?;
+        return Ok(None);
+    }
+    let failure = match report.ending {
+        Ending::Exited(0) => check_estimate(&estimate).err(),
+        Ending::Exited(code) => Some(format!("exit status {code} (see {})", log.display())),
+        Ending::Signalled(signal) => {
+            Some(format!("killed by signal {signal} (see {})", log.display()))
+        }
+        Ending::TimedOut => Some(format!("timed out after {} s", method.timeout_s)),
+        Ending::Interrupted => unreachable!("handled above"),
+    };
+    let mesh = method
+        .mesh_for(&places)
+        .filter(|m| m.is_file() && failure.is_none());
+    let kept_mesh = match mesh {
+        Some(mesh) => {
+            std::fs::rename(&mesh, files.mesh()).map_err(|e| SuiteError::io(&mesh, e))?;
+            Some(files.mesh())
+        }
+        None => None,
+    };
+    if failure.is_none() {
+        std::fs::rename(&estimate, files.estimate()).map_err(|e| SuiteError::io(&estimate, e))?;
+    }
+    let record = RunRecord {
+        method: method.name.clone(),
+        sequence: sequence.name.clone(),
+        repeat,
+        command,
+        failure,
+        exit_code: match report.ending {
+            Ending::Exited(code) => Some(code),
+            _ => None,
+        },
+        seconds: report.seconds,
+        peak_rss_mb: report.peak_rss_bytes.map(|b| b as f64 / 1e6),
+        mesh: kept_mesh,
+    };
+    finish(&files, record).map(Some)
+}
+
+fn failed_record(
+    method: &Method,
+    sequence: &Sequence,
+    repeat: usize,
+    command: Vec<String>,
+    reason: String,
+) -> RunRecord {
+    RunRecord {
+        method: method.name.clone(),
+        sequence: sequence.name.clone(),
+        repeat,
+        command,
+        failure: Some(reason),
+        exit_code: None,
+        seconds: 0.0,
+        peak_rss_mb: None,
+        mesh: None,
+    }
+}
+
+/// Writes the failure file (if any), removes the scratch folder, then the record.
+fn finish(files: &RunFiles, record: RunRecord) -> Result<RunRecord, SuiteError> {
+    if let Some(reason) = &record.failure {
+        let path = files.failed();
+        std::fs::write(&path, format!("{reason}\n")).map_err(|e| SuiteError::io(&path, e))?;
+    }
+    let work = files.work();
+    std::fs::remove_dir_all(&work).map_err(|e| SuiteError::io(&work, e))?;
+    files.write_record(&record)?;
+    Ok(record)
+}
+
+fn check_estimate(estimate: &Path) -> Result<(), String> {
+    if !estimate.is_file() {
+        return Err("exited 0 but wrote no estimate".into());
+    }
+    read_trajectory(estimate, Some(TrajectoryFormat::Tum))
+        .map(|_| ())
+        .map_err(|e| format!("estimate unreadable: {e}"))
+}
+
+fn camera_file(format: DatasetFormat) -> &'static str {
+    match format {
+        DatasetFormat::Replica => "cam_params.json",
+        DatasetFormat::Tum => "orbslam3.yaml",
+    }
+}

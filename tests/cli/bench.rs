@@ -1,0 +1,166 @@
+//! `rslam suite bench` and `report` with stand-in methods: one that returns the ground truth,
+//! one that crashes, one that hangs past its timeout, one that writes garbage. Each failure is
+//! recorded with its reason and reported as F; finished runs are never run again.
+
+use crate::harness::Workspace;
+use crate::render::SMALL_CAMERA;
+
+fn suite(ws: &Workspace) {
+    ws.write(
+        "suite/suite.toml",
+        &format!(
+            "[defaults]\nframes = 6\nformat = \"tum\"\ncamera = \"{SMALL_CAMERA}\"\n\
+             [[sequence]]\nname = \"room0__clean\"\nscene = \"room0\"\n\
+             [[sequence]]\nname = \"room0__fog-3\"\nscene = \"room0\"\nperturb = \"fog:3\"\n"
+        ),
+    );
+    ws.rslam(&["suite", "run", "suite"]).success();
+}
+
+fn method(ws: &Workspace, name: &str, command: &str, timeout_s: f64, repeats: usize) -> String {
+    let path = format!("methods/{name}.toml");
+    ws.write(
+        &path,
+        &format!("name = \"{name}\"\nreads = \"tum\"\ncommand = {command}\ntimeout_s = {timeout_s}\nrepeats = {repeats}\n"),
+    );
+    path
+}
+
+fn report_runs(ws: &Workspace) -> Vec<serde_json::Value> {
+    let text = std::fs::read_to_string(ws.path("suite/report/report.json")).unwrap();
+    let report: serde_json::Value = serde_json::from_str(&text).unwrap();
+    report["runs"].as_array().unwrap().clone()
+}
+
+#[test]
+fn failures_are_recorded_with_their_reason_and_finished_runs_are_kept() {
+    let ws = Workspace::new();
+    suite(&ws);
+    let methods = [
+        method(
+            &ws,
+            "oracle",
+            r#"["cp", "{dataset}/groundtruth.txt", "{estimate}"]"#,
+            30.0,
+            2,
+        ),
+        method(
+            &ws,
+            "crash",
+            r#"["sh", "-c", "echo dying >&2; exit 3"]"#,
+            30.0,
+            1,
+        ),
+        method(&ws, "hang", r#"["sleep", "30"]"#, 0.5, 1),
+        method(
+            &ws,
+            "garbage",
+            r#"["sh", "-c", "echo not a trajectory > \"$1\"", "sh", "{estimate}"]"#,
+            30.0,
+            1,
+        ),
+    ];
+    let mut args = vec!["suite", "bench", "suite"];
+    for m in &methods {
+        args.extend(["--methods", m.as_str()]);
+    }
+    let first = ws.rslam(&args);
+    first.success();
+    assert!(
+        first
+            .stderr()
+            .contains("4 runs succeeded, 6 failed now; 0 were done before"),
+        "{}",
+        first.stderr()
+    );
+    let run =
+        |m: &str, s: &str, r: usize, ext: &str| ws.path(&format!("suite/runs/{m}/{s}/{r}.{ext}"));
+    assert!(run("oracle", "room0__fog-3", 1, "txt").is_file());
+    let crash = std::fs::read_to_string(run("crash", "room0__clean", 0, "failed")).unwrap();
+    assert!(crash.starts_with("exit status 3"), "{crash}");
+    assert!(
+        std::fs::read_to_string(run("crash", "room0__clean", 0, "log"))
+            .unwrap()
+            .contains("dying")
+    );
+    let hang = std::fs::read_to_string(run("hang", "room0__clean", 0, "failed")).unwrap();
+    assert!(hang.starts_with("timed out after 0.5 s"), "{hang}");
+    let garbage = std::fs::read_to_string(run("garbage", "room0__clean", 0, "failed")).unwrap();
+    assert!(garbage.starts_with("estimate unreadable"), "{garbage}");
+    assert!(
+        !run("garbage", "room0__clean", 0, "txt").exists(),
+        "a failed estimate is not left for eval"
+    );
+    let record: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(run("oracle", "room0__clean", 0, "json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(record["exit_code"], 0);
+    assert!(record["seconds"].as_f64().unwrap() > 0.0 && record["peak_rss_mb"].as_f64().is_some());
+    assert!(
+        !ws.path("suite/runs/oracle/room0__clean/0.work").exists(),
+        "scratch folders go"
+    );
+
+    let again = ws.rslam(&args);
+    assert!(
+        again
+            .stderr()
+            .contains("0 runs succeeded, 0 failed now; 10 were done before"),
+        "{}",
+        again.stderr()
+    );
+    let retry = ws.rslam(&[&args[..], &["--retry-failed"]].concat());
+    assert!(
+        retry
+            .stderr()
+            .contains("0 runs succeeded, 6 failed now; 4 were done before"),
+        "{}",
+        retry.stderr()
+    );
+
+    ws.rslam(&["suite", "report", "suite"]).success();
+    let runs = report_runs(&ws);
+    assert_eq!(runs.len(), 10);
+    for r in &runs {
+        let (method, failure) = (r["method"].as_str().unwrap(), r["failure"].as_str());
+        match method {
+            "oracle" => assert!(
+                failure.is_none() && r["ate"].as_f64().unwrap() < 1e-6,
+                "{r}"
+            ),
+            "crash" => assert!(failure.unwrap().starts_with("exit status 3"), "{r}"),
+            "hang" => assert!(failure.unwrap().starts_with("timed out"), "{r}"),
+            _ => assert!(failure.unwrap().starts_with("estimate unreadable"), "{r}"),
+        }
+        if failure.is_some() {
+            assert_eq!(r["ate"].as_f64(), Some(1.0), "the failure convention");
+        }
+    }
+}
+
+#[test]
+fn a_method_for_another_layout_is_refused_before_any_run() {
+    let ws = Workspace::new();
+    suite(&ws);
+    ws.write(
+        "m.toml",
+        "name = \"nice\"\nreads = \"replica\"\ncommand = [\"true\"]\ntimeout_s = 5\n",
+    );
+    ws.rslam(&["suite", "bench", "suite", "--methods", "m.toml"])
+        .fails_with(
+            2,
+            &[
+                "method 'nice' reads the replica layout",
+                "2 sequence(s)",
+                "--format replica",
+            ],
+        );
+    assert!(!ws.path("suite/runs").exists());
+    ws.write(
+        "bad.toml",
+        "name = \"x\"\nreads = \"tum\"\ncommand = [\"{dataset\"]\ntimeout_s = 5\n",
+    );
+    ws.rslam(&["suite", "bench", "suite", "--methods", "bad.toml"])
+        .fails_with(2, &["bad.toml:3:", "a lone '{'"]);
+}
