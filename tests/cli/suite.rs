@@ -350,3 +350,33 @@ fn the_slurm_script_runs_the_suite_per_array_task() {
         "{log}"
     );
 }
+
+#[test]
+fn a_hand_written_suite_takes_user_meshes_and_paths_relative_to_it() {
+    let ws = Workspace::new();
+    suite_in(
+        &ws,
+        &format!(
+            "[[sequence]]\nname = \"mine__clean\"\nscene = \"room1.ply\"\ntraj = \"room1.txt\"\nframes = 3\ncamera = \"{SMALL_CAMERA}\"\n"
+        ),
+    );
+    ws.rslam(&["scene", "export", "room1", "--out", "suite/room1.ply"])
+        .success();
+    ws.rslam(&["scene", "traj", "room1", "--out", "suite/room1.txt"])
+        .success();
+    ws.rslam(&["suite", "run", "suite"]).success();
+    let manifest = crate::dataset_check::manifest(&ws.path("suite/datasets/mine__clean"));
+    assert_eq!(manifest.frame_count, 3);
+    assert_eq!(
+        manifest.command[..6],
+        [
+            "rslam",
+            "render",
+            "--scene",
+            "room1.ply",
+            "--traj",
+            "room1.txt"
+        ]
+    );
+    ws.rslam(&["suite", "status", "suite"]).success();
+}

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# CI: the benchmark end to end with a real odometry. A mini suite is made; OpenCV 5's RGB-D
+# odometry (examples/methods/opencv_rgbd.toml, from PyPI) runs on every sequence beside three
+# methods that crash, hang past their timeout and write garbage; `rslam suite report` must show
+# the odometry tracking the clean sequence within CLEAN_ATE_BOUND, the strong perturbation
+# raising its ATE, and each bad method as F with its reason.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+frames=${BENCH_TEST_FRAMES:-120}
+# Measured on room0 (see examples/methods/README.md): clean ATE about 0.01 m; bound with margin.
+clean_ate_bound=0.05
+strong=gaussian_noise-5
+
+fail() { echo "test-bench: $*" >&2; exit 1; }
+
+scripts/install-system-deps.sh
+cargo build --release -p rslam-cli
+rslam=$PWD/target/release/rslam
+venv=$PWD/target/methods-venv
+[ -x "$venv/bin/python3" ] || python3 -m venv "$venv"
+"$venv/bin/pip" install --quiet -r examples/methods/requirements.txt
+export PATH=$venv/bin:$PATH
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+suite=$tmp/suite
+"$rslam" suite init --preset mini --frames "$frames" --out "$suite"
+"$rslam" suite run "$suite"
+
+mkdir "$tmp/methods"
+bad_method() { # name, timeout, command (TOML list)
+  printf 'name = "%s"\nreads = "replica"\ntimeout_s = %s\ncommand = %s\n' "$1" "$2" "$3" >"$tmp/methods/$1.toml"
+}
+bad_method crashes 60 '["python3", "-c", "import sys; sys.exit(7)"]'
+bad_method hangs 2 '["sleep", "600"]'
+bad_method garbage 60 '["sh", "-c", "head -c 300 /dev/urandom > \"$1\"", "sh", "{estimate}"]'
+
+"$rslam" suite bench "$suite" --jobs 2 --methods examples/methods/opencv_rgbd.toml \
+  --methods "$tmp/methods/crashes.toml" --methods "$tmp/methods/hangs.toml" --methods "$tmp/methods/garbage.toml"
+"$rslam" suite report "$suite"
+[ -s "$suite/report/report.html" ] || fail "no report.html"
+
+python3 - "$suite/report/report.json" "$clean_ate_bound" "$strong" <<'PY'
+import json, statistics, sys
+report = json.load(open(sys.argv[1]))
+bound, strong = float(sys.argv[2]), sys.argv[3]
+runs = report["runs"]
+def runs_of(method, setting=None):
+    return [r for r in runs if r["method"] == method and (setting is None or r["setting"] == setting)]
+problems = []
+clean = runs_of("opencv_rgbd", "clean")
+if not clean or any(r["failure"] or r["ate"] > bound for r in clean):
+    problems.append(f"clean runs of opencv_rgbd not within {bound} m: {clean}")
+clean_median = statistics.median(r["ate"] for r in clean) if clean else float("nan")
+strong_runs = runs_of("opencv_rgbd", strong)
+strong_median = statistics.median(r["ate"] for r in strong_runs) if strong_runs else float("nan")
+if not strong_median > clean_median:
+    problems.append(f"{strong} median ATE {strong_median} does not exceed clean {clean_median}")
+for method, reason in [("crashes", "exit status 7"), ("hangs", "timed out after 2"), ("garbage", "estimate unreadable")]:
+    for r in runs_of(method):
+        if not (r["failure"] or "").startswith(reason):
+            problems.append(f"{method} on {r['sequence']}: expected F '{reason}…', got {r['failure']!r}")
+    if len(runs_of(method)) != 7:
+        problems.append(f"{method}: {len(runs_of(method))} runs, expected 7")
+print(f"opencv_rgbd: clean ATE {clean_median:.4f} m (bound {bound}), {strong} {strong_median:.4f} m")
+for r in runs_of("opencv_rgbd"):
+    print(f"  {r['setting']:24} ATE {r['ate']:.4f} m  SR {r['sr']}  {'F: ' + r['failure'] if r['failure'] else ''}")
+if problems:
+    print("\n".join(problems), file=sys.stderr)
+    sys.exit(1)
+PY
+echo "test-bench: ok"
