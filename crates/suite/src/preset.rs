@@ -64,7 +64,7 @@ impl Preset {
                 ("clean", ""),
                 ("gaussian_noise-5", "gaussian_noise:5"),
                 ("motion_blur-3-dynamic", "motion_blur:3@dynamic"),
-                ("depth_missing-5", "depth_missing:5"),
+                ("depth_noise-5", "depth_noise:5"),
                 ("fast-4", "fast:4"),
                 ("rot-1-trans-0.025", "rot:1,trans:0.025"),
                 ("misalign-10", "misalign:10"),
