@@ -104,7 +104,7 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
     }
     if row.traj.is_none() && rslam_render::builtin_path_length(&scene).is_none() {
         let known = rslam_render::BUILTIN_SCENES.join(", ");
-        if !Path::new(&scene).extension().is_some_and(|e| !e.is_empty()) {
+        if Path::new(&scene).extension().is_none_or(|e| e.is_empty()) {
             return Err(in_row(format!(
                 "scene '{scene}': neither a built-in scene ({known}) nor a mesh file"
             )));
