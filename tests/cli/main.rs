@@ -2,6 +2,7 @@
 
 mod dataset_check;
 mod eval;
+mod eval_recon;
 mod harness;
 mod list;
 mod motion;
