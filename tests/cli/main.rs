@@ -3,6 +3,7 @@
 mod bench;
 mod dataset_check;
 mod eval;
+mod eval_recon;
 mod harness;
 mod list;
 mod motion;

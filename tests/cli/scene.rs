@@ -91,7 +91,7 @@ fn bad_scenes_and_paths_are_one_line_errors() {
         .fails_with(2, &["unknown scene 'kitchen9'", "office4"]);
     ws.rslam(&["scene", "export", "missing.obj", "--out", "gt.ply"])
         .fails_with(2, &["missing.obj"]);
-    ws.write("cut.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nend_header\n\x01");
+    ws.write("cut.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n\x01");
     ws.rslam(&["scene", "export", "cut.ply", "--out", "gt.ply"])
         .fails_with(2, &["cut.ply", "file ends early"]);
     ws.rslam(&["scene", "export", "room1", "--out", "no/such/dir/gt.ply"])

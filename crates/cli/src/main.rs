@@ -36,7 +36,8 @@ enum Command {
     List(commands::list::ListArgs),
     /// Built-in scenes: export the ground-truth mesh or the default trajectory.
     Scene(commands::scene::SceneArgs),
-    /// Evaluate an estimated trajectory against ground truth (ATE, RPE, SR), or many runs.
+    /// Evaluate an estimated trajectory against ground truth (ATE, RPE, SR), or many runs;
+    /// `eval recon`: a reconstructed map against the ground-truth mesh.
     Eval(commands::eval::EvalArgs),
     /// Check a generated dataset against its checksums (rslam.b3sum) and manifest digest.
     Verify(commands::verify::VerifyArgs),

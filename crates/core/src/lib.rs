@@ -3,15 +3,19 @@
 //! Data flow: a [`Trajectory`] of camera-to-world [`Pose`]s and an [`Intrinsics`] go to the
 //! renderer; it hands back [`RgbImage`] / [`DepthImage`] pairs, which the `dataset` writers encode
 //! into the Replica or TUM layout, manifest last. `trajectory_io` reads and writes the trajectory
-//! file formats that SLAM systems and `rslam eval` use.
+//! file formats that SLAM systems and `rslam eval` use; `mesh_io` reads meshes and point clouds,
+//! and [`SurfaceBvh`] answers nearest-surface queries on them (ray casting, reconstruction
+//! metrics).
 
 pub mod dataset;
 mod error;
 pub mod hash;
 mod image_buffer;
 mod intrinsics;
+pub mod mesh_io;
 mod nearest_time;
 mod pose;
+mod surface_bvh;
 mod trajectory;
 pub mod trajectory_io;
 
@@ -20,4 +24,5 @@ pub use image_buffer::{DepthImage, RgbImage};
 pub use intrinsics::{Intrinsics, REPLICA_RATE_HZ, TUM_RATE_HZ};
 pub use nearest_time::nearest_time;
 pub use pose::Pose;
+pub use surface_bvh::{SurfaceBvh, SurfacePoint};
 pub use trajectory::Trajectory;

@@ -52,6 +52,8 @@ pub enum EvalError {
         #[source]
         source: std::io::Error,
     },
+    #[error("{path}: {message}")]
+    BadMesh { path: PathBuf, message: String },
     #[error("{path}: cannot draw the plot: {message}")]
     Plot { path: PathBuf, message: String },
     #[error("{path}: {message}")]

@@ -10,12 +10,16 @@
 //! truth in the datasets folder, counts failures with the benchmark's convention and writes the
 //! tables (ATE, SR, SR path ratio, tracked fraction, CSR, survival upper bound, Welch's t-test)
 //! as Markdown, CSV and JSON.
+//!
+//! For maps, [`recon`] measures a reconstructed mesh or point cloud against the ground-truth mesh
+//! (accuracy, completion, completion ratio; CO-SLAM's protocol, distances to surfaces).
 
 mod alignment;
 mod association;
 mod error;
 mod evaluate;
 mod plot;
+pub mod recon;
 mod rpe;
 mod rpe_pairs;
 pub mod runs;

@@ -4,22 +4,16 @@
 //! Rays are traced through an obvhs BVH2 with a Möller–Trumbore test whose barycentric bounds are
 //! widened by [`EDGE_EPS`], so a ray through a shared edge never slips between two triangles.
 
-mod nearest;
 mod shading;
 
-use std::time::Duration;
-
 use glam::{DVec3, Vec3, Vec3A};
-use obvhs::bvh2::builder::build_bvh2_from_tris;
-use obvhs::bvh2::Bvh2;
 use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
-use obvhs::BvhBuildParams;
 use rayon::prelude::*;
-use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
+pub use rslam_core::SurfacePoint;
+use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage, SurfaceBvh};
 
 use crate::{Mesh, Scene, Texture};
-pub use nearest::SurfacePoint;
 use shading::Shading;
 pub use shading::UvDerivatives;
 
@@ -53,8 +47,7 @@ pub struct RayCastFrame {
 }
 
 pub struct RayCaster {
-    bvh: Bvh2,
-    triangles: Vec<Triangle>,
+    surface: SurfaceBvh,
     shading: Shading,
 }
 
@@ -80,24 +73,18 @@ impl RayCaster {
                 v2: p(t[2]),
             })
             .collect();
-        let bvh = if triangles.is_empty() {
-            Bvh2::default()
-        } else {
-            build_bvh2_from_tris(
-                &triangles,
-                BvhBuildParams::fast_build(),
-                &mut Duration::default(),
-            )
-        };
         Self {
-            bvh,
+            surface: SurfaceBvh::new(triangles),
             shading: Shading::new(mesh, textures),
-            triangles,
         }
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.triangles.len()
+        self.triangles().len()
+    }
+
+    fn triangles(&self) -> &[Triangle] {
+        self.surface.triangles()
     }
 
     /// Closest hit of the ray `origin + t·dir`, `t > 0`; `dir` need not be unit length.
@@ -107,22 +94,20 @@ impl RayCaster {
 
     /// Closest hit with `0 < t ≤ max_distance` (in units of `dir`).
     pub fn cast_within(&self, origin: Vec3, dir: Vec3, max_distance: f32) -> Option<Hit> {
-        if self.triangles.is_empty() || dir == Vec3::ZERO {
+        let (bvh, triangles) = (self.surface.bvh(), self.triangles());
+        if triangles.is_empty() || dir == Vec3::ZERO {
             return None;
         }
         let ray = Ray::new(origin.into(), dir.into(), 0.0, max_distance);
         let mut hit = RayHit::none();
-        let found = self.bvh.ray_traverse(ray, &mut hit, |ray, id| {
-            intersect(
-                &self.triangles[self.bvh.primitive_indices[id] as usize],
-                ray,
-            )
+        let found = bvh.ray_traverse(ray, &mut hit, |ray, id| {
+            intersect(&triangles[bvh.primitive_indices[id] as usize], ray)
         });
         if !found {
             return None;
         }
-        let triangle = self.bvh.primitive_indices[hit.primitive_id as usize];
-        let tri = &self.triangles[triangle as usize];
+        let triangle = bvh.primitive_indices[hit.primitive_id as usize];
+        let tri = &triangles[triangle as usize];
         let point = Vec3A::from(origin) + Vec3A::from(dir) * hit.t;
         Some(Hit {
             distance: hit.t,
@@ -134,7 +119,7 @@ impl RayCaster {
     /// Geometric unit normal of a triangle (right-handed winding: counter-clockwise seen from the
     /// side it points to).
     pub fn triangle_normal(&self, triangle: u32) -> Vec3 {
-        self.triangles[triangle as usize].compute_normal().into()
+        self.triangles()[triangle as usize].compute_normal().into()
     }
 
     /// Z-depth image of the view; pixel (x, y) looks along ((x−cx)/fx, (y−cy)/fy, 1) in camera
@@ -226,7 +211,7 @@ impl RayCaster {
     /// Barycentric weights (unclamped) of the point where the line `origin + t·dir`, any t, meets
     /// the plane of `triangle`; `None` when it runs parallel to it.
     fn plane_barycentrics(&self, triangle: u32, origin: Vec3, dir: Vec3) -> Option<[f32; 3]> {
-        let tri = &self.triangles[triangle as usize];
+        let tri = &self.triangles()[triangle as usize];
         let n = (tri.v1 - tri.v0).cross(tri.v2 - tri.v0);
         let denom = n.dot(dir.into());
         if denom == 0.0 || !denom.is_finite() {
@@ -267,7 +252,8 @@ impl RayCaster {
     }
 
     fn same_plane(&self, a: u32, b: u32) -> bool {
-        let (ta, tb) = (&self.triangles[a as usize], &self.triangles[b as usize]);
+        let triangles = self.triangles();
+        let (ta, tb) = (&triangles[a as usize], &triangles[b as usize]);
         let (na, nb) = (ta.compute_normal(), tb.compute_normal());
         na.dot(nb) >= SAME_PLANE_COS
             && na.dot(tb.v0 - ta.v0).abs() <= SAME_PLANE_OFFSET
@@ -276,7 +262,7 @@ impl RayCaster {
 
     /// The surface point nearest to `point` (`None` for an empty mesh).
     pub fn nearest_surface(&self, point: Vec3) -> Option<SurfacePoint> {
-        nearest::nearest_surface(&self.bvh, &self.triangles, point.into())
+        self.surface.nearest(point)
     }
 }
 

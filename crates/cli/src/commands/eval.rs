@@ -49,8 +49,14 @@ at 0.02/0.1/1.0 m and as curves (failures stay in the denominator and never coun
 and Welch's t-test of ln ATE of each setting against clean per method, over scenes and repeats.";
 
 #[derive(clap::Args)]
-#[command(after_long_help = DETAILS)]
+#[command(
+    after_long_help = DETAILS,
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true
+)]
 pub struct EvalArgs {
+    #[command(subcommand)]
+    command: Option<EvalCommand>,
     /// Estimated trajectory.
     #[arg(required_unless_present = "runs", conflicts_with = "runs")]
     est: Option<PathBuf>,
@@ -109,7 +115,18 @@ pub struct EvalArgs {
     failure_ate: f64,
 }
 
+/// Beside `rslam eval EST GT`: a first argument `recon` is this subcommand, not a file name.
+#[derive(clap::Subcommand)]
+enum EvalCommand {
+    /// Mapping metrics of a reconstructed mesh or point cloud against the ground-truth mesh:
+    /// accuracy, completion (cm) and completion ratio (%).
+    Recon(super::eval_recon::ReconArgs),
+}
+
 pub fn run(args: EvalArgs) -> anyhow::Result<ExitCode> {
+    if let Some(EvalCommand::Recon(recon)) = args.command {
+        return super::eval_recon::run(recon);
+    }
     let read = ReadOptions {
         format: args.format,
         replica_rate_hz: args.rate,

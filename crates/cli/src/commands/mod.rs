@@ -1,6 +1,7 @@
 //! One file per subcommand: clap arguments turned into library option structs.
 
 pub mod eval;
+mod eval_recon;
 pub mod list;
 pub mod perturb;
 pub mod render;

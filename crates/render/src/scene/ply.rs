@@ -1,360 +1,39 @@
-//! PLY reader: ASCII and binary (little/big endian), any element layout, polygon faces
-//! triangulated as fans. Reads positions and vertex colours (Replica's `mesh.ply` has quads and
-//! uchar colours); other properties and elements are skipped.
+//! PLY files as scenes: the geometry `rslam_core::mesh_io` reads, grey where the file has no
+//! vertex colours.
 
 use std::path::Path;
+
+use rslam_core::mesh_io::parse_ply;
 
 use super::{Mesh, Vertex};
 use crate::RenderError;
 
 /// Vertex colour when the file has none.
-const DEFAULT_COLOR: [u8; 4] = [200, 200, 200, 255];
-
-#[derive(Clone, Copy, PartialEq, Debug)]
-enum Encoding {
-    Ascii,
-    LittleEndian,
-    BigEndian,
-}
-
-#[derive(Clone, Copy, Debug)]
-enum Scalar {
-    I8,
-    U8,
-    I16,
-    U16,
-    I32,
-    U32,
-    F32,
-    F64,
-}
-
-impl Scalar {
-    fn parse(name: &str) -> Option<Self> {
-        Some(match name {
-            "char" | "int8" => Scalar::I8,
-            "uchar" | "uint8" => Scalar::U8,
-            "short" | "int16" => Scalar::I16,
-            "ushort" | "uint16" => Scalar::U16,
-            "int" | "int32" => Scalar::I32,
-            "uint" | "uint32" => Scalar::U32,
-            "float" | "float32" => Scalar::F32,
-            "double" | "float64" => Scalar::F64,
-            _ => return None,
-        })
-    }
-
-    fn size(self) -> usize {
-        match self {
-            Scalar::I8 | Scalar::U8 => 1,
-            Scalar::I16 | Scalar::U16 => 2,
-            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
-            Scalar::F64 => 8,
-        }
-    }
-
-    fn is_float(self) -> bool {
-        matches!(self, Scalar::F32 | Scalar::F64)
-    }
-}
-
-#[derive(Debug)]
-enum Property {
-    Scalar {
-        name: String,
-        kind: Scalar,
-    },
-    List {
-        name: String,
-        count: Scalar,
-        item: Scalar,
-    },
-}
-
-#[derive(Debug)]
-struct Element {
-    name: String,
-    count: usize,
-    properties: Vec<Property>,
-}
-
-struct Header {
-    encoding: Encoding,
-    elements: Vec<Element>,
-    body_start: usize,
-}
+const DEFAULT_COLOR: [u8; 3] = [200, 200, 200];
 
 /// Reads the triangles and vertex colours of a PLY file.
 pub fn read_ply(path: &Path) -> Result<Mesh, RenderError> {
     let bytes = std::fs::read(path).map_err(|e| RenderError::io(path, e))?;
-    parse_ply(&bytes).map_err(|message| RenderError::bad_mesh(path, message))
-}
-
-fn parse_ply(bytes: &[u8]) -> Result<Mesh, String> {
-    let header = parse_header(bytes)?;
-    let body = &bytes[header.body_start..];
-    let mut values: Box<dyn Values> = match header.encoding {
-        Encoding::Ascii => Box::new(AsciiValues::new(body)?),
-        encoding => Box::new(BinaryValues {
-            bytes: body,
-            pos: 0,
-            big: encoding == Encoding::BigEndian,
-        }),
+    let geometry = parse_ply(&bytes).map_err(|message| RenderError::bad_mesh(path, message))?;
+    let color = |i: usize| {
+        let [r, g, b] = geometry.colors.as_ref().map_or(DEFAULT_COLOR, |c| c[i]);
+        [r, g, b, 255]
     };
-    let mut mesh = Mesh::default();
-    for element in &header.elements {
-        match element.name.as_str() {
-            "vertex" => read_vertices(element, values.as_mut(), &mut mesh)?,
-            "face" => read_faces(element, values.as_mut(), &mut mesh)?,
-            _ => {
-                for record in 0..element.count {
-                    for p in &element.properties {
-                        read_property(p, values.as_mut())
-                            .map_err(|e| truncated(element, record, e))?;
-                    }
-                }
-            }
-        }
-    }
-    let vertex_count = mesh.vertices.len();
-    if let Some(i) = mesh
-        .indices
+    let vertices = geometry
+        .positions
         .iter()
-        .position(|&i| i as usize >= vertex_count)
-    {
-        return Err(format!(
-            "face {} refers to vertex {} but the file has {vertex_count} vertices",
-            i / 3,
-            mesh.indices[i]
-        ));
-    }
-    Ok(mesh)
-}
-
-fn parse_header(bytes: &[u8]) -> Result<Header, String> {
-    const END: &[u8] = b"end_header";
-    let end = bytes
-        .windows(END.len())
-        .position(|w| w == END)
-        .ok_or("not a PLY file: no 'end_header' line")?;
-    let mut body_start = end + END.len();
-    while body_start < bytes.len() && bytes[body_start] != b'\n' {
-        body_start += 1;
-    }
-    body_start += 1;
-    let text = String::from_utf8_lossy(&bytes[..end]);
-    let mut lines = text.lines().enumerate();
-    if lines.next().map(|(_, l)| l.trim()) != Some("ply") {
-        return Err("not a PLY file: the first line is not 'ply'".into());
-    }
-    let mut encoding = None;
-    let mut elements: Vec<Element> = Vec::new();
-    for (n, line) in lines {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        let bad = |what: &str| format!("header line {}: {what}: '{}'", n + 1, line.trim());
-        match words.as_slice() {
-            [] | ["comment", ..] | ["obj_info", ..] => {}
-            ["format", f, _version] => {
-                encoding = Some(match *f {
-                    "ascii" => Encoding::Ascii,
-                    "binary_little_endian" => Encoding::LittleEndian,
-                    "binary_big_endian" => Encoding::BigEndian,
-                    _ => return Err(bad("unknown format")),
-                })
-            }
-            ["element", name, count] => elements.push(Element {
-                name: name.to_string(),
-                count: count.parse().map_err(|_| bad("bad element count"))?,
-                properties: Vec::new(),
-            }),
-            ["property", "list", count, item, name] => {
-                let element = elements
-                    .last_mut()
-                    .ok_or_else(|| bad("property before any element"))?;
-                element.properties.push(Property::List {
-                    name: name.to_string(),
-                    count: Scalar::parse(count).ok_or_else(|| bad("unknown list count type"))?,
-                    item: Scalar::parse(item).ok_or_else(|| bad("unknown list item type"))?,
-                });
-            }
-            ["property", kind, name] => {
-                let element = elements
-                    .last_mut()
-                    .ok_or_else(|| bad("property before any element"))?;
-                element.properties.push(Property::Scalar {
-                    name: name.to_string(),
-                    kind: Scalar::parse(kind).ok_or_else(|| bad("unknown property type"))?,
-                });
-            }
-            _ => return Err(bad("unrecognised header line")),
-        }
-    }
-    Ok(Header {
-        encoding: encoding.ok_or("header has no 'format' line")?,
-        elements,
-        body_start: body_start.min(bytes.len()),
-    })
-}
-
-fn truncated(element: &Element, record: usize, e: String) -> String {
-    format!(
-        "{e} in element '{}' record {record} of {}",
-        element.name, element.count
-    )
-}
-
-fn read_vertices(
-    element: &Element,
-    values: &mut dyn Values,
-    mesh: &mut Mesh,
-) -> Result<(), String> {
-    mesh.vertices.reserve(element.count);
-    for record in 0..element.count {
-        let mut v = Vertex {
-            position: [0.0; 3],
+        .enumerate()
+        .map(|(i, &position)| Vertex {
+            position,
             uv: [0.0; 2],
-            color: DEFAULT_COLOR,
+            color: color(i),
             layer: 0,
-        };
-        for p in &element.properties {
-            let (name, kind) = match p {
-                Property::Scalar { name, kind } => (name.as_str(), *kind),
-                list => {
-                    read_property(list, values).map_err(|e| truncated(element, record, e))?;
-                    continue;
-                }
-            };
-            let x = values
-                .read(kind)
-                .map_err(|e| truncated(element, record, e))?;
-            let channel = |x: f64| {
-                if kind.is_float() {
-                    (x * 255.0).round().clamp(0.0, 255.0) as u8
-                } else {
-                    x.clamp(0.0, 255.0) as u8
-                }
-            };
-            match name {
-                "x" | "y" | "z" => {
-                    if !x.is_finite() {
-                        return Err(format!(
-                            "vertex {record} has a non-finite coordinate {name}"
-                        ));
-                    }
-                    v.position[(name.as_bytes()[0] - b'x') as usize] = x as f32;
-                }
-                "red" | "r" | "diffuse_red" => v.color[0] = channel(x),
-                "green" | "g" | "diffuse_green" => v.color[1] = channel(x),
-                "blue" | "b" | "diffuse_blue" => v.color[2] = channel(x),
-                _ => {}
-            }
-        }
-        mesh.vertices.push(v);
-    }
-    Ok(())
-}
-
-fn read_faces(element: &Element, values: &mut dyn Values, mesh: &mut Mesh) -> Result<(), String> {
-    for record in 0..element.count {
-        for p in &element.properties {
-            match p {
-                Property::List { name, count, item }
-                    if name == "vertex_indices" || name == "vertex_index" =>
-                {
-                    let n = values
-                        .read(*count)
-                        .map_err(|e| truncated(element, record, e))?
-                        as usize;
-                    let mut polygon = Vec::with_capacity(n);
-                    for _ in 0..n {
-                        let i = values
-                            .read(*item)
-                            .map_err(|e| truncated(element, record, e))?;
-                        if i < 0.0 || i.fract() != 0.0 {
-                            return Err(format!("face {record} has an invalid vertex index {i}"));
-                        }
-                        polygon.push(i as u32);
-                    }
-                    for k in 1..n.saturating_sub(1) {
-                        mesh.indices
-                            .extend_from_slice(&[polygon[0], polygon[k], polygon[k + 1]]);
-                    }
-                }
-                other => read_property(other, values).map_err(|e| truncated(element, record, e))?,
-            }
-        }
-    }
-    Ok(())
-}
-
-fn read_property(p: &Property, values: &mut dyn Values) -> Result<(), String> {
-    match p {
-        Property::Scalar { kind, .. } => values.read(*kind).map(|_| ()),
-        Property::List { count, item, .. } => {
-            let n = values.read(*count)? as usize;
-            (0..n).try_for_each(|_| values.read(*item).map(|_| ()))
-        }
-    }
-}
-
-/// The body as a stream of numbers.
-trait Values {
-    fn read(&mut self, kind: Scalar) -> Result<f64, String>;
-}
-
-struct BinaryValues<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    big: bool,
-}
-
-impl Values for BinaryValues<'_> {
-    fn read(&mut self, kind: Scalar) -> Result<f64, String> {
-        let n = kind.size();
-        let raw = self
-            .bytes
-            .get(self.pos..self.pos + n)
-            .ok_or("file ends early")?;
-        self.pos += n;
-        let mut b = [0u8; 8];
-        b[..n].copy_from_slice(raw);
-        if self.big {
-            b[..n].reverse();
-        }
-        Ok(match kind {
-            Scalar::I8 => b[0] as i8 as f64,
-            Scalar::U8 => b[0] as f64,
-            Scalar::I16 => i16::from_le_bytes([b[0], b[1]]) as f64,
-            Scalar::U16 => u16::from_le_bytes([b[0], b[1]]) as f64,
-            Scalar::I32 => i32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            Scalar::U32 => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            Scalar::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
-            Scalar::F64 => f64::from_le_bytes(b),
         })
-    }
-}
-
-struct AsciiValues {
-    tokens: std::vec::IntoIter<String>,
-}
-
-impl AsciiValues {
-    fn new(body: &[u8]) -> Result<Self, String> {
-        let text = std::str::from_utf8(body).map_err(|_| "ASCII body is not text")?;
-        let tokens: Vec<String> = text.split_whitespace().map(str::to_string).collect();
-        Ok(Self {
-            tokens: tokens.into_iter(),
-        })
-    }
-}
-
-impl Values for AsciiValues {
-    fn read(&mut self, _kind: Scalar) -> Result<f64, String> {
-        let token = self.tokens.next().ok_or("file ends early")?;
-        token
-            .parse()
-            .map_err(|_| format!("'{token}' is not a number"))
-    }
+        .collect();
+    Ok(Mesh {
+        vertices,
+        indices: geometry.indices,
+    })
 }
 
 #[cfg(test)]

@@ -1,114 +1,44 @@
 use super::*;
-use crate::{load_scene, RenderError};
+use crate::{load_scene, Texture};
 
-/// A Replica-style binary PLY: normals, uchar colours, two quads sharing an edge.
-fn replica_style(big_endian: bool) -> Vec<u8> {
-    let format = if big_endian {
-        "binary_big_endian"
-    } else {
-        "binary_little_endian"
-    };
-    let mut b = format!(
-        "ply\nformat {format} 1.0\ncomment like Replica's mesh.ply\nelement vertex 6\n\
-         property float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n\
-         property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n\
-         element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-    )
-    .into_bytes();
-    let f = |b: &mut Vec<u8>, v: f32| {
-        b.extend(if big_endian {
-            v.to_be_bytes()
-        } else {
-            v.to_le_bytes()
-        })
-    };
-    let i = |b: &mut Vec<u8>, v: i32| {
-        b.extend(if big_endian {
-            v.to_be_bytes()
-        } else {
-            v.to_le_bytes()
-        })
-    };
-    for k in 0..6 {
-        let (x, y) = ((k % 3) as f32, (k / 3) as f32);
-        for c in [x, y, 1.5, 0.0, 0.0, 1.0] {
-            f(&mut b, c);
-        }
-        b.extend([10 * k as u8, 20, 30, 255]);
-    }
-    for quad in [[0, 1, 4, 3], [1, 2, 5, 4]] {
-        b.push(4);
-        for v in quad {
-            i(&mut b, v);
-        }
-    }
-    b
-}
-
-#[test]
-fn reads_binary_quads_with_colours_in_both_byte_orders() {
-    for big in [false, true] {
-        let mesh = parse_ply(&replica_style(big)).unwrap();
-        assert_eq!(mesh.vertices.len(), 6);
-        assert_eq!(
-            mesh.indices,
-            vec![0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4],
-            "quads become fans"
-        );
-        assert_eq!(mesh.vertices[4].position, [1.0, 1.0, 1.5]);
-        assert_eq!(mesh.vertices[5].color, [50, 20, 30, 255]);
-    }
-}
-
-#[test]
-fn reads_ascii_triangles_with_float_colours_and_extra_elements() {
-    let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n\
-                property float red\nproperty float green\nproperty float blue\n\
-                element face 1\nproperty uchar flags\nproperty list uchar uint vertex_index\n\
-                element edge 1\nproperty int a\nproperty int b\nend_header\n\
-                0 0 0 1 0 0\n1 0 0 0 1 0\n0 1 0  0 0 0.5\n7 3 0 1 2\n0 1\n";
-    let mesh = parse_ply(text.as_bytes()).unwrap();
-    assert_eq!(mesh.indices, vec![0, 1, 2]);
-    assert_eq!(mesh.vertices[0].color, [255, 0, 0, 255]);
-    assert_eq!(mesh.vertices[2].color, [0, 0, 128, 255]);
-}
-
-#[test]
-fn a_mesh_without_colours_gets_the_default() {
-    let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
-                element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-    let mesh = parse_ply(text.as_bytes()).unwrap();
-    assert!(mesh.vertices.iter().all(|v| v.color == DEFAULT_COLOR));
-}
-
-fn header_len(bytes: &[u8]) -> usize {
-    bytes
-        .windows(11)
-        .position(|w| w == b"end_header\n")
-        .unwrap()
-        + 11
-}
-
-#[test]
-fn bad_files_give_one_line_errors_naming_the_problem() {
-    let full = replica_style(false);
-    let cases: Vec<(Vec<u8>, &str)> = vec![
-        (full[..full.len() - 5].to_vec(), "file ends early in element 'face' record 1 of 2"),
-        (full[..header_len(&full) + 50].to_vec(), "file ends early in element 'vertex' record 1 of 6"),
-        (b"solid cube\nfacet normal 0 0 1\n".to_vec(), "no 'end_header'"),
-        (b"plx\nformat ascii 1.0\nend_header\n".to_vec(), "first line is not 'ply'"),
-        (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n0\n".to_vec(), "header line 4: unknown property type"),
-        (b"ply\nformat zip 1.0\nend_header\n".to_vec(), "unknown format"),
+/// Two triangles of a unit square, the first vertex red, with or without colour properties.
+fn square(with_colours: bool) -> String {
+    let (properties, colours) = if with_colours {
         (
-            b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0\n3 0 1 2\n".to_vec(),
-            "face 0 refers to vertex 1 but the file has 1 vertices",
-        ),
-        (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\nabc\n".to_vec(), "'abc' is not a number"),
-    ];
-    for (bytes, expected) in cases {
-        let err = parse_ply(&bytes).unwrap_err();
-        assert!(err.contains(expected), "expected '{expected}' in '{err}'");
-        assert!(!err.contains('\n'), "one line: {err}");
+            "property uchar red\nproperty uchar green\nproperty uchar blue\n",
+            [" 255 0 0", " 0 0 0", " 0 0 0", " 0 0 0"],
+        )
+    } else {
+        ("", [""; 4])
+    };
+    let corners = ["0 0 0", "1 0 0", "1 1 0", "0 1 0"];
+    let mut text = format!(
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+         {properties}element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    );
+    for (corner, colour) in corners.iter().zip(colours) {
+        text += &format!("{corner}{colour}\n");
+    }
+    text + "4 0 1 2 3\n"
+}
+
+#[test]
+fn load_scene_reads_a_ply_file_with_its_colours_or_grey() {
+    let dir = tempfile::tempdir().unwrap();
+    for with_colours in [true, false] {
+        let path = dir.path().join("Mesh.PLY");
+        std::fs::write(&path, square(with_colours)).unwrap();
+        let scene = load_scene(path.to_str().unwrap()).unwrap();
+        assert_eq!(scene.mesh.triangle_count(), 2);
+        assert_eq!(scene.mesh.vertices[2].position, [1.0, 1.0, 0.0]);
+        let expected = if with_colours {
+            [255, 0, 0, 255]
+        } else {
+            [200, 200, 200, 255]
+        };
+        assert_eq!(scene.mesh.vertices[0].color, expected);
+        assert_eq!(scene.textures, vec![Texture::white()]);
+        assert!(scene.default_trajectory.is_none());
     }
 }
 
@@ -116,12 +46,13 @@ fn bad_files_give_one_line_errors_naming_the_problem() {
 fn load_scene_names_the_file_in_every_error() {
     let dir = tempfile::tempdir().unwrap();
     let truncated = dir.path().join("cut.ply");
-    let full = replica_style(false);
+    let full = square(true);
     std::fs::write(&truncated, &full[..full.len() - 3]).unwrap();
     let err = load_scene(truncated.to_str().unwrap()).unwrap_err();
     assert!(matches!(err, RenderError::BadMesh { .. }));
     assert!(
-        err.to_string().starts_with(truncated.to_str().unwrap()),
+        err.to_string().starts_with(truncated.to_str().unwrap())
+            && err.to_string().contains("file ends early"),
         "{err}"
     );
 
@@ -147,22 +78,11 @@ fn load_scene_names_the_file_in_every_error() {
     let empty = dir.path().join("empty.ply");
     std::fs::write(
         &empty,
-        "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nend_header\n",
+        "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
     )
     .unwrap();
     assert!(load_scene(empty.to_str().unwrap())
         .unwrap_err()
         .to_string()
         .contains("no triangles"));
-}
-
-#[test]
-fn load_scene_reads_a_ply_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("Mesh.PLY");
-    std::fs::write(&path, replica_style(false)).unwrap();
-    let scene = load_scene(path.to_str().unwrap()).unwrap();
-    assert_eq!(scene.mesh.triangle_count(), 4);
-    assert_eq!(scene.textures, vec![crate::Texture::white()]);
-    assert!(scene.default_trajectory.is_none());
 }

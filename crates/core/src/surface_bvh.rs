@@ -1,0 +1,215 @@
+//! Triangles in a BVH (obvhs BVH2) and the nearest-surface query over it: branch-and-bound,
+//! children visited nearest box first. The renderer's ray caster traverses the same BVH.
+
+use std::time::Duration;
+
+use glam::{Vec3, Vec3A};
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::builder::build_bvh2_from_tris;
+use obvhs::bvh2::Bvh2;
+use obvhs::triangle::Triangle;
+use obvhs::BvhBuildParams;
+
+use crate::mesh_io::MeshGeometry;
+
+/// The closest point of the surface to a query point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    pub distance: f32,
+    pub point: Vec3,
+    pub triangle: u32,
+}
+
+pub struct SurfaceBvh {
+    bvh: Bvh2,
+    triangles: Vec<Triangle>,
+}
+
+impl SurfaceBvh {
+    /// Builds the BVH over `triangles`. A triangle with three equal corners is a point, so a
+    /// point cloud is a surface too (its nearest point is its nearest surface point).
+    pub fn new(triangles: Vec<Triangle>) -> Self {
+        let bvh = if triangles.is_empty() {
+            Bvh2::default()
+        } else {
+            build_bvh2_from_tris(
+                &triangles,
+                BvhBuildParams::fast_build(),
+                &mut Duration::default(),
+            )
+        };
+        Self { bvh, triangles }
+    }
+
+    /// The triangles of a mesh file, or its vertices where it is a point cloud.
+    pub fn of_geometry(geometry: &MeshGeometry) -> Self {
+        let p = |i: u32| Vec3A::from(geometry.positions[i as usize]);
+        let triangle = |[a, b, c]: [u32; 3]| Triangle {
+            v0: p(a),
+            v1: p(b),
+            v2: p(c),
+        };
+        let triangles = if geometry.is_point_cloud() {
+            (0..geometry.positions.len() as u32)
+                .map(|i| triangle([i; 3]))
+                .collect()
+        } else {
+            geometry
+                .indices
+                .chunks_exact(3)
+                .map(|t| triangle([t[0], t[1], t[2]]))
+                .collect()
+        };
+        Self::new(triangles)
+    }
+
+    pub fn bvh(&self) -> &Bvh2 {
+        &self.bvh
+    }
+
+    /// In the order given to [`SurfaceBvh::new`]; the BVH's primitive indices point here.
+    pub fn triangles(&self) -> &[Triangle] {
+        &self.triangles
+    }
+
+    /// The surface point nearest to `query` (`None` for an empty surface).
+    pub fn nearest(&self, query: Vec3) -> Option<SurfacePoint> {
+        if self.triangles.is_empty() {
+            return None;
+        }
+        let (bvh, query) = (&self.bvh, Vec3A::from(query));
+        let mut best: Option<SurfacePoint> = None;
+        let mut best_sq = f32::INFINITY;
+        let mut stack = vec![(0u32, box_distance_sq(bvh.nodes[0].aabb(), query))];
+        while let Some((index, dist_sq)) = stack.pop() {
+            if dist_sq >= best_sq {
+                continue;
+            }
+            let node = &bvh.nodes[index as usize];
+            if node.is_leaf() {
+                for slot in node.first_index..node.first_index + node.prim_count {
+                    let triangle = bvh.primitive_indices[slot as usize];
+                    let point =
+                        closest_point_on_triangle(&self.triangles[triangle as usize], query);
+                    let d_sq = point.distance_squared(query);
+                    if d_sq < best_sq {
+                        best_sq = d_sq;
+                        best = Some(SurfacePoint {
+                            distance: d_sq.sqrt(),
+                            point: point.into(),
+                            triangle,
+                        });
+                    }
+                }
+                continue;
+            }
+            let children = [node.first_index, node.first_index + 1]
+                .map(|c| (c, box_distance_sq(bvh.nodes[c as usize].aabb(), query)));
+            // Push the farther child first so the nearer one is searched first.
+            let (near, far) = if children[0].1 <= children[1].1 {
+                (children[0], children[1])
+            } else {
+                (children[1], children[0])
+            };
+            stack.push(far);
+            stack.push(near);
+        }
+        best
+    }
+}
+
+fn box_distance_sq(aabb: &Aabb, p: Vec3A) -> f32 {
+    let d = (aabb.min - p).max(p - aabb.max).max(Vec3A::ZERO);
+    d.length_squared()
+}
+
+/// Ericson, Real-Time Collision Detection, §5.1.5.
+fn closest_point_on_triangle(t: &Triangle, p: Vec3A) -> Vec3A {
+    let (a, b, c) = (t.v0, t.v1, t.v2);
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_on_a_point_cloud_is_the_nearest_point() {
+        let points: Vec<Vec3> = (0..500)
+            .map(|i| {
+                let h = crate::hash::splitmix64(i);
+                let coordinate = |shift: u32| ((h >> shift) & 0xffff) as f32 / 65535.0 * 4.0 - 2.0;
+                Vec3::new(coordinate(0), coordinate(16), coordinate(32))
+            })
+            .collect();
+        let cloud = SurfaceBvh::of_geometry(&MeshGeometry {
+            positions: points.iter().map(|p| p.to_array()).collect(),
+            ..Default::default()
+        });
+        for q in [
+            Vec3::ZERO,
+            Vec3::new(3.0, -1.0, 0.5),
+            Vec3::new(0.1, 0.2, -1.9),
+        ] {
+            let brute = points
+                .iter()
+                .map(|p| p.distance(q))
+                .fold(f32::INFINITY, f32::min);
+            let got = cloud.nearest(q).unwrap();
+            assert_eq!(got.distance, brute, "{q}");
+            assert_eq!(got.point, points[got.triangle as usize]);
+        }
+        let single = SurfaceBvh::of_geometry(&MeshGeometry {
+            positions: vec![[1.0, 2.0, 3.0]],
+            ..Default::default()
+        });
+        assert_eq!(
+            single.nearest(Vec3::new(1.0, 2.0, 5.0)).unwrap().distance,
+            2.0
+        );
+    }
+
+    #[test]
+    fn nearest_on_a_triangle_is_inside_or_on_its_edge() {
+        let triangle = Triangle {
+            v0: Vec3A::ZERO,
+            v1: Vec3A::X,
+            v2: Vec3A::Y,
+        };
+        let surface = SurfaceBvh::new(vec![triangle]);
+        let above = surface.nearest(Vec3::new(0.25, 0.25, 0.3)).unwrap();
+        assert_eq!(above.point, Vec3::new(0.25, 0.25, 0.0));
+        assert!((above.distance - 0.3).abs() < 1e-6);
+        let beyond_the_edge = surface.nearest(Vec3::new(1.0, 1.0, 0.0)).unwrap();
+        assert!((beyond_the_edge.point - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-6);
+        assert!(SurfaceBvh::new(Vec::new()).nearest(Vec3::ZERO).is_none());
+    }
+}

@@ -1,0 +1,137 @@
+//! Mapping metrics of a reconstruction against the ground-truth mesh, with the CO-SLAM protocol's
+//! definitions: points sampled on both surfaces, then
+//! accuracy = mean over the reconstruction's points of the distance to the ground truth,
+//! completion = mean over the ground truth's points of the distance to the reconstruction,
+//! completion ratio = share of the ground truth's points closer than a threshold (5 cm).
+//!
+//! Distances are to the other side's surface (point to nearest triangle, through a BVH), not to
+//! the other side's sampled points as in CO-SLAM's KD-tree code: a mesh against itself gives 0,
+//! and the number does not carry the sampling spacing of the other side. A reconstruction that is
+//! a point cloud is measured to its nearest point (all of its points) and its accuracy is taken
+//! over its points, subsampled to the sample count.
+
+mod sampling;
+mod surface;
+mod text_report;
+
+#[cfg(test)]
+mod tests;
+
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use rslam_core::SurfaceBvh;
+use serde::Serialize;
+
+use crate::EvalError;
+use surface::{load_surface, Role};
+pub use text_report::recon_text_report;
+
+/// The CO-SLAM protocol's sample count on each side.
+pub const DEFAULT_RECON_SAMPLES: usize = 200_000;
+/// The completion ratio's threshold of the CO-SLAM protocol, cm.
+pub const DEFAULT_THRESHOLD_CM: f64 = 5.0;
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReconOptions {
+    /// Points sampled on each surface (a point cloud with more points is subsampled).
+    pub samples: usize,
+    /// Picks the sampled points; draw i depends only on the seed and i, not on threading.
+    pub seed: u64,
+    /// A ground-truth point counts as completed when closer than this to the reconstruction, cm.
+    pub threshold_cm: f64,
+}
+
+impl Default for ReconOptions {
+    fn default() -> Self {
+        Self {
+            samples: DEFAULT_RECON_SAMPLES,
+            seed: 0,
+            threshold_cm: DEFAULT_THRESHOLD_CM,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SurfaceKind {
+    Mesh,
+    PointCloud,
+}
+
+/// What was read from one file and how many points were sampled on it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SurfaceSummary {
+    pub path: PathBuf,
+    pub kind: SurfaceKind,
+    pub vertices: usize,
+    pub triangles: usize,
+    pub samples: usize,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReconMetrics {
+    /// Mean distance of the reconstruction's points to the ground-truth surface, cm.
+    pub accuracy_cm: f64,
+    /// Mean distance of the ground truth's points to the reconstruction, cm.
+    pub completion_cm: f64,
+    /// Ground-truth points closer than `options.threshold_cm` to the reconstruction, %.
+    pub completion_ratio_percent: f64,
+    pub options: ReconOptions,
+    pub reconstruction: SurfaceSummary,
+    pub ground_truth: SurfaceSummary,
+}
+
+/// Reads the reconstruction (PLY mesh or point cloud) and the ground-truth mesh (PLY), both in
+/// metres, and measures one against the other.
+pub fn evaluate_reconstruction(
+    reconstruction: &Path,
+    ground_truth: &Path,
+    options: &ReconOptions,
+) -> Result<ReconMetrics, EvalError> {
+    check(options)?;
+    let rec = load_surface(reconstruction, Role::Reconstruction, options)?;
+    let gt = load_surface(ground_truth, Role::GroundTruth, options)?;
+    let to_gt = distances(&rec.samples, &gt.bvh);
+    let to_rec = distances(&gt.samples, &rec.bvh);
+    let threshold_m = options.threshold_cm / 100.0;
+    let completed = to_rec.iter().filter(|&&d| (d as f64) < threshold_m).count();
+    Ok(ReconMetrics {
+        accuracy_cm: mean(&to_gt) * 100.0,
+        completion_cm: mean(&to_rec) * 100.0,
+        completion_ratio_percent: completed as f64 / to_rec.len() as f64 * 100.0,
+        options: options.clone(),
+        reconstruction: rec.summary,
+        ground_truth: gt.summary,
+    })
+}
+
+fn check(options: &ReconOptions) -> Result<(), EvalError> {
+    if options.samples == 0 {
+        return Err(EvalError::BadOption {
+            name: "samples",
+            value: "0".into(),
+            expected: "at least 1 point per surface",
+        });
+    }
+    if !(options.threshold_cm.is_finite() && options.threshold_cm > 0.0) {
+        return Err(EvalError::BadOption {
+            name: "threshold_cm",
+            value: options.threshold_cm.to_string(),
+            expected: "a positive distance in cm",
+        });
+    }
+    Ok(())
+}
+
+/// Distance of each point to the surface, metres, in the order of `points`.
+fn distances(points: &[glam::Vec3], surface: &SurfaceBvh) -> Vec<f32> {
+    points
+        .par_iter()
+        .map(|&p| surface.nearest(p).map_or(f32::INFINITY, |s| s.distance))
+        .collect()
+}
+
+fn mean(values: &[f32]) -> f64 {
+    values.iter().map(|&v| v as f64).sum::<f64>() / values.len() as f64
+}

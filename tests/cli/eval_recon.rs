@@ -1,0 +1,144 @@
+//! `rslam eval recon`: mapping metrics of a mesh or point cloud against the ground-truth mesh.
+
+use crate::harness::Workspace;
+
+/// The unit square at height z as an ASCII PLY mesh, or its four corners and centre as a point
+/// cloud.
+fn square(z: f64, faces: bool) -> String {
+    let mut corners = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    if !faces {
+        corners.push([0.5, 0.5]);
+    }
+    let face_count = if faces { 2 } else { 0 };
+    let mut text = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n\
+         element face {face_count}\nproperty list uchar int vertex_indices\nend_header\n",
+        corners.len()
+    );
+    for [x, y] in corners {
+        text += &format!("{x} {y} {z}\n");
+    }
+    if faces {
+        text += "3 0 1 2\n3 0 2 3\n";
+    }
+    text
+}
+
+#[test]
+fn prints_accuracy_completion_and_ratio_of_a_shifted_plane() {
+    let ws = Workspace::new();
+    ws.write("gt.ply", &square(0.0, true));
+    ws.write("rec.ply", &square(0.03, true));
+    let out = ws
+        .rslam(&[
+            "eval",
+            "recon",
+            "rec.ply",
+            "--gt",
+            "gt.ply",
+            "--samples",
+            "5000",
+        ])
+        .success();
+    for fragment in [
+        "reconstruction\trec.ply: mesh, 4 vertices, 2 triangles, 5000 points sampled on its surface",
+        "accuracy (cm)\t3.0000",
+        "completion (cm)\t3.0000",
+        "completion ratio (< 5 cm, %)\t100.00",
+    ] {
+        assert!(out.contains(fragment), "missing '{fragment}' in:\n{out}");
+    }
+    let strict = ws
+        .rslam(&[
+            "eval",
+            "recon",
+            "rec.ply",
+            "--gt",
+            "gt.ply",
+            "--samples",
+            "5000",
+            "--threshold-cm",
+            "2",
+        ])
+        .success();
+    assert!(
+        strict.contains("completion ratio (< 2 cm, %)\t0.00"),
+        "{strict}"
+    );
+}
+
+#[test]
+fn json_has_the_metrics_and_what_was_sampled() {
+    let ws = Workspace::new();
+    ws.write("gt.ply", &square(0.0, true));
+    ws.write("cloud.ply", &square(0.01, false));
+    let out = ws
+        .rslam(&[
+            "eval",
+            "recon",
+            "cloud.ply",
+            "--gt",
+            "gt.ply",
+            "--samples",
+            "3",
+            "--seed",
+            "9",
+            "--json",
+        ])
+        .success();
+    let json: serde_json::Value =
+        serde_json::from_str(&out).unwrap_or_else(|e| panic!("{e}:\n{out}"));
+    assert!(
+        (json["accuracy_cm"].as_f64().unwrap() - 1.0).abs() < 1e-4,
+        "{out}"
+    );
+    assert!(json["completion_cm"].as_f64().unwrap() > 1.0, "{out}");
+    assert!(json["completion_ratio_percent"].is_number(), "{out}");
+    assert_eq!(json["options"]["seed"], 9);
+    assert_eq!(json["options"]["threshold_cm"], 5.0);
+    assert_eq!(json["reconstruction"]["kind"], "point_cloud");
+    assert_eq!(json["reconstruction"]["samples"], 3);
+    assert_eq!(json["ground_truth"]["kind"], "mesh");
+}
+
+#[test]
+fn bad_input_is_a_one_line_error_and_trajectories_still_evaluate() {
+    let ws = Workspace::new();
+    ws.write("gt.ply", &square(0.0, true));
+    ws.write(
+        "empty.ply",
+        "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
+    );
+    let err = ws
+        .rslam(&["eval", "recon", "empty.ply", "--gt", "gt.ply"])
+        .fails_with(
+            2,
+            &["empty.ply: no vertices: expected a mesh or a point cloud"],
+        );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    ws.rslam(&["eval", "recon", "gt.ply"])
+        .fails_with(2, &["--gt"]);
+    ws.rslam(&[
+        "eval",
+        "recon",
+        "gt.ply",
+        "--gt",
+        "gt.ply",
+        "--samples",
+        "0",
+    ])
+    .fails_with(2, &["samples = 0"]);
+    let help = ws.rslam(&["eval", "recon", "--help"]).success();
+    assert!(
+        help.contains("Distances are to the other side's surface"),
+        "{help}"
+    );
+    assert!(ws.rslam(&["eval", "--help"]).success().contains("recon"));
+    // A trajectory pair still goes to trajectory evaluation.
+    let traj = "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n2 2 1 0 0 0 0 1\n";
+    ws.write("traj.txt", traj);
+    assert!(ws
+        .rslam(&["eval", "traj.txt", "traj.txt"])
+        .success()
+        .contains("pairs\t3"));
+}
