@@ -267,6 +267,8 @@ fn help_states_both_sr_definitions() {
         "SR path ratio (sr_path_ratio) = L_est / L_gt, the paper's literal SR formula",
         "Tracked fraction = ground-truth poses with an associated estimate pose",
         "No reference tool computes these",
+        "name wins, the .txt is not evaluated",
+        "Writes report.html",
     ] {
         assert!(help.contains(fragment), "missing '{fragment}' in:\n{help}");
     }
@@ -331,6 +333,9 @@ fn runs_mode_writes_the_tables_and_marks_failures() {
         "runs.csv",
         "csr.png",
         "csr.svg",
+        "report.html",
+        "bars/clean.svg",
+        "bars/fog.png",
     ] {
         assert!(
             ws.path(&format!("report/{file}")).is_file(),

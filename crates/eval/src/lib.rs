@@ -9,7 +9,8 @@
 //! For many runs, [`runs`] walks `<runs>/<method>/<sequence>.txt`, finds each sequence's ground
 //! truth in the datasets folder, counts failures with the benchmark's convention and writes the
 //! tables (ATE, SR, SR path ratio, tracked fraction, CSR, survival upper bound, Welch's t-test)
-//! as Markdown, CSV and JSON.
+//! as Markdown, CSV, JSON and one self-contained HTML page, with the CSR curves and per-category
+//! bar plots.
 //!
 //! For maps, [`recon`] measures a reconstructed mesh or point cloud against the ground-truth mesh
 //! (accuracy, completion, completion ratio; CO-SLAM's protocol, distances to surfaces).

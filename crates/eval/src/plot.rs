@@ -1,5 +1,5 @@
 //! Figures as PNG or SVG (chosen by the file extension): the top view of one evaluation and,
-//! for `runs`, the CSR curves.
+//! for `runs`, the CSR curves and the per-category bars.
 
 use std::path::Path;
 
@@ -10,7 +10,8 @@ use crate::{EvalError, Evaluation};
 
 /// Something drawable on any plotters backend.
 pub(crate) trait Figure {
-    const SIZE: (u32, u32);
+    /// Width and height in pixels.
+    fn size(&self) -> (u32, u32);
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>;
 }
 
@@ -21,24 +22,32 @@ pub(crate) fn render_figure<F: Figure>(path: &Path, figure: &F) -> Result<(), Ev
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let result = match extension.as_deref() {
-        Some("png") => {
-            let root = BitMapBackend::new(path, F::SIZE).into_drawing_area();
-            figure
-                .draw(&root)
-                .and_then(|()| root.present().map_err(|e| e.to_string()))
-        }
-        Some("svg") => {
-            let root = SVGBackend::new(path, F::SIZE).into_drawing_area();
-            figure
-                .draw(&root)
-                .and_then(|()| root.present().map_err(|e| e.to_string()))
-        }
+        Some("png") => draw_on(BitMapBackend::new(path, figure.size()), figure),
+        Some("svg") => draw_on(SVGBackend::new(path, figure.size()), figure),
         _ => Err("expected a file name ending in .png or .svg".to_string()),
     };
     result.map_err(|message| EvalError::Plot {
         path: path.to_path_buf(),
         message,
     })
+}
+
+/// The SVG document of `figure`, for writing or embedding; `path` names it in errors.
+pub(crate) fn svg_text<F: Figure>(path: &Path, figure: &F) -> Result<String, EvalError> {
+    let mut text = String::new();
+    draw_on(SVGBackend::with_string(&mut text, figure.size()), figure).map_err(|message| {
+        EvalError::Plot {
+            path: path.to_path_buf(),
+            message,
+        }
+    })?;
+    Ok(text)
+}
+
+fn draw_on<DB: DrawingBackend, F: Figure>(backend: DB, figure: &F) -> Result<(), String> {
+    let root = backend.into_drawing_area();
+    figure.draw(&root)?;
+    root.present().map_err(|e| e.to_string())
 }
 
 /// Draws the top view (x–y) of the ground truth and the aligned estimate, beside the ATE of each
@@ -54,7 +63,9 @@ const ESTIMATE_COLOR: RGBColor = RGBColor(31, 119, 180);
 const ERROR_COLOR: RGBColor = RGBColor(214, 39, 40);
 
 impl Figure for EvaluationFigure<'_> {
-    const SIZE: (u32, u32) = (1400, 640);
+    fn size(&self) -> (u32, u32) {
+        (1400, 640)
+    }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let e = self.0;

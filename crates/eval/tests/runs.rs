@@ -5,7 +5,7 @@ use std::path::Path;
 use glam::{DQuat, DVec3};
 use rslam_core::trajectory_io::{write_replica, write_tum, ReadOptions};
 use rslam_core::{Pose, Trajectory};
-use rslam_eval::runs::{evaluate_runs, write_report, RunsOptions, DEFAULT_FAILURE_ATE};
+use rslam_eval::runs::{evaluate_runs, write_report, RunsOptions, DEFAULT_FAILURE_ATE, NO_REASON};
 use rslam_eval::EvalOptions;
 
 fn circle(n: usize, radius: f64) -> Trajectory {
@@ -87,6 +87,31 @@ fn layout(root: &Path) -> RunsOptions {
         failure_ate: DEFAULT_FAILURE_ATE,
         skip_dir: None,
     }
+}
+
+/// Adds method "runner", laid out as a benchmark runner writes: room0 repeat 1 fine and 2 timed
+/// out; room0__fog-3 failed with a stale estimate left beside its record; office0 fine (with the
+/// runner's .json and .log); office0__fog-3 failed without a reason; a record of an unknown
+/// sequence.
+fn add_runner_records(options: &RunsOptions) {
+    let gt = circle(100, 1.0);
+    let runner = options.runs_dir.join("runner");
+    for seq in ["room0", "room0__fog-3", "office0", "office0__fog-3"] {
+        mkdir(&runner.join(seq));
+    }
+    let write = |path: &str, text: &str| std::fs::write(runner.join(path), text).unwrap();
+    write_tum(&runner.join("room0/1.txt"), &jittered(&gt, 0.004)).unwrap();
+    write("room0/2.failed", "timed out after 60 s\n");
+    write_tum(&runner.join("room0__fog-3/1.txt"), &gt).unwrap();
+    write(
+        "room0__fog-3/1.failed",
+        "estimate unreadable: <&> in line 3\n",
+    );
+    write_tum(&runner.join("office0/1.txt"), &jittered(&gt, 0.002)).unwrap();
+    write("office0/1.json", "{\"status\": \"ok\"}");
+    write("office0/1.log", "started\n");
+    write("office0__fog-3/1.failed", "");
+    write("garage.failed", "exit status 3\n");
 }
 
 #[test]
@@ -193,6 +218,7 @@ fn writes_every_table() {
         "runs.csv",
         "csr.png",
         "csr.svg",
+        "report.html",
     ] {
         assert!(
             names.contains(&expected.to_string()),
@@ -237,4 +263,118 @@ fn missing_folders_are_errors() {
         .unwrap_err()
         .to_string()
         .contains("nope"));
+}
+
+#[test]
+fn failed_records_are_failed_runs_with_their_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = layout(dir.path());
+    add_runner_records(&options);
+    let report = evaluate_runs(&options).unwrap();
+    let runner: Vec<_> = report
+        .runs
+        .iter()
+        .filter(|r| r.method == "runner")
+        .map(|r| {
+            (
+                r.sequence.as_str(),
+                r.repeat.as_deref().unwrap(),
+                r.failure.as_deref(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        runner,
+        vec![
+            ("office0", "1", None),
+            ("office0__fog-3", "1", Some(NO_REASON)),
+            ("room0", "1", None),
+            ("room0", "2", Some("timed out after 60 s")),
+            (
+                "room0__fog-3",
+                "1",
+                Some("estimate unreadable: <&> in line 3")
+            ),
+        ]
+    );
+    let failed = report
+        .runs
+        .iter()
+        .find(|r| r.failure.as_deref() == Some("timed out after 60 s"))
+        .unwrap();
+    assert_eq!(
+        (failed.ate, failed.sr, failed.tracked_fraction),
+        (DEFAULT_FAILURE_ATE, Some(0.0), 0.0)
+    );
+    let m = &report.summary.methods[2];
+    assert_eq!((m.method.as_str(), m.runs, m.failures), ("runner", 5, 3));
+    assert_eq!((m.cells[0].runs, m.cells[0].failures), (3, 1));
+    assert!((m.cells[0].ate_mean - (0.004 + 1.0 + 0.002) / 3.0).abs() < 1e-6);
+    assert_eq!((m.cells[1].failures, m.cells[1].ate_mean), (2, 1.0));
+    assert!(report
+        .unmatched
+        .iter()
+        .any(|p| p.ends_with("runner/garage.failed")));
+}
+
+#[test]
+fn html_report_is_self_contained_with_tables_failures_and_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = layout(dir.path());
+    add_runner_records(&options);
+    let report = evaluate_runs(&options).unwrap();
+    let out = dir.path().join("report");
+    write_report(&report, &out).unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for expected in [
+        "<h1>rslam eval: 3 methods × 2 settings</h1>",
+        // ATE, setting rows × method columns (bad, good, runner), then the survival bound.
+        "<tr><th>clean</th><td class=\"part\">0.5010 <small>1/2 F</small></td><td>0.0020</td>\
+         <td class=\"part\">0.3353 <small>1/3 F</small></td><td>0.0020</td></tr>",
+        "<tr><th>fog-3</th><td class=\"fail\">F <small>2/2</small></td><td>0.0300</td>\
+         <td class=\"fail\">F <small>2/2</small></td><td>0.0300</td></tr>",
+        // SR: a setting where every run failed is F, whatever its value.
+        "<tr><th>clean</th><td class=\"part\">0.500 <small>1/2 F</small></td><td>1.000</td>",
+        "<th>mean over settings</th>",
+        // CSR at 1 m: runner has 2 good runs of 5.
+        "<tr><th>runner</th><td>5</td><td>3</td><td>40.0 %</td><td>40.0 %</td><td>40.0 %</td></tr>",
+        "<tr><th>fog</th><td>1</td><td>0.0300</td></tr>",
+        "<td class=\"reason\">estimate unreadable: &lt;&amp;&gt; in line 3</td>",
+        "<td class=\"reason\">failed (no reason given)</td>",
+        "<th>runner</th><td>room0</td><td>2</td><td class=\"reason\">timed out after 60 s</td>",
+        "<h2>Failed runs (6)</h2>",
+        "<h2>Welch&#39;s t-test against clean</h2>",
+        "runner/garage.failed</li>",
+        "<figure id=\"bars-clean\">",
+        "<figure id=\"bars-fog\">",
+    ] {
+        assert!(html.contains(expected), "missing {expected} in:\n{html}");
+    }
+    assert!(!html.contains("<&>"), "unescaped reason");
+    // The CSR curve and one bar figure per category, inline.
+    assert_eq!(html.matches("<svg").count(), 3);
+    for external in ["src=", "href=\"http", "<script", "<link", "url(", "@import"] {
+        assert!(!html.contains(external), "{external} in the HTML report");
+    }
+}
+
+#[test]
+fn bar_plots_are_written_per_category() {
+    let dir = tempfile::tempdir().unwrap();
+    let options = layout(dir.path());
+    let report = evaluate_runs(&options).unwrap();
+    let out = dir.path().join("report");
+    let written = write_report(&report, &out).unwrap();
+    for category in ["clean", "fog"] {
+        for extension in ["svg", "png"] {
+            let path = out.join(format!("bars/{category}.{extension}"));
+            assert!(written.contains(&path), "{} not listed", path.display());
+            assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+        }
+    }
+    assert_eq!(std::fs::read_dir(out.join("bars")).unwrap().count(), 4);
+    let fog = std::fs::read_to_string(out.join("bars/fog.svg")).unwrap();
+    // Method "bad" failed both fog-3 runs: its ATE bar carries the count.
+    assert!(fog.contains("2F"), "{fog}");
+    assert!(fog.contains("fog-3"));
 }

@@ -39,14 +39,20 @@ No reference tool computes these; they are rslam's definitions (spec metrics.md)
 
 --runs DIR --datasets DIR: evaluates DIR/<method>/<sequence>.txt (or DIR/<method>/<sequence>/<repeat>.txt)
 against the ground truth in DATASETS/<sequence>/traj.txt or groundtruth.txt. A sequence named
-<scene>__<setting> belongs to that setting (room0__fog-3), a bare <scene> is clean. Missing, empty,
-unreadable or unassociable estimates are failures (ATE = --failure-ate; SR, SR path ratio and
-tracked fraction 0; marked F). Writes report.md, report.json, ate.csv, sr.csv, sr_path_ratio.csv,
-tracked_fraction.csv, csr.csv, csr_curve.csv, welch.csv, runs.csv, csr.png and csr.svg into --out:
-ATE, SR, SR path ratio and tracked fraction per method x setting with mean/max (mean/min for the
-last three), the survival upper bound (best method per setting, and its mean per category), CSR
-at 0.02/0.1/1.0 m and as curves (failures stay in the denominator and never count as successes),
-and Welch's t-test of ln ATE of each setting against clean per method, over scenes and repeats.";
+<scene>__<setting> belongs to that setting (room0__fog-3), a bare <scene> is clean. A run is a
+failure when a runner left <repeat>.failed (or <sequence>.failed) for it, a text file whose first
+line is the reason (an empty one: 'failed (no reason given)'); a .failed beside a .txt of the same
+name wins, the .txt is not evaluated. Other files (.json, .log) are ignored. Missing, empty,
+unreadable or unassociable estimates are failures too. A failure counts as ATE = --failure-ate;
+SR, SR path ratio and tracked fraction 0; marked F. Writes report.html (everything below in one
+file that opens offline, figures inline), report.md, report.json, ate.csv, sr.csv,
+sr_path_ratio.csv, tracked_fraction.csv, csr.csv, csr_curve.csv, welch.csv, runs.csv, csr.png,
+csr.svg and bars/<category>.png/.svg into --out: ATE, SR, SR path ratio and tracked fraction per
+method x setting with mean/max (mean/min for the last three), the survival upper bound (best
+method per setting, and its mean per category), CSR at 0.02/0.1/1.0 m and as curves (failures
+stay in the denominator and never count as successes), mean ATE and SR per setting as bars, one
+figure per category (fog, depth_missing, rot, ...), and Welch's t-test of ln ATE of each setting
+against clean per method, over scenes and repeats.";
 
 #[derive(clap::Args)]
 #[command(
@@ -96,7 +102,7 @@ pub struct EvalArgs {
     /// Draw the top view of both trajectories and the per-pose error (.png or .svg).
     #[arg(long, value_name = "FILE", conflicts_with = "runs")]
     plot: Option<PathBuf>,
-    /// Aggregate many runs: DIR/<method>/<sequence>.txt.
+    /// Aggregate many runs: DIR/<method>/<sequence>.txt, or <sequence>/<repeat>.txt and .failed.
     #[arg(long, value_name = "DIR", requires = "datasets")]
     runs: Option<PathBuf>,
     /// Folder holding the datasets by sequence name (with --runs).

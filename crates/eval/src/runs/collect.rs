@@ -31,7 +31,8 @@ pub struct RunRecord {
     pub rpe_trans: Option<f64>,
     pub rpe_rot_deg: Option<f64>,
     pub pairs: Option<usize>,
-    /// Why the run failed (missing or unreadable estimate, no association, …).
+    /// Why the run failed (the reason of its `.failed` record, missing or unreadable estimate,
+    /// no association, …).
     pub failure: Option<String>,
 }
 
@@ -49,7 +50,7 @@ pub struct CollectedRuns {
 }
 
 /// Evaluates every method on every sequence of the datasets folder. A broken ground truth is an
-/// error; a missing or broken estimate is a failed run.
+/// error; a missing or broken estimate, or a `.failed` record, is a failed run.
 pub fn collect_runs(options: &RunsOptions) -> Result<CollectedRuns, EvalError> {
     let sequences = find_sequences(&options.datasets_dir)?;
     let methods = find_methods(&options.runs_dir, options.skip_dir.as_deref())?;
@@ -72,6 +73,16 @@ pub fn collect_runs(options: &RunsOptions) -> Result<CollectedRuns, EvalError> {
                 ));
             }
             for estimate in estimates {
+                if let Some(reason) = estimate.failure {
+                    runs.push(failed_run(
+                        method,
+                        sequence,
+                        estimate.repeat,
+                        reason,
+                        options.failure_ate,
+                    ));
+                    continue;
+                }
                 let outcome = read_trajectory_with(&estimate.path, &options.read)
                     .map_err(EvalError::from)
                     .and_then(|est: TrajectoryFile| evaluate_files(&est, &gt, &options.eval));

@@ -1,22 +1,17 @@
 //! CSR curves: one line per method, CSR (%) over the ATE threshold (log scale).
 
-use std::path::Path;
-
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::summary::RunsSummary;
-use crate::plot::{render_figure, Figure};
-use crate::EvalError;
+use crate::plot::Figure;
 
-pub fn plot_csr(path: &Path, summary: &RunsSummary) -> Result<(), EvalError> {
-    render_figure(path, &CsrFigure(summary))
-}
-
-struct CsrFigure<'a>(&'a RunsSummary);
+pub(super) struct CsrFigure<'a>(pub(super) &'a RunsSummary);
 
 impl Figure for CsrFigure<'_> {
-    const SIZE: (u32, u32) = (900, 600);
+    fn size(&self) -> (u32, u32) {
+        (900, 600)
+    }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let s = self.0;

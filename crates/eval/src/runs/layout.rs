@@ -1,7 +1,12 @@
 //! Finding the runs: `<runs>/<method>/<sequence>.txt` (or `<runs>/<method>/<sequence>/<repeat>.txt`)
 //! and each sequence's ground truth in `<datasets>/<sequence>/{traj.txt, groundtruth.txt}`.
+//!
+//! A runner records a run that failed as `<repeat>.failed` (or `<sequence>.failed`) beside where
+//! the estimate would be: a text file whose first line is the reason. It wins over an estimate of
+//! the same name, which is then a leftover of an earlier attempt and not evaluated. Other files
+//! (the runner's `.json` and `.log`) are ignored.
 
-use std::collections::HashSet;
+use std::collections::{BTreeSet, HashSet};
 use std::path::{Path, PathBuf};
 
 use super::naming::scene_and_setting;
@@ -10,6 +15,9 @@ use crate::EvalError;
 /// Ground-truth files looked for in a dataset folder, in this order (Replica, TUM layout).
 const GROUND_TRUTH_FILES: [&str; 2] = ["traj.txt", "groundtruth.txt"];
 const ESTIMATE_EXTENSION: &str = "txt";
+const FAILED_EXTENSION: &str = "failed";
+/// The reason of a failed run whose `.failed` file gives none.
+pub const NO_REASON: &str = "failed (no reason given)";
 
 /// A dataset sequence with its ground truth.
 #[derive(Clone, Debug, PartialEq)]
@@ -20,12 +28,16 @@ pub struct Sequence {
     pub ground_truth: PathBuf,
 }
 
-/// One estimate file of a method for a sequence; `repeat` is the file stem inside
-/// `<sequence>/`, `None` for `<sequence>.txt`.
+/// One run of a method on a sequence: its estimate file, or its `.failed` record.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Estimate {
+    /// The file stem inside `<sequence>/`; `None` for `<sequence>.txt` (or `.failed`).
     pub repeat: Option<String>,
+    /// The estimate (`.txt`), or the failure record (`.failed`).
     pub path: PathBuf,
+    /// The reason of a `.failed` record (its first line, trimmed, or [`NO_REASON`]); `None` for
+    /// an estimate to evaluate.
+    pub failure: Option<String>,
 }
 
 /// The dataset folders of `datasets` that hold a ground truth, sorted by name.
@@ -74,30 +86,68 @@ pub fn find_methods(runs: &Path, skip: Option<&Path>) -> Result<Vec<(String, Pat
     Ok(methods)
 }
 
-/// The estimates of one method for one sequence: `<sequence>.txt`, then the `.txt` files of
-/// `<sequence>/` (one per repeat) by name.
+/// The runs of one method on one sequence: `<sequence>.txt` or `.failed`, then those of
+/// `<sequence>/` (one per repeat) by name. Of a `.txt` and a `.failed` with the same stem, the
+/// `.failed` is taken.
 pub fn find_estimates(method_dir: &Path, sequence: &str) -> Result<Vec<Estimate>, EvalError> {
-    let mut estimates = Vec::new();
-    let single = method_dir.join(format!("{sequence}.{ESTIMATE_EXTENSION}"));
-    if single.exists() {
-        estimates.push(Estimate {
-            repeat: None,
-            path: single,
-        });
-    }
+    let mut estimates: Vec<Estimate> = run_file(method_dir, sequence, None).into_iter().collect();
     let repeats = method_dir.join(sequence);
     if repeats.is_dir() {
-        for path in sorted_entries(&repeats)? {
-            if path.extension().is_some_and(|e| e == ESTIMATE_EXTENSION) {
-                let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
-                estimates.push(Estimate { repeat: stem, path });
-            }
+        let stems: BTreeSet<String> = sorted_entries(&repeats)?
+            .iter()
+            .filter(|p| is_run_file(p))
+            .filter_map(|p| Some(p.file_stem()?.to_string_lossy().into_owned()))
+            .collect();
+        for stem in stems {
+            estimates.extend(run_file(&repeats, &stem, Some(stem.clone())));
         }
     }
     Ok(estimates)
 }
 
-/// Entries of a method folder that belong to no known sequence.
+/// `dir/<stem>.failed` if it exists, else `dir/<stem>.txt` if it exists.
+fn run_file(dir: &Path, stem: &str, repeat: Option<String>) -> Option<Estimate> {
+    let failed = dir.join(format!("{stem}.{FAILED_EXTENSION}"));
+    if failed.is_file() {
+        return Some(Estimate {
+            repeat,
+            failure: Some(failure_reason(&failed)),
+            path: failed,
+        });
+    }
+    let estimate = dir.join(format!("{stem}.{ESTIMATE_EXTENSION}"));
+    estimate.exists().then_some(Estimate {
+        repeat,
+        path: estimate,
+        failure: None,
+    })
+}
+
+/// The first line of a `.failed` record, trimmed; unreadable, it still marks a failed run.
+fn failure_reason(record: &Path) -> String {
+    match std::fs::read(record) {
+        Ok(bytes) => {
+            let text = String::from_utf8_lossy(&bytes);
+            let first_line = text.lines().next().map(str::trim).unwrap_or("");
+            if first_line.is_empty() {
+                NO_REASON.to_string()
+            } else {
+                first_line.to_string()
+            }
+        }
+        Err(e) => format!("{}: {e}", record.display()),
+    }
+}
+
+fn is_run_file(path: &Path) -> bool {
+    path.is_file()
+        && path
+            .extension()
+            .is_some_and(|e| e == ESTIMATE_EXTENSION || e == FAILED_EXTENSION)
+}
+
+/// Entries of a method folder (folders, estimates and `.failed` records) that belong to no
+/// known sequence.
 pub fn find_unmatched(
     method_dir: &Path,
     sequences: &HashSet<&str>,
@@ -105,13 +155,13 @@ pub fn find_unmatched(
     Ok(sorted_entries(method_dir)?
         .into_iter()
         .filter(|p| {
-            let is_estimate = p.is_dir() || p.extension().is_some_and(|e| e == ESTIMATE_EXTENSION);
             let name = if p.is_dir() {
                 p.file_name()
             } else {
                 p.file_stem()
             };
-            is_estimate && !name.is_some_and(|n| sequences.contains(n.to_string_lossy().as_ref()))
+            (p.is_dir() || is_run_file(p))
+                && !name.is_some_and(|n| sequences.contains(n.to_string_lossy().as_ref()))
         })
         .collect())
 }
@@ -132,4 +182,80 @@ fn sorted_entries(dir: &Path) -> Result<Vec<PathBuf>, EvalError> {
         .map_err(|e| EvalError::io(dir, e))?;
     paths.sort();
     Ok(paths)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write(path: &Path, text: &str) {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+
+    #[test]
+    fn failed_records_are_runs_with_their_first_line_as_reason() {
+        let dir = tempfile::tempdir().unwrap();
+        let seq = dir.path().join("room0__fog-3");
+        write(&seq.join("1.txt"), "0 0 0 0 0 0 0 1\n");
+        write(&seq.join("2.failed"), "  timed out after 60 s  \nkilled\n");
+        write(&seq.join("3.failed"), "");
+        write(&seq.join("4.failed"), "\n\nexit status 3\n");
+        write(&seq.join("2.json"), "{}");
+        write(&seq.join("2.log"), "log");
+        let found = find_estimates(dir.path(), "room0__fog-3").unwrap();
+        let summary: Vec<(Option<&str>, Option<&str>)> = found
+            .iter()
+            .map(|e| (e.repeat.as_deref(), e.failure.as_deref()))
+            .collect();
+        assert_eq!(
+            summary,
+            vec![
+                (Some("1"), None),
+                (Some("2"), Some("timed out after 60 s")),
+                (Some("3"), Some(NO_REASON)),
+                (Some("4"), Some(NO_REASON)),
+            ]
+        );
+        assert_eq!(found[1].path, seq.join("2.failed"));
+    }
+
+    #[test]
+    fn a_failed_record_wins_over_a_stale_estimate() {
+        let dir = tempfile::tempdir().unwrap();
+        write(&dir.path().join("room0/1.txt"), "0 0 0 0 0 0 0 1\n");
+        write(&dir.path().join("room0/1.failed"), "exit status 3");
+        write(&dir.path().join("office0.txt"), "0 0 0 0 0 0 0 1\n");
+        write(&dir.path().join("office0.failed"), "estimate unreadable: x");
+        let room = find_estimates(dir.path(), "room0").unwrap();
+        assert_eq!(room.len(), 1);
+        assert_eq!(room[0].failure.as_deref(), Some("exit status 3"));
+        let office = find_estimates(dir.path(), "office0").unwrap();
+        assert_eq!(
+            office,
+            vec![Estimate {
+                repeat: None,
+                path: dir.path().join("office0.failed"),
+                failure: Some("estimate unreadable: x".to_string()),
+            }]
+        );
+    }
+
+    #[test]
+    fn unmatched_failed_records_are_reported_and_other_files_ignored() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in [
+            "room0.failed",
+            "kitchen.failed",
+            "kitchen.json",
+            "notes.log",
+        ] {
+            write(&dir.path().join(name), "x");
+        }
+        let known = HashSet::from(["room0"]);
+        assert_eq!(
+            find_unmatched(dir.path(), &known).unwrap(),
+            vec![dir.path().join("kitchen.failed")]
+        );
+    }
 }

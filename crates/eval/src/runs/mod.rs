@@ -3,14 +3,24 @@
 //!
 //! Sequence names carry the setting: `<scene>__<setting>` (`room0__fog-3`), a bare `<scene>` is
 //! clean. A setting's category is its leading perturbation name (`fog-3-dynamic` → `fog`).
-//! A missing, empty, unreadable or unassociable estimate is a failed run: ATE = the failure ATE
-//! (1.0 m by default); SR, SR path ratio and tracked fraction 0; marked F.
+//! A run is failed when its runner left `<repeat>.failed` (or `<sequence>.failed`), a text file
+//! whose first line is the reason, or when its estimate is missing, empty, unreadable or
+//! unassociable. A `.failed` record wins over an estimate of the same name: that estimate is
+//! stale and not evaluated. A failed run counts as ATE = the failure ATE (1.0 m by default);
+//! SR, SR path ratio and tracked fraction 0; marked F.
+//!
+//! The report (`write_report`): Markdown, JSON, CSV, the CSR curves and per-category bars as
+//! SVG and PNG, and `report.html`, all of it in one file with the figures inline.
 
+mod category_bars;
 mod collect;
 mod csr_plot;
+mod figures;
+mod html;
 mod layout;
 mod naming;
 mod summary;
+mod tables;
 mod welch;
 mod write;
 
@@ -20,7 +30,7 @@ use rslam_core::trajectory_io::ReadOptions;
 use serde::Serialize;
 
 pub use collect::{collect_runs, CollectedRuns, RunRecord};
-pub use layout::{find_estimates, find_methods, find_sequences, Estimate, Sequence};
+pub use layout::{find_estimates, find_methods, find_sequences, Estimate, Sequence, NO_REASON};
 pub use naming::{category, scene_and_setting, CLEAN};
 pub use summary::{
     csr, summarize, CategoryBound, CsrPoint, MeanAndMin, MethodSummary, RunsSummary, SettingCell,

@@ -1,49 +1,15 @@
-//! The report files of `rslam eval --runs`: Markdown, CSV, JSON and the CSR curves.
+//! The report files of `rslam eval --runs`: Markdown, CSV, JSON, HTML and the figures.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::collect::RunRecord;
-use super::summary::{MeanAndMin, MethodSummary, RunsSummary, SettingCell};
+use super::figures::write_figures;
+use super::html::html_report;
+use super::summary::{RunsSummary, SettingCell};
+use super::tables::{optional, MetricTable, ATE_TABLE, TRACKING_TABLES};
 use super::RunsReport;
 use crate::EvalError;
-
-/// A per-setting table of one tracking metric, written as CSV and as a Markdown section, with the
-/// mean and min over settings.
-struct TrackingTable {
-    csv: &'static str,
-    title: &'static str,
-    note: &'static str,
-    cell: fn(&SettingCell) -> Option<f64>,
-    over_settings: fn(&MethodSummary) -> MeanAndMin,
-}
-
-const TRACKING_TABLES: [TrackingTable; 3] = [
-    TrackingTable {
-        csv: "sr.csv",
-        title: "SR (covered fraction of the ground-truth path) per method × setting",
-        note: "Ground-truth segments whose two ends are paired with an estimate pose, over the \
-               whole ground-truth path: in [0, 1], jitter does not change it.",
-        cell: |c| c.sr_mean,
-        over_settings: |m| m.sr,
-    },
-    TrackingTable {
-        csv: "sr_path_ratio.csv",
-        title: "SR path ratio (the paper's SR formula) per method × setting",
-        note: "Estimate path length over ground-truth path length, as the paper writes SR, for \
-               comparing with it: jitter adds path length, so it grows when tracking gets worse \
-               and can exceed 1.",
-        cell: |c| c.sr_path_ratio_mean,
-        over_settings: |m| m.sr_path_ratio,
-    },
-    TrackingTable {
-        csv: "tracked_fraction.csv",
-        title: "Tracked fraction of frames per method × setting",
-        note: "Ground-truth poses paired with an estimate pose, over all ground-truth poses.",
-        cell: |c| c.tracked_fraction_mean,
-        over_settings: |m| m.tracked_fraction,
-    },
-];
 
 /// Writes every report file into `out` (created if needed); returns the paths written.
 pub fn write_report(report: &RunsReport, out: &Path) -> Result<Vec<PathBuf>, EvalError> {
@@ -53,33 +19,9 @@ pub fn write_report(report: &RunsReport, out: &Path) -> Result<Vec<PathBuf>, Eva
         path: out.join("report.json"),
         message: e.to_string(),
     })?;
-    let mut files = vec![
-        ("report.md", markdown(report)),
-        ("report.json", json),
-        (
-            "ate.csv",
-            matrix_csv(
-                s,
-                |c| Some(c.ate_mean),
-                [
-                    ("mean", &|m| Some(m.ate_mean)),
-                    ("max", &|m| Some(m.ate_max)),
-                ],
-                true,
-            ),
-        ),
-    ];
-    for table in &TRACKING_TABLES {
-        let text = matrix_csv(
-            s,
-            table.cell,
-            [
-                ("mean", &|m| (table.over_settings)(m).mean),
-                ("min", &|m| (table.over_settings)(m).min),
-            ],
-            false,
-        );
-        files.push((table.csv, text));
+    let mut files = vec![("report.md", markdown(report)), ("report.json", json)];
+    for table in std::iter::once(&ATE_TABLE).chain(&TRACKING_TABLES) {
+        files.push((table.csv, matrix_csv(s, table)));
     }
     files.extend([
         ("csr.csv", csr_csv(s)),
@@ -89,49 +31,44 @@ pub fn write_report(report: &RunsReport, out: &Path) -> Result<Vec<PathBuf>, Eva
     ]);
     let mut written = Vec::new();
     for (name, text) in files {
-        let path = out.join(name);
-        std::fs::write(&path, text).map_err(|e| EvalError::io(&path, e))?;
-        written.push(path);
+        written.push(write_text(out, name, &text)?);
     }
-    for name in ["csr.png", "csr.svg"] {
-        let path = out.join(name);
-        super::csr_plot::plot_csr(&path, s)?;
-        written.push(path);
-    }
+    let figures = write_figures(s, out)?;
+    let html = html_report(report, &figures);
+    written.extend(figures.files);
+    written.push(write_text(out, "report.html", &html)?);
     Ok(written)
 }
 
-/// A method's value over its settings, named by its CSV column.
-type OverSettingsColumn<'a> = (&'a str, &'a dyn Fn(&MethodSummary) -> Option<f64>);
+fn write_text(out: &Path, name: &str, text: &str) -> Result<PathBuf, EvalError> {
+    let path = out.join(name);
+    std::fs::write(&path, text).map_err(|e| EvalError::io(&path, e))?;
+    Ok(path)
+}
 
-fn matrix_csv(
-    s: &RunsSummary,
-    cell: fn(&SettingCell) -> Option<f64>,
-    [first, second]: [OverSettingsColumn; 2],
-    with_survival: bool,
-) -> String {
+fn matrix_csv(s: &RunsSummary, table: &MetricTable) -> String {
     let mut out = format!(
-        "method,{},{},{}\n",
+        "method,{},{}\n",
         s.settings
             .iter()
             .map(|x| csv_field(x))
             .collect::<Vec<_>>()
             .join(","),
-        first.0,
-        second.0
+        table.over_settings.join(",")
     );
     for m in &s.methods {
-        let cells: Vec<String> = m.cells.iter().map(|c| number(cell(c))).collect();
+        let cells: Vec<String> = m.cells.iter().map(|c| number((table.cell)(c))).collect();
+        let [first, second] = (table.over_settings_values)(m);
         let _ = writeln!(
             out,
             "{},{},{},{}",
             csv_field(&m.method),
             cells.join(","),
-            number(first.1(m)),
-            number(second.1(m))
+            number(first),
+            number(second)
         );
     }
-    if with_survival {
+    if table.survival {
         let b = &s.survival;
         let cells: Vec<String> = b.per_setting.iter().map(|v| number(Some(*v))).collect();
         let _ = writeln!(
@@ -246,8 +183,12 @@ fn markdown(report: &RunsReport) -> String {
         format!("| {} |\n|{}\n", cols.join(" | "), "---|".repeat(cols.len()))
     };
 
-    out.push_str("## ATE [m] per method × setting\n\nMean over scenes and repeats; `(kF)`: k failed runs among them.\n\n");
-    out.push_str(&header("method", ["mean", "max"]));
+    let _ = write!(
+        out,
+        "## {}\n\nMean over scenes and repeats; `(kF)`: k failed runs among them.\n\n",
+        ATE_TABLE.title
+    );
+    out.push_str(&header("method", ATE_TABLE.over_settings));
     for m in &s.methods {
         let cells: Vec<String> = m.cells.iter().map(ate_cell).collect();
         let _ = writeln!(
@@ -284,21 +225,21 @@ fn markdown(report: &RunsReport) -> String {
             "\n## {}\n\n{} Mean over scenes and repeats (failures count 0).\n\n",
             table.title, table.note
         );
-        out.push_str(&header("method", ["mean", "min"]));
+        out.push_str(&header("method", table.over_settings));
         for m in &s.methods {
             let cells: Vec<String> = m
                 .cells
                 .iter()
-                .map(|c| optional((table.cell)(c), 3))
+                .map(|c| optional((table.cell)(c), table.decimals))
                 .collect();
-            let over_settings = (table.over_settings)(m);
+            let [first, second] = (table.over_settings_values)(m);
             let _ = writeln!(
                 out,
                 "| {} | {} | {} | {} |",
                 m.method,
                 cells.join(" | "),
-                optional(over_settings.mean, 3),
-                optional(over_settings.min, 3)
+                optional(first, table.decimals),
+                optional(second, table.decimals)
             );
         }
     }
@@ -410,10 +351,6 @@ fn ate_cell(c: &SettingCell) -> String {
         f if f == c.runs => "F".to_string(),
         f => format!("{:.4} ({f}F)", c.ate_mean),
     }
-}
-
-fn optional(v: Option<f64>, decimals: usize) -> String {
-    v.map_or("n/a".to_string(), |v| format!("{v:.decimals$}"))
 }
 
 /// Full precision in CSV; empty when absent or not finite.
