@@ -1,6 +1,7 @@
 //! End-to-end tests of the `rslam` binary: one integration binary, one module per subcommand.
 
 mod dataset_check;
+mod depth_png;
 mod eval;
 mod harness;
 mod list;
