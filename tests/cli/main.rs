@@ -2,6 +2,7 @@
 
 mod bench;
 mod dataset_check;
+mod depth_png;
 mod eval;
 mod eval_recon;
 mod harness;

@@ -5,7 +5,8 @@ use std::path::Path;
 
 use glam::{DQuat, DVec3};
 use rslam_core::dataset::{
-    read_dataset, read_rgb, DatasetFormat, DatasetOverrides, DatasetWriter, Manifest, OutputFrame,
+    read_dataset, read_rgb, DatasetFormat, DatasetOverrides, DatasetWriter, DepthPng, Manifest,
+    OutputFrame,
 };
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage, Trajectory};
 
@@ -50,7 +51,7 @@ fn depth_of(j: usize) -> DepthImage {
     depth
 }
 
-fn manifest(format: DatasetFormat) -> Manifest {
+fn manifest(format: DatasetFormat, depth_png: DepthPng) -> Manifest {
     Manifest {
         tool: "rslam".into(),
         tool_version: "test".into(),
@@ -59,6 +60,7 @@ fn manifest(format: DatasetFormat) -> Manifest {
         source_hash: String::new(),
         format: Some(format),
         camera: Some(CAMERA),
+        depth_png,
         rate_hz: RATE_HZ,
         frame_count: FRAMES,
         seed: 0,
@@ -73,7 +75,11 @@ fn manifest(format: DatasetFormat) -> Manifest {
 }
 
 fn write(root: &Path, format: DatasetFormat) {
-    let writer = DatasetWriter::open(root, format, CAMERA).unwrap();
+    write_encoded(root, format, DepthPng::Fast);
+}
+
+fn write_encoded(root: &Path, format: DatasetFormat, depth_png: DepthPng) {
+    let writer = DatasetWriter::open(root, format, CAMERA, depth_png).unwrap();
     let frames = frames();
     for (j, frame) in frames.iter().enumerate() {
         let mut color = RgbImage::new(CAMERA.width, CAMERA.height);
@@ -88,7 +94,9 @@ fn write(root: &Path, format: DatasetFormat) {
         }
     }
     let gt = Trajectory::new(frames.iter().map(|f| f.rgb_time).collect(), poses());
-    writer.finish(&frames, &gt, manifest(format)).unwrap();
+    writer
+        .finish(&frames, &gt, manifest(format, depth_png))
+        .unwrap();
 }
 
 fn assert_poses_close(a: &[Pose], b: &[Pose], tolerance: f64) {
@@ -147,6 +155,32 @@ fn both_layouts_read_back_what_was_written() {
             for (t, f) in gt.timestamps.iter().zip(&written) {
                 assert!((t - f.rgb_time).abs() < 1e-6);
             }
+        }
+    }
+}
+
+#[test]
+fn small_depth_pngs_read_back_as_the_samples_fast_ones_hold() {
+    for format in [DatasetFormat::Replica, DatasetFormat::Tum] {
+        let (fast, small) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+        write_encoded(fast.path(), format, DepthPng::Fast);
+        write_encoded(small.path(), format, DepthPng::Small);
+        assert_eq!(
+            Manifest::read(small.path()).unwrap().depth_png,
+            DepthPng::Small
+        );
+        let none = DatasetOverrides::default();
+        let (fast, small) = (
+            read_dataset(fast.path(), &none).unwrap(),
+            read_dataset(small.path(), &none).unwrap(),
+        );
+        assert_eq!(small.frames.len(), FRAMES, "{format}");
+        for (a, b) in fast.frames.iter().zip(&small.frames) {
+            let depth = |frame: &rslam_core::dataset::DatasetFrame| {
+                let path = frame.depth.as_ref().expect("every frame has depth");
+                rslam_core::dataset::decode_depth_png(path, format.depth_scale()).unwrap()
+            };
+            assert_eq!(depth(a), depth(b), "{format}");
         }
     }
 }

@@ -37,7 +37,7 @@ pub struct DatasetOutput<'a> {
     pub force: bool,
     pub plan: &'a FramePlan,
     pub ground_truth: &'a Trajectory,
-    /// The job's manifest, without the content digest.
+    /// The job's manifest, without the content digest; its `depth_png` is how depth is encoded.
     pub manifest: Manifest,
 }
 
@@ -58,7 +58,12 @@ pub fn write_dataset<S: FrameSource>(
             manifest: Manifest::read(target.out)?,
         });
     }
-    let writer = DatasetWriter::open(target.out, target.format, target.camera)?;
+    let writer = DatasetWriter::open(
+        target.out,
+        target.format,
+        target.camera,
+        target.manifest.depth_png,
+    )?;
     let mut sink = DatasetSink::new(writer, plan);
     let sources: Vec<usize> = plan
         .needed_sources()

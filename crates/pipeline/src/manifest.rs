@@ -2,7 +2,7 @@
 //! lets someone regenerate the output bit for bit. No timings or dates: the same job writes the
 //! same bytes.
 
-use rslam_core::dataset::{DatasetFormat, Manifest};
+use rslam_core::dataset::{DatasetFormat, DepthPng, Manifest};
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
 
@@ -16,6 +16,7 @@ pub struct ManifestParts<'a> {
     pub source_hash: String,
     pub format: Option<DatasetFormat>,
     pub camera: Option<Intrinsics>,
+    pub depth_png: DepthPng,
     pub rate_hz: f64,
     pub seed: u64,
     pub spec: &'a PerturbSpec,
@@ -35,6 +36,7 @@ impl ManifestParts<'_> {
             source_hash: self.source_hash,
             format: self.format,
             camera: self.camera,
+            depth_png: self.depth_png,
             rate_hz: self.rate_hz,
             frame_count: self.plan.len(),
             seed: self.seed,

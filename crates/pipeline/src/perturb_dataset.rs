@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use rslam_core::dataset::{read_dataset, DatasetOverrides, SourceDataset};
+use rslam_core::dataset::{read_dataset, DatasetOverrides, DepthPng, SourceDataset};
 use rslam_core::{nearest_time, Pose, Trajectory};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
@@ -26,6 +26,8 @@ pub struct PerturbDatasetJob {
     /// Camera and rate where the dataset does not state them.
     pub overrides: DatasetOverrides,
     pub out: PathBuf,
+    /// How the output's depth PNGs are compressed (the input's own encoding is not carried over).
+    pub depth_png: DepthPng,
     pub spec: PerturbSpec,
     pub seed: u64,
     pub force: bool,
@@ -92,6 +94,7 @@ pub fn perturb_dataset(
         source_hash: String::new(),
         format: Some(dataset.format),
         camera: Some(dataset.intrinsics),
+        depth_png: job.depth_png,
         rate_hz: dataset.rate_hz,
         seed: job.seed,
         spec: &job.spec,

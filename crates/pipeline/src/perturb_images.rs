@@ -9,7 +9,9 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use rslam_core::dataset::{encode_rgb_like, read_image_size, read_rgb, ContentWriter, Manifest};
+use rslam_core::dataset::{
+    encode_rgb_like, read_image_size, read_rgb, ContentWriter, DepthPng, Manifest,
+};
 use rslam_core::{CoreError, RgbImage};
 use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Perturber};
@@ -141,6 +143,7 @@ pub fn perturb_images(
         source_hash: String::new(),
         format: None,
         camera: None,
+        depth_png: DepthPng::default(),
         rate_hz: 0.0,
         seed: job.seed,
         spec: &job.spec,

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use rslam_core::dataset::DatasetFormat;
+use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_gpu::GpuContext;
 
 use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
@@ -17,6 +17,7 @@ pub struct RenderJob {
     pub scene: SceneJob,
     pub out: PathBuf,
     pub format: DatasetFormat,
+    pub depth_png: DepthPng,
     /// Replace whatever rslam output `out` holds.
     pub force: bool,
     /// The command as typed, for the manifest.
@@ -37,6 +38,7 @@ pub fn render_dataset(
         source_hash: resolved.scene.content_hash(),
         format: Some(job.format),
         camera: Some(camera),
+        depth_png: job.depth_png,
         rate_hz: job.scene.rate_hz,
         seed: job.scene.seed,
         spec: &job.scene.spec,

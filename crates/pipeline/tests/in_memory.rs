@@ -4,7 +4,7 @@
 
 use std::sync::OnceLock;
 
-use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFormat};
+use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFormat, DepthPng};
 use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
@@ -84,6 +84,7 @@ fn scene_frames_in_memory_are_the_frames_a_render_writes() {
             scene: job,
             out: out.clone(),
             format: DatasetFormat::Tum,
+            depth_png: DepthPng::Fast,
             force: false,
             command: vec!["test".into()],
         },

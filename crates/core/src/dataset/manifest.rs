@@ -2,7 +2,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::dataset::PARTIAL_SUFFIX;
+use crate::dataset::{DepthPng, PARTIAL_SUFFIX};
 use crate::{CoreError, Intrinsics};
 
 /// Written last into every dataset: without it a dataset is incomplete.
@@ -23,6 +23,10 @@ pub struct Manifest {
     pub format: Option<crate::dataset::DatasetFormat>,
     /// `None` for a folder of perturbed images.
     pub camera: Option<Intrinsics>,
+    /// How the depth PNGs are compressed (the samples are the same either way). Manifests from
+    /// before this field read as `fast`, which is what they wrote; folders of images hold none.
+    #[serde(default)]
+    pub depth_png: DepthPng,
     pub rate_hz: f64,
     pub frame_count: usize,
     pub seed: u64,
@@ -122,6 +126,23 @@ fn write_compact_pretty(value: &serde_json::Value, indent: usize, out: &mut Stri
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn depth_png_is_part_of_the_job_and_older_manifests_read_as_fast() {
+        let mut value = serde_json::json!({
+            "tool": "rslam", "tool_version": "0.1.0", "command": [], "source": "room0",
+            "source_hash": "", "format": "replica", "camera": null, "rate_hz": 20.0,
+            "frame_count": 0, "seed": 0, "perturbation": "", "perturbation_parsed": null,
+            "severities": [], "rgb_source": [], "depth_source": [], "extra": null
+        });
+        let older: Manifest = serde_json::from_value(value.clone()).unwrap();
+        assert_eq!(older.depth_png, DepthPng::Fast);
+        value["depth_png"] = "small".into();
+        let small: Manifest = serde_json::from_value(value).unwrap();
+        assert_eq!(small.depth_png, DepthPng::Small);
+        assert_ne!(small.job(), older.job());
+        assert_eq!(serde_json::to_value(&small).unwrap()["depth_png"], "small");
+    }
 
     #[test]
     fn scalar_arrays_stay_on_one_line_and_the_text_parses_back() {

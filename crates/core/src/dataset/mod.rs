@@ -4,6 +4,7 @@
 
 mod checksums;
 mod codec;
+mod depth_png;
 mod layout;
 mod manifest;
 mod orbslam3;
@@ -19,6 +20,7 @@ pub use codec::{
     decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, encode_rgb_like,
     read_image_size, read_rgb, write_rgb_like,
 };
+pub use depth_png::DepthPng;
 pub use layout::DatasetFormat;
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
 pub use reader::{read_dataset, DatasetFrame, DatasetOverrides, SourceDataset};

@@ -1,7 +1,8 @@
 use std::path::Path;
 
 use crate::dataset::{
-    encode_depth_png, encode_jpeg, encode_png, orbslam3, ContentWriter, DatasetFormat, Manifest,
+    encode_depth_png, encode_jpeg, encode_png, orbslam3, ContentWriter, DatasetFormat, DepthPng,
+    Manifest,
 };
 use crate::trajectory_io::{write_replica, write_tum};
 use crate::{CoreError, DepthImage, Intrinsics, RgbImage, Trajectory};
@@ -32,6 +33,7 @@ pub struct DatasetWriter {
     content: ContentWriter,
     format: DatasetFormat,
     intrinsics: Intrinsics,
+    depth_png: DepthPng,
 }
 
 fn tum_name(dir: &str, time: f64) -> String {
@@ -45,6 +47,7 @@ impl DatasetWriter {
         root: &Path,
         format: DatasetFormat,
         intrinsics: Intrinsics,
+        depth_png: DepthPng,
     ) -> Result<Self, CoreError> {
         let dirs: &[&str] = match format {
             DatasetFormat::Replica => &["results"],
@@ -58,6 +61,7 @@ impl DatasetWriter {
             content: ContentWriter::new(root),
             format,
             intrinsics,
+            depth_png,
         })
     }
 
@@ -110,7 +114,7 @@ impl DatasetWriter {
         outputs: &[(usize, OutputFrame)],
         depth: &DepthImage,
     ) -> Result<(), CoreError> {
-        let bytes = encode_depth_png(depth, self.format.depth_scale())?;
+        let bytes = encode_depth_png(depth, self.format.depth_scale(), self.depth_png)?;
         let mut names: Vec<String> = outputs
             .iter()
             .map(|(index, frame)| self.frame_files(*index, frame).depth)
