@@ -164,3 +164,37 @@ fn a_method_for_another_layout_is_refused_before_any_run() {
     ws.rslam(&["suite", "bench", "suite", "--methods", "bad.toml"])
         .fails_with(2, &["bad.toml:3:", "a lone '{'"]);
 }
+
+#[test]
+fn a_reconstruction_is_kept_and_measured_against_the_scene_mesh() {
+    let ws = Workspace::new();
+    suite(&ws);
+    ws.write(
+        "mapper.toml",
+        r#"name = "mapper"
+reads = "tum"
+timeout_s = 30
+mesh = "{work}/mesh.ply"
+command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 10\n1 0 10\n0 1 10\n3 0 1 2\n' > \"$3\"", "sh", "{dataset}", "{estimate}", "{work}/mesh.ply"]
+"#,
+    );
+    ws.rslam(&["suite", "bench", "suite", "--methods", "mapper.toml"])
+        .success();
+    assert!(ws
+        .path("suite/runs/mapper/room0__fog-3/0.mesh.ply")
+        .is_file());
+    let out = ws.rslam(&["suite", "report", "suite"]).success();
+    assert!(out.contains("2 reconstruction(s)"), "{out}");
+    assert!(ws.path("suite/report/ground_truth/room0.ply").is_file());
+    let csv = std::fs::read_to_string(ws.path("suite/report/reconstruction.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    for row in rows {
+        let fields: Vec<f64> = row.split(',').skip(3).map(|v| v.parse().unwrap()).collect();
+        // One triangle at the origin: far from most of the room, covering almost none of it.
+        assert!(
+            fields[0] > 1.0 && fields[1] > 10.0 && fields[2] < 10.0,
+            "{row}"
+        );
+    }
+}

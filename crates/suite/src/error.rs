@@ -1,6 +1,7 @@
 use std::path::PathBuf;
 
 use rslam_core::CoreError;
+use rslam_eval::EvalError;
 use rslam_gpu::GpuError;
 use rslam_pipeline::PipelineError;
 
@@ -9,6 +10,8 @@ use rslam_pipeline::PipelineError;
 pub enum SuiteError {
     #[error(transparent)]
     Core(#[from] CoreError),
+    #[error(transparent)]
+    Eval(#[from] EvalError),
     #[error(transparent)]
     Gpu(#[from] GpuError),
     #[error(transparent)]

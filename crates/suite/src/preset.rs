@@ -4,7 +4,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use rslam_core::dataset::DatasetFormat;
+use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_perturb::PerturbSpec;
 
 use crate::suite_file::{SequenceFields, SuiteFile};
@@ -53,6 +53,7 @@ pub struct InitOptions {
     /// `None`: the preset's frame count (all poses for robust-slam).
     pub frames: Option<usize>,
     pub format: DatasetFormat,
+    pub depth_png: DepthPng,
     pub seed: u64,
 }
 
@@ -137,6 +138,8 @@ pub fn init_suite(options: &InitOptions) -> SuiteFile {
             frames: options.frames.or(options.preset.frames()),
             format: Some(options.format.to_string()),
             camera: Some(camera_of(options.format).to_string()),
+            depth_png: (options.depth_png != DepthPng::default())
+                .then(|| options.depth_png.to_string()),
             ..SequenceFields::default()
         },
         sequences,
@@ -249,7 +252,7 @@ pub fn category(spec: &PerturbSpec) -> Category {
 mod tests {
     use std::collections::{BTreeMap, HashSet};
 
-    use rslam_core::dataset::DatasetFormat;
+    use rslam_core::dataset::{DatasetFormat, DepthPng};
     use rslam_perturb::{find, Group, PerturbSpec};
 
     use super::*;
@@ -260,6 +263,7 @@ mod tests {
             scenes,
             frames: None,
             format: DatasetFormat::Replica,
+            depth_png: DepthPng::Fast,
             seed: 0,
         })
     }
@@ -350,10 +354,12 @@ mod tests {
             scenes: None,
             frames: None,
             format: DatasetFormat::Tum,
+            depth_png: DepthPng::Small,
             seed: 1,
         });
         assert_eq!(mini.defaults.frames, Some(200));
         assert_eq!(mini.defaults.camera.as_deref(), Some("tum"));
+        assert_eq!(mini.defaults.depth_png.as_deref(), Some("small"));
         let kinds: HashSet<Category> = Preset::Mini
             .settings()
             .iter()

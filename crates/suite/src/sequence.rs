@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rslam_core::dataset::DatasetFormat;
+use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_core::hash::{fnv1a64, splitmix64};
 use rslam_core::trajectory_io::read_trajectory;
 use rslam_core::Intrinsics;
@@ -32,6 +32,7 @@ pub struct Sequence {
     pub rate_hz: f64,
     /// Camera path file relative to the suite folder; `None`: the scene's own path.
     pub traj: Option<PathBuf>,
+    pub depth_png: DepthPng,
 }
 
 /// Frames of a sequence: drawn from the scene, and written (fewer under `fast`).
@@ -85,6 +86,9 @@ impl Sequence {
         push("--camera", self.camera_text.clone());
         push("--rate", self.rate_hz.to_string());
         push("--format", self.format.to_string());
+        if self.depth_png != DepthPng::default() {
+            push("--depth-png", self.depth_png.to_string());
+        }
         push("--seed", self.seed.to_string());
         if !self.spec.is_empty() {
             push("--perturb", self.spec.to_string());
@@ -112,6 +116,7 @@ impl Sequence {
             },
             out: self.dir(suite_dir),
             format: self.format,
+            depth_png: self.depth_png,
             force,
             command: self.command(),
         }

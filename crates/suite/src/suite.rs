@@ -3,7 +3,7 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
-use rslam_core::dataset::DatasetFormat;
+use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
 
@@ -89,6 +89,12 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
         .unwrap_or("replica")
         .parse()
         .map_err(|e| in_row(format!("format: {e}")))?;
+    let depth_png: DepthPng = match row.depth_png.as_deref() {
+        None => DepthPng::default(),
+        Some(text) => text
+            .parse()
+            .map_err(|e| in_row(format!("depth_png: {e}")))?,
+    };
     let camera_text = row.camera.clone().unwrap_or_else(|| "replica".into());
     let camera = Intrinsics::parse(&camera_text).map_err(|e| in_row(format!("camera: {e}")))?;
     let rate_hz = row
@@ -137,6 +143,7 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
         camera,
         rate_hz,
         traj: row.traj.clone(),
+        depth_png,
     })
 }
 
@@ -200,6 +207,23 @@ mod tests {
             suite.sequences[0].command().join(" "),
             "rslam render --scene room0 --frames 5 --camera replica --rate 20 --format replica \
              --seed 4 --perturb fog:3 --out datasets/room0__fog-3"
+        );
+    }
+
+    #[test]
+    fn small_depth_pngs_are_part_of_the_command() {
+        let suite = open("[defaults]\ndepth_png = \"small\"\n[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\nseed = 1\n").unwrap();
+        assert!(suite.sequences[0]
+            .command()
+            .join(" ")
+            .contains("--format replica --depth-png small --seed 1"));
+        let err =
+            open("[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\ndepth_png = \"tiny\"\n")
+                .unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("suite.toml:1: sequence 'room0__a': depth_png"),
+            "{err}"
         );
     }
 

@@ -4,7 +4,7 @@
 //! ```toml
 //! seed = 0                      # every row without its own seed gets mix(seed, name)
 //! [defaults]
-//! frames = 2000                 # also: format, camera, rate, scene, traj
+//! frames = 2000                 # also: format, camera, rate, scene, traj, depth_png
 //! [[sequence]]
 //! name = "room0__fog-3"         # <scene>__<setting>, the folder under datasets/
 //! scene = "room0"               # built-in scene or mesh file (relative to this file)
@@ -53,6 +53,9 @@ pub struct SequenceFields {
     pub rate: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub traj: Option<PathBuf>,
+    /// `fast` or `small` (see `rslam render --depth-png`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub depth_png: Option<String>,
 }
 
 impl SequenceFields {
@@ -72,6 +75,10 @@ impl SequenceFields {
             camera: self.camera.clone().or_else(|| defaults.camera.clone()),
             rate: self.rate.or(defaults.rate),
             traj: self.traj.clone().or_else(|| defaults.traj.clone()),
+            depth_png: self
+                .depth_png
+                .clone()
+                .or_else(|| defaults.depth_png.clone()),
         }
     }
 }

@@ -4,10 +4,12 @@
 
 mod method;
 mod process;
+mod reconstruction;
 mod record;
 mod run_method;
 
 pub use method::{Method, RunPlaces, PLACEHOLDERS};
 pub use process::{run_process, Ending, ProcessReport};
+pub use reconstruction::{evaluate_reconstructions, reconstruction_csv, ReconRow};
 pub use record::{RunFiles, RunRecord, RUNS_DIR};
 pub use run_method::{bench_suite, BenchOptions, BenchProgress, BenchSummary, RunId};

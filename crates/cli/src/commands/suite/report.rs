@@ -6,7 +6,7 @@ use rslam_core::dataset::DatasetFormat;
 use rslam_core::trajectory_io::ReadOptions;
 use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
 use rslam_eval::EvalOptions;
-use rslam_suite::bench::RUNS_DIR;
+use rslam_suite::bench::{evaluate_reconstructions, reconstruction_csv, RUNS_DIR};
 use rslam_suite::{Suite, DATASETS_DIR};
 
 #[derive(clap::Args)]
@@ -38,6 +38,22 @@ pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
     let (report, written) = evaluate_runs_into(&options, &out)
         .with_context(|| format!("evaluating the runs of {}", args.dir.display()))?;
     print!("{}", summary_text(&report));
+    let reconstructions = evaluate_reconstructions(&suite, &out)?;
+    let mut written = written;
+    if !reconstructions.is_empty() {
+        let csv = out.join("reconstruction.csv");
+        std::fs::write(&csv, reconstruction_csv(&reconstructions))
+            .with_context(|| csv.display().to_string())?;
+        let json = out.join("reconstruction.json");
+        std::fs::write(&json, serde_json::to_string_pretty(&reconstructions)?)
+            .with_context(|| json.display().to_string())?;
+        println!(
+            "\n{} reconstruction(s) against the ground-truth meshes:",
+            reconstructions.len()
+        );
+        print!("{}", reconstruction_csv(&reconstructions));
+        written.extend([csv, json]);
+    }
     println!("\nwritten:");
     for path in written {
         println!("  {}", path.display());
