@@ -5,7 +5,9 @@ use std::sync::Arc;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rslam_suite::bench::{bench_suite, BenchOptions, BenchProgress, Method, RunId, RunRecord};
-use rslam_suite::{Shard, Suite};
+use rslam_suite::Suite;
+
+use super::shard_args::ShardArgs;
 
 use crate::interrupt::interrupt_flag;
 
@@ -25,12 +27,8 @@ pub struct BenchArgs {
     /// A method file (TOML), repeatable: name, reads, command, timeout_s, repeats, mesh.
     #[arg(long = "methods", required = true)]
     methods: Vec<PathBuf>,
-    /// Run shard I of N (as `suite run`: by sequence name; also from SLURM_ARRAY_TASK_* or
-    /// JOB_COMPLETION_INDEX with --shard-count).
-    #[arg(long)]
-    shard: Option<String>,
-    #[arg(long)]
-    shard_count: Option<usize>,
+    #[command(flatten)]
+    shard: ShardArgs,
     /// Runs at once.
     #[arg(long, default_value_t = 1)]
     jobs: usize,
@@ -75,9 +73,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|path| Method::read(path))
         .collect::<Result<Vec<_>, _>>()?;
-    let (shard, _) = Shard::resolve(args.shard.as_deref(), args.shard_count, |name| {
-        std::env::var(name).ok()
-    })?;
+    let (shard, _) = args.shard.resolve()?;
     let bar = ProgressBar::new(0);
     bar.set_style(
         ProgressStyle::with_template("bench [{bar:40}] {pos}/{len} runs, eta {eta}")

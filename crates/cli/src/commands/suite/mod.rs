@@ -5,6 +5,7 @@ mod init;
 mod report;
 mod run;
 mod schedulers;
+mod shard_args;
 mod status;
 
 use std::process::ExitCode;

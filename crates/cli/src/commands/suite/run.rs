@@ -2,7 +2,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use rslam_gpu::{AdapterChoice, GpuContext};
-use rslam_suite::{run_suite, RunOptions, Shard, ShardSource, Suite};
+use rslam_suite::{run_suite, RunOptions, ShardSource, Suite};
+
+use super::shard_args::ShardArgs;
 
 use crate::suite_progress::SuiteBars;
 
@@ -10,14 +12,8 @@ use crate::suite_progress::SuiteBars;
 pub struct RunArgs {
     /// The suite folder (holding suite.toml).
     dir: PathBuf,
-    /// Make shard I of N (I from 0): the sequences whose name hashes to I. Default: from
-    /// SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT, else JOB_COMPLETION_INDEX with
-    /// --shard-count, else the whole suite.
-    #[arg(long)]
-    shard: Option<String>,
-    /// Number of shards when the index comes from JOB_COMPLETION_INDEX (Kubernetes).
-    #[arg(long)]
-    shard_count: Option<usize>,
+    #[command(flatten)]
+    shard: ShardArgs,
     /// Sequences made at once on the one GPU (more keeps a fast GPU busy while frames encode).
     #[arg(long, default_value_t = 1)]
     jobs: usize,
@@ -34,9 +30,7 @@ pub struct RunArgs {
 
 pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     let suite = Suite::open(&args.dir)?;
-    let (shard, source) = Shard::resolve(args.shard.as_deref(), args.shard_count, |name| {
-        std::env::var(name).ok()
-    })?;
+    let (shard, source) = args.shard.resolve()?;
     let ctx = GpuContext::new(&AdapterChoice {
         name_contains: args.adapter,
     })?;
