@@ -9,7 +9,7 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
-use crate::dataset::{Manifest, MANIFEST_FILE};
+use crate::dataset::{write_atomically, Manifest, MANIFEST_FILE};
 use crate::CoreError;
 
 /// The checksum list beside the manifest.
@@ -170,10 +170,7 @@ impl ContentWriter {
 
     /// Writes `bytes` to `root/relative` (relative with `/`).
     pub fn write(&self, relative: &str, bytes: &[u8]) -> Result<(), CoreError> {
-        let path = self.root.join(relative);
-        let partial = self.root.join(format!("{relative}{PARTIAL_SUFFIX}"));
-        std::fs::write(&partial, bytes).map_err(|e| CoreError::io(&partial, e))?;
-        std::fs::rename(&partial, &path).map_err(|e| CoreError::io(&path, e))?;
+        write_atomically(&self.root.join(relative), bytes)?;
         let hex = blake3_hex(bytes);
         self.written
             .lock()

@@ -2,7 +2,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::dataset::{DepthPng, PARTIAL_SUFFIX};
+use crate::dataset::{write_atomically, DepthPng};
 use crate::{CoreError, Intrinsics};
 
 /// Written last into every dataset: without it a dataset is incomplete.
@@ -65,9 +65,7 @@ impl Manifest {
             serde_json::to_value(self).map_err(|e| CoreError::bad_file(&path, e.to_string()))?;
         let mut text = String::new();
         write_compact_pretty(&value, 0, &mut text);
-        let partial = dir.join(format!("{name}{PARTIAL_SUFFIX}"));
-        std::fs::write(&partial, text + "\n").map_err(|e| CoreError::io(&partial, e))?;
-        std::fs::rename(&partial, &path).map_err(|e| CoreError::io(&path, e))
+        write_atomically(&path, (text + "\n").as_bytes())
     }
 
     pub fn read(dir: &Path) -> Result<Self, CoreError> {

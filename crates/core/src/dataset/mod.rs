@@ -2,6 +2,7 @@
 //! GO-SLAM) and TUM RGB-D (ORB-SLAM3). [`DatasetWriter`] writes frames from many threads and
 //! the manifest last; [`read_dataset`] reads either layout back.
 
+mod atomic_write;
 mod checksums;
 mod codec;
 mod depth_png;
@@ -12,6 +13,7 @@ mod reader;
 mod verify;
 mod writer;
 
+pub use atomic_write::write_atomically;
 pub use checksums::{
     blake3_hex, content_files, is_bookkeeping, ChecksumDifferences, Checksums, ContentWriter,
     CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,

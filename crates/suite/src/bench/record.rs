@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rslam_core::dataset::write_atomically;
 use serde::{Deserialize, Serialize};
 
 use crate::SuiteError;
@@ -99,10 +100,8 @@ impl RunFiles {
 
     pub fn write_record(&self, record: &RunRecord) -> Result<(), SuiteError> {
         let path = self.record();
-        let partial = self.file(".json.partial");
         let text =
             serde_json::to_string_pretty(record).map_err(|e| SuiteError::io(&path, e.into()))?;
-        std::fs::write(&partial, text + "\n").map_err(|e| SuiteError::io(&partial, e))?;
-        std::fs::rename(&partial, &path).map_err(|e| SuiteError::io(&path, e))
+        Ok(write_atomically(&path, (text + "\n").as_bytes())?)
     }
 }
