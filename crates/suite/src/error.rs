@@ -42,6 +42,8 @@ pub enum SuiteError {
         available: String,
         sequences: usize,
     },
+    #[error("interrupted: runs without a record are run again by the same command")]
+    BenchInterrupted,
     /// Sequences that could not be made; the run made every other one.
     #[error("{count} sequence(s) not made: {summary}")]
     SequencesFailed { count: usize, summary: String },

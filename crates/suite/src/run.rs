@@ -73,13 +73,9 @@ pub fn run_suite(
 ) -> Result<RunSummary, SuiteError> {
     let mut summary = RunSummary::default();
     let mut to_make = Vec::new();
-    for sequence in suite
-        .sequences
-        .iter()
-        .filter(|s| options.shard.contains(&s.name))
-    {
+    for (sequence, state) in suite.shard_states(options.shard) {
         summary.in_shard += 1;
-        match inspect(sequence, &suite.dir) {
+        match state {
             SequenceState::Complete => summary.already_complete += 1,
             SequenceState::Conflict(reason) if !options.force => {
                 summary.conflicts.push((sequence.name.clone(), reason))

@@ -152,7 +152,8 @@ impl Sequence {
         })
     }
 
-    fn scene_path(&self, suite_dir: &Path) -> String {
+    /// What `load_scene` takes: the built-in name, or the mesh file's path.
+    pub fn scene_path(&self, suite_dir: &Path) -> String {
         if rslam_render::builtin_path_length(&self.scene).is_some() {
             self.scene.clone()
         } else {

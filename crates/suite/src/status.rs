@@ -5,8 +5,8 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::disk::folder_bytes;
-use crate::sequence::DATASETS_DIR;
-use crate::state::{inspect, SequenceState};
+use crate::sequence::{Sequence, DATASETS_DIR};
+use crate::state::SequenceState;
 use crate::{Suite, SuiteError};
 
 #[derive(Clone, Debug, Serialize)]
@@ -28,15 +28,15 @@ pub struct SuiteStatus {
 }
 
 impl SuiteStatus {
-    pub fn read(suite: &Suite) -> Result<Self, SuiteError> {
-        let sequences: Vec<SequenceStatus> = suite
-            .sequences
+    /// The status of `states` (from [`Suite::shard_states`]) of `suite`.
+    pub fn read(suite: &Suite, states: &[(&Sequence, SequenceState)]) -> Result<Self, SuiteError> {
+        let sequences: Vec<SequenceStatus> = states
             .iter()
-            .map(|s| SequenceStatus {
+            .map(|(s, state)| SequenceStatus {
                 name: s.name.clone(),
                 scene: s.scene_label().to_string(),
                 setting: s.setting().to_string(),
-                state: inspect(s, &suite.dir),
+                state: state.clone(),
             })
             .collect();
         let mut counts = BTreeMap::new();

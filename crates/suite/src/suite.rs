@@ -4,10 +4,13 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use rslam_core::dataset::{DatasetFormat, DepthPng};
+use rslam_core::trajectory_io::ReadOptions;
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
 
 use crate::sequence::{sequence_seed, Sequence};
+use crate::shard::Shard;
+use crate::state::{inspect, SequenceState};
 use crate::suite_file::{line_of, SequenceFields, SuiteFile, SUITE_FILE};
 use crate::SuiteError;
 
@@ -33,7 +36,7 @@ impl Suite {
             });
         }
         let text = std::fs::read_to_string(&path).map_err(|e| SuiteError::io(&path, e))?;
-        let file = SuiteFile::read(&path)?;
+        let file = SuiteFile::parse(&path, &text)?;
         let bad_row = |offset: usize, message: String| SuiteError::SuiteFile {
             path: path.clone(),
             line: line_of(&text, offset),
@@ -68,6 +71,40 @@ impl Suite {
             seed: file.seed,
             sequences,
         })
+    }
+}
+
+impl Suite {
+    /// The sequences of `shard` with what their folders hold, in suite order.
+    pub fn shard_states(&self, shard: Shard) -> Vec<(&Sequence, SequenceState)> {
+        self.sequences
+            .iter()
+            .filter(|s| shard.contains(&s.name))
+            .map(|s| (s, inspect(s, &self.dir)))
+            .collect()
+    }
+
+    /// The rate at which Replica-layout ground truth (which has no timestamps) is stamped for
+    /// evaluation: one rate for the whole suite, or an error naming two rows that differ.
+    pub fn replica_rate_hz(&self) -> Result<f64, SuiteError> {
+        let mut rates = self
+            .sequences
+            .iter()
+            .filter(|s| s.format == DatasetFormat::Replica)
+            .map(|s| (s.rate_hz, &s.name));
+        let Some((rate, first)) = rates.next() else {
+            return Ok(ReadOptions::DEFAULT_REPLICA_RATE_HZ);
+        };
+        match rates.find(|(r, _)| *r != rate) {
+            None => Ok(rate),
+            Some((other, name)) => Err(SuiteError::SuiteFile {
+                path: self.dir.join(SUITE_FILE),
+                line: 0,
+                message: format!(
+                    "Replica-layout sequences at {rate} Hz ({first}) and {other} Hz ({name}); a report reads one rate: make separate suites"
+                ),
+            }),
+        }
     }
 }
 
@@ -108,7 +145,8 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
     if row.frames == Some(0) {
         return Err(in_row("frames = 0: expected at least one frame".into()));
     }
-    if row.traj.is_none() && rslam_render::builtin_path_length(&scene).is_none() {
+    let is_builtin = rslam_render::builtin_path_length(&scene).is_some();
+    if row.traj.is_none() && !is_builtin {
         let known = rslam_render::BUILTIN_SCENES.join(", ");
         if Path::new(&scene).extension().is_none_or(|e| e.is_empty()) {
             return Err(in_row(format!(
@@ -119,7 +157,6 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
             "scene '{scene}' is a mesh file: give the row a traj (its camera path)"
         )));
     }
-    let is_builtin = rslam_render::builtin_path_length(&scene).is_some();
     let missing = |path: &Path| !dir.join(path).is_file();
     if !is_builtin && missing(Path::new(&scene)) {
         return Err(in_row(format!(

@@ -84,11 +84,11 @@ impl SequenceFields {
 }
 
 impl SuiteFile {
-    pub fn read(path: &Path) -> Result<Self, SuiteError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SuiteError::io(path, e))?;
-        toml::from_str(&text).map_err(|e| SuiteError::SuiteFile {
+    /// Parses `text`, the contents of `path` (named in errors).
+    pub fn parse(path: &Path, text: &str) -> Result<Self, SuiteError> {
+        toml::from_str(text).map_err(|e| SuiteError::SuiteFile {
             path: path.to_path_buf(),
-            line: e.span().map_or(0, |span| line_of(&text, span.start)),
+            line: e.span().map_or(0, |span| line_of(text, span.start)),
             message: e.message().trim_end().replace('\n', "; "),
         })
     }

@@ -10,6 +10,6 @@ mod run_method;
 
 pub use method::{Method, RunPlaces, PLACEHOLDERS};
 pub use process::{run_process, Ending, ProcessReport};
-pub use reconstruction::{evaluate_reconstructions, reconstruction_csv, ReconRow};
+pub use reconstruction::{report_reconstructions, ReconRow};
 pub use record::{RunFiles, RunRecord, RUNS_DIR};
 pub use run_method::{bench_suite, BenchOptions, BenchProgress, BenchSummary, RunId};

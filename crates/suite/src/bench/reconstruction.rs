@@ -9,7 +9,10 @@ use std::path::{Path, PathBuf};
 use rslam_eval::recon::{evaluate_reconstruction, ReconMetrics, ReconOptions};
 use serde::Serialize;
 
+use rslam_pipeline::PipelineError;
+
 use super::record::RunFiles;
+use crate::sequence::Sequence;
 use crate::{Suite, SuiteError};
 
 /// One run's reconstruction metrics.
@@ -21,36 +24,47 @@ pub struct ReconRow {
     pub metrics: ReconMetrics,
 }
 
-/// Evaluates the mesh of every finished run under `runs/` that wrote one; ground-truth meshes go
-/// to `out/ground_truth/<scene>.ply`.
-pub fn evaluate_reconstructions(suite: &Suite, out: &Path) -> Result<Vec<ReconRow>, SuiteError> {
-    let mut ground_truth: BTreeMap<String, PathBuf> = BTreeMap::new();
+/// Evaluates the mesh of every finished run under `runs/` that wrote one and, when there is any,
+/// writes `out/reconstruction.csv` and `.json`; ground-truth meshes go to
+/// `out/ground_truth/<scene>.ply`. Returns the rows and the files written.
+pub fn report_reconstructions(
+    suite: &Suite,
+    out: &Path,
+) -> Result<(Vec<ReconRow>, Vec<PathBuf>), SuiteError> {
+    let mut ground_truth: BTreeMap<&str, PathBuf> = BTreeMap::new();
     let mut rows = Vec::new();
     for (method, sequence, repeat, mesh) in meshes(suite)? {
-        let Some(row) = suite.sequences.iter().find(|s| s.name == sequence) else {
-            continue;
-        };
-        let gt = match ground_truth.get(&row.scene) {
+        let gt = match ground_truth.get(sequence.scene.as_str()) {
             Some(path) => path.clone(),
             None => {
-                let path = export_ground_truth(suite, &row.scene, out)?;
-                ground_truth.insert(row.scene.clone(), path.clone());
+                let path = export_ground_truth(suite, sequence, out)?;
+                ground_truth.insert(&sequence.scene, path.clone());
                 path
             }
         };
         let metrics = evaluate_reconstruction(&mesh, &gt, &ReconOptions::default())?;
         rows.push(ReconRow {
             method,
-            sequence,
+            sequence: sequence.name.clone(),
             repeat,
             metrics,
         });
     }
-    Ok(rows)
+    if rows.is_empty() {
+        return Ok((rows, Vec::new()));
+    }
+    let csv = out.join("reconstruction.csv");
+    let json = out.join("reconstruction.json");
+    let json_text =
+        serde_json::to_string_pretty(&rows).map_err(|e| SuiteError::io(&json, e.into()))?;
+    for (path, text) in [(&csv, reconstruction_csv(&rows)), (&json, json_text + "\n")] {
+        std::fs::write(path, text).map_err(|e| SuiteError::io(path, e))?;
+    }
+    Ok((rows, vec![csv, json]))
 }
 
 /// (method, sequence, repeat, mesh) of every finished run whose record names a mesh.
-fn meshes(suite: &Suite) -> Result<Vec<(String, String, usize, PathBuf)>, SuiteError> {
+fn meshes(suite: &Suite) -> Result<Vec<(String, &Sequence, usize, PathBuf)>, SuiteError> {
     let runs = suite.dir.join(super::RUNS_DIR);
     let mut found = Vec::new();
     let Ok(methods) = std::fs::read_dir(&runs) else {
@@ -70,7 +84,7 @@ fn meshes(suite: &Suite) -> Result<Vec<(String, String, usize, PathBuf)>, SuiteE
                     break;
                 };
                 if let (None, Some(mesh)) = (&record.failure, record.mesh) {
-                    found.push((method.clone(), sequence.name.clone(), repeat, mesh));
+                    found.push((method.clone(), sequence, repeat, mesh));
                 }
             }
         }
@@ -78,26 +92,25 @@ fn meshes(suite: &Suite) -> Result<Vec<(String, String, usize, PathBuf)>, SuiteE
     Ok(found)
 }
 
-fn export_ground_truth(suite: &Suite, scene: &str, out: &Path) -> Result<PathBuf, SuiteError> {
+fn export_ground_truth(
+    suite: &Suite,
+    sequence: &Sequence,
+    out: &Path,
+) -> Result<PathBuf, SuiteError> {
     let dir = out.join("ground_truth");
     std::fs::create_dir_all(&dir).map_err(|e| SuiteError::io(&dir, e))?;
-    let file_name = Path::new(scene)
+    let name = Path::new(&sequence.scene)
         .file_stem()
-        .map_or(scene.into(), |s| s.to_string_lossy().into_owned());
-    let path = dir.join(format!("{file_name}.ply"));
-    let source = if rslam_render::builtin_path_length(scene).is_some() {
-        scene.to_string()
-    } else {
-        suite.dir.join(scene).display().to_string()
-    };
-    let loaded = rslam_render::load_scene(&source).map_err(rslam_pipeline::PipelineError::from)?;
-    rslam_render::scene::export::write_ply(&loaded, &path)
-        .map_err(rslam_pipeline::PipelineError::from)?;
+        .map_or(sequence.scene.clone(), |s| s.to_string_lossy().into_owned());
+    let path = dir.join(format!("{name}.ply"));
+    let scene =
+        rslam_render::load_scene(&sequence.scene_path(&suite.dir)).map_err(PipelineError::from)?;
+    rslam_render::scene::export::write_ply(&scene, &path).map_err(PipelineError::from)?;
     Ok(path)
 }
 
 /// `reconstruction.csv`: one row per run with a mesh.
-pub fn reconstruction_csv(rows: &[ReconRow]) -> String {
+fn reconstruction_csv(rows: &[ReconRow]) -> String {
     let mut text =
         String::from("method,sequence,repeat,accuracy_cm,completion_cm,completion_ratio_percent\n");
     for r in rows {

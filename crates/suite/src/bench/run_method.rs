@@ -13,7 +13,7 @@ use super::process::{run_process, Ending};
 use super::record::{RunFiles, RunRecord};
 use crate::sequence::Sequence;
 use crate::shard::Shard;
-use crate::state::{inspect, SequenceState};
+use crate::state::SequenceState;
 use crate::work_queue::run_queue;
 use crate::{Suite, SuiteError};
 
@@ -58,12 +58,8 @@ pub fn bench_suite(
 ) -> Result<BenchSummary, SuiteError> {
     let mut summary = BenchSummary::default();
     let mut sequences = Vec::new();
-    for sequence in suite
-        .sequences
-        .iter()
-        .filter(|s| options.shard.contains(&s.name))
-    {
-        match inspect(sequence, &suite.dir) {
+    for (sequence, state) in suite.shard_states(options.shard) {
+        match state {
             SequenceState::Complete => sequences.push(sequence),
             _ => summary.sequences_not_made.push(sequence.name.clone()),
         }
@@ -90,16 +86,7 @@ pub fn bench_suite(
             sequence: sequence.name.clone(),
             repeat,
         };
-        let record = match run_once(suite, method, sequence, repeat, progress.interrupted()) {
-            Ok(Some(record)) => record,
-            Ok(None) => {
-                return Err(SuiteError::option(
-                    "bench",
-                    "interrupted: unfinished runs are run again next time",
-                ))
-            }
-            Err(e) => return Err(e),
-        };
+        let record = run_once(suite, method, sequence, repeat, progress.interrupted())?;
         progress.run_done(&id, &record);
         Ok((id, record))
     });
@@ -135,14 +122,14 @@ fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Result<(), Suit
     Ok(())
 }
 
-/// One run, recorded; `None` when it was interrupted (nothing recorded, it runs again).
+/// One run, recorded; interrupted, it records nothing and runs again next time.
 fn run_once(
     suite: &Suite,
     method: &Method,
     sequence: &Sequence,
     repeat: usize,
     interrupted: &AtomicBool,
-) -> Result<Option<RunRecord>, SuiteError> {
+) -> Result<RunRecord, SuiteError> {
     let files = RunFiles::new(&suite.dir, &method.name, &sequence.name, repeat);
     files.clear()?;
     let work = files.work();
@@ -177,21 +164,20 @@ fn run_once(
         Ok(report) => report,
         Err(e) => {
             let record = failed_record(method, sequence, repeat, command, e.to_string());
-            return finish(&files, record).map(Some);
+            return finish(&files, record);
         }
     };
-    if report.ending == Ending::Interrupted {
-        files.clear()?;
-        return Ok(None);
-    }
     let failure = match report.ending {
+        Ending::Interrupted => {
+            files.clear()?;
+            return Err(SuiteError::BenchInterrupted);
+        }
         Ending::Exited(0) => check_estimate(&estimate).err(),
         Ending::Exited(code) => Some(format!("exit status {code} (see {})", log.display())),
         Ending::Signalled(signal) => {
             Some(format!("killed by signal {signal} (see {})", log.display()))
         }
         Ending::TimedOut => Some(format!("timed out after {} s", method.timeout_s)),
-        Ending::Interrupted => unreachable!("handled above"),
     };
     let mesh = method
         .mesh_for(&places)
@@ -220,7 +206,7 @@ fn run_once(
         peak_rss_mb: report.peak_rss_bytes.map(|b| b as f64 / 1e6),
         mesh: kept_mesh,
     };
-    finish(&files, record).map(Some)
+    finish(&files, record)
 }
 
 fn failed_record(

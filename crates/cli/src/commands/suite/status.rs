@@ -2,7 +2,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use rslam_suite::{
-    available_bytes, format_bytes, inspect, plan, Suite, SuitePlan, SuiteStatus, DATASETS_DIR,
+    available_bytes, format_bytes, plan, Shard, Suite, SuitePlan, SuiteStatus, DATASETS_DIR,
 };
 
 #[derive(clap::Args)]
@@ -19,13 +19,9 @@ pub struct StatusArgs {
 
 pub fn run(args: StatusArgs) -> anyhow::Result<ExitCode> {
     let suite = Suite::open(&args.dir)?;
-    let status = SuiteStatus::read(&suite)?;
+    let states = suite.shard_states(Shard::WHOLE);
+    let status = SuiteStatus::read(&suite, &states)?;
     let planned = if args.plan {
-        let states: Vec<_> = suite
-            .sequences
-            .iter()
-            .map(|s| (s, inspect(s, &suite.dir)))
-            .collect();
         Some(plan(&suite.dir, &states)?)
     } else {
         None
