@@ -1,14 +1,15 @@
 //! Geometry primitives for the procedural scenes: subdivided quads, cuboids, cylinders and
-//! ellipsoids placed by a [`Frame`], with UVs in metres (or fitted to a face) and lighting baked
-//! into the vertex colours.
+//! ellipsoids placed by a [`Frame`], with UVs in metres (or fitted to a face). Vertices keep their
+//! normal and tint until [`MeshBuilder::finish`] bakes the lighting into their colours.
 //!
 //! Winding: every triangle is counter-clockwise seen from the side its normal points to, and
 //! normals point out of solids and into the room, so a ray from free space always meets a front face.
 
 use glam::{Vec2, Vec3};
 
-use super::lighting::Lighting;
+use super::lighting::{bake, BakeInput, Lighting, Window};
 use super::textures::Rgb;
+use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
 use crate::{Mesh, Vertex};
 
 /// Largest edge of one quad cell, metres; bounds the spacing of the baked lighting samples.
@@ -28,6 +29,17 @@ pub struct Material {
     pub layer: u32,
     pub tint: Rgb,
     pub uv: UvMap,
+    /// Glows (a lamp shade, the view through a window): shown at its own colour, never shaded.
+    pub emissive: bool,
+}
+
+impl Material {
+    pub fn glowing(self) -> Self {
+        Self {
+            emissive: true,
+            ..self
+        }
+    }
 }
 
 /// Placement: local x right (seen from the front), local y away from the viewer (front face at
@@ -95,8 +107,15 @@ impl From<Material> for Faces {
     }
 }
 
+/// Median shade of the lit vertices after exposure: like a camera's auto-exposure on a mid-grey
+/// scene, brighter spots (near lamps and windows) still saturate.
+const EXPOSURE_TARGET: f32 = 0.75;
+
 pub struct MeshBuilder {
     mesh: Mesh,
+    normals: Vec<Vec3>,
+    tints: Vec<Rgb>,
+    emissive: Vec<bool>,
     lighting: Lighting,
 }
 
@@ -104,11 +123,60 @@ impl MeshBuilder {
     pub fn new(lighting: Lighting) -> Self {
         Self {
             mesh: Mesh::default(),
+            normals: Vec::new(),
+            tints: Vec::new(),
+            emissive: Vec::new(),
             lighting,
         }
     }
 
-    pub fn finish(self) -> Mesh {
+    /// A window pane that lets daylight in (its quad is built separately).
+    pub fn window_light(&mut self, frame: &Frame, top_left: Vec3, right: Vec3, down: Vec3) {
+        self.lighting.windows.push(Window {
+            corner: frame.point(top_left),
+            right: frame.vector(right),
+            down: frame.vector(down),
+        });
+    }
+
+    /// The unlit mesh with its normals, linear tints and glow flags, for the bake's tests.
+    #[cfg(test)]
+    pub fn into_bake_parts(self) -> (Mesh, Vec<Vec3>, Vec<Vec3>, Vec<bool>) {
+        let tints = self.tints.iter().map(|&t| linear(t)).collect();
+        (self.mesh, self.normals, tints, self.emissive)
+    }
+
+    /// The mesh with its lighting baked into the vertex colours; `layer_albedo[l]` is the mean
+    /// linear colour of texture layer `l`.
+    pub fn finish(mut self, layer_albedo: &[Vec3]) -> Mesh {
+        let tints: Vec<Vec3> = self.tints.iter().map(|&t| linear(t)).collect();
+        let albedo: Vec<Vec3> = tints
+            .iter()
+            .zip(&self.mesh.vertices)
+            .map(|(&t, v)| t * layer_albedo[v.layer as usize])
+            .collect();
+        let irradiance = bake(&BakeInput {
+            mesh: &self.mesh,
+            normals: &self.normals,
+            albedo: &albedo,
+            emissive: &self.emissive,
+            lighting: &self.lighting,
+        });
+        let exposure = exposure(&irradiance, &self.emissive);
+        for (i, v) in self.mesh.vertices.iter_mut().enumerate() {
+            let shade = if self.emissive[i] {
+                Vec3::ONE
+            } else {
+                irradiance[i] * exposure
+            };
+            let c = tints[i] * shade;
+            v.color = [
+                linear_to_srgb(c.x),
+                linear_to_srgb(c.y),
+                linear_to_srgb(c.z),
+                255,
+            ];
+        }
         self.mesh
     }
 
@@ -258,15 +326,39 @@ impl MeshBuilder {
     }
 
     fn push_vertex(&mut self, position: Vec3, normal: Vec3, uv: Vec2, m: &Material) {
-        let light = self.lighting.shade(position, normal);
-        let color = m
-            .tint
-            .map(|c| ((c * light).clamp(0.0, 1.0) * 255.0).round() as u8);
         self.mesh.vertices.push(Vertex {
             position: position.into(),
             uv: uv.into(),
-            color: [color[0], color[1], color[2], 255],
+            color: [255; 4],
             layer: m.layer,
         });
+        self.normals.push(normal);
+        self.tints.push(m.tint);
+        self.emissive.push(m.emissive);
+    }
+}
+
+/// An sRGB tint in [0, 1] as linear light.
+fn linear(t: Rgb) -> Vec3 {
+    Vec3::from(t.map(|c| srgb_to_linear((c.clamp(0.0, 1.0) * 255.0).round() as u8)))
+}
+
+/// The factor that puts the lit vertices' median luminance at [`EXPOSURE_TARGET`].
+fn exposure(irradiance: &[Vec3], emissive: &[bool]) -> f32 {
+    let mut lum: Vec<f32> = irradiance
+        .iter()
+        .zip(emissive)
+        .filter(|(_, &g)| !g)
+        .map(|(e, _)| e.dot(Vec3::new(0.2126, 0.7152, 0.0722)))
+        .collect();
+    if lum.is_empty() {
+        return 1.0;
+    }
+    let mid = lum.len() / 2;
+    let median = *lum.select_nth_unstable_by(mid, f32::total_cmp).1;
+    if median > 0.0 {
+        EXPOSURE_TARGET / median
+    } else {
+        1.0
     }
 }

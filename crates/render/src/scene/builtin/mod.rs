@@ -1,7 +1,7 @@
 //! Built-in procedural scenes named like the Replica SLAM sequences: three furnished rooms and five
 //! offices, 5–9 m across. Each is a pure function of its name (counter-based hashing, no global
 //! RNG): [`layouts`] places the furniture, [`textures`] paints the surfaces, [`lighting`] bakes a
-//! view-independent shade into the vertex colours and [`trajectory`] draws the default camera path.
+//! view-independent light (shadows, bounces) into the vertex colours and [`trajectory`] draws the default camera path.
 
 mod furniture;
 mod layouts;
@@ -18,7 +18,6 @@ mod checks;
 use glam::Vec2;
 
 use crate::Scene;
-use furniture::architecture::Room;
 use furniture::Style;
 use lighting::Lighting;
 use scene_builder::SceneBuilder;
@@ -45,13 +44,13 @@ pub fn build(name: &str) -> Option<Scene> {
             .iter()
             .map(|&(x, y)| Vec2::new(x, y).extend(room.height - 0.3))
             .collect(),
-        window_light: Room::inward(plan.window_wall),
+        windows: Vec::new(),
     };
     let mut b = SceneBuilder::new(seed, lighting);
     let style = Style::new(&mut b);
     let finish = (plan.finish)(&mut b, &style);
     room.shell(&mut b, &finish);
-    let fixture = furniture::tinted(style.paint, [1.0, 1.0, 0.97]);
+    let fixture = furniture::tinted(style.paint, [1.0, 1.0, 0.97]).glowing();
     for &(x, y) in plan.lamps {
         room.ceiling_light(&mut b, &fixture, x, y, plan.panel_lights);
     }
@@ -61,6 +60,7 @@ pub fn build(name: &str) -> Option<Scene> {
         centre: plan.track_centre,
         half: room_half - Vec2::splat(plan.track_margin) - plan.track_centre.abs(),
         room_half,
+        height: room.height,
     };
     let trajectory =
         trajectory::default_trajectory(&track, rslam_core::hash::splitmix64(seed ^ 0x7472_616a));

@@ -11,6 +11,7 @@ use super::lighting::Lighting;
 use super::mesh_builder::{Faces, Frame, Material, MeshBuilder, UvMap};
 use super::rng::Rng;
 use super::textures::{Pattern, Rgb, TextureSpec};
+use crate::scene::srgb::srgb_to_linear;
 use crate::{Scene, Texture};
 
 pub struct SceneBuilder {
@@ -53,6 +54,7 @@ impl SceneBuilder {
             layer: self.texture(pattern, seed),
             tint,
             uv: UvMap::Metres(metres),
+            emissive: false,
         }
     }
 
@@ -62,6 +64,7 @@ impl SceneBuilder {
             layer: self.texture(pattern, seed),
             tint,
             uv: UvMap::Fit,
+            emissive: false,
         }
     }
 
@@ -83,11 +86,24 @@ impl SceneBuilder {
                 .map(TextureSpec::generate)
                 .collect::<Vec<_>>(),
         );
+        let layer_albedo: Vec<Vec3> = textures.iter().map(mean_linear).collect();
         Scene {
             name: name.to_string(),
-            mesh: self.mesh.finish(),
+            mesh: self.mesh.finish(&layer_albedo),
             textures,
             default_trajectory: Some(trajectory),
         }
     }
+}
+
+/// Mean colour of a texture in linear light: the albedo the bake gives its surfaces.
+fn mean_linear(t: &Texture) -> Vec3 {
+    let sum = t.rgba.chunks_exact(4).fold(Vec3::ZERO, |s, px| {
+        s + Vec3::new(
+            srgb_to_linear(px[0]),
+            srgb_to_linear(px[1]),
+            srgb_to_linear(px[2]),
+        )
+    });
+    sum / (t.rgba.len() / 4).max(1) as f32
 }

@@ -1,10 +1,13 @@
-//! Default trajectories: a smooth hand-held loop around a scene's free "track", looking across the
-//! room or obliquely at the walls, like the iMAP / NICE-SLAM Replica sequences.
+//! Default trajectories: a hand-held loop around a scene's free "track", like the Replica and TUM
+//! sequences: the walker slows down, nearly stops and speeds up again; the view turns on its own
+//! clock, so the camera sometimes turns almost in place; it looks across the room, obliquely along
+//! the walls, at the nearest (often plain) wall from the edge of the track, and up into a ceiling
+//! corner.
 //!
 //! Waypoints sit on an ellipse inside the track (radius and height jittered per scene); the path
-//! is a periodic Catmull–Rom spline through them walked once at a gently varying speed. Each
-//! waypoint has a look-at target on the room's far side or along a wall; targets are splined with
-//! the same parameter, and slow sinusoids add hand-held yaw, pitch, roll and position wobble.
+//! is a periodic Catmull–Rom spline through them. Each waypoint has a look-at target; targets are
+//! splined too, walked with a progress of their own, and slow sinusoids add hand-held yaw, pitch,
+//! roll and position wobble.
 
 use std::f32::consts::TAU;
 
@@ -27,6 +30,8 @@ pub struct Track {
     pub half: Vec2,
     /// Half extent of the room (targets lie inside it).
     pub room_half: Vec2,
+    /// Ceiling height, metres.
+    pub height: f32,
 }
 
 /// The default trajectory of a scene: `FRAMES` poses at `RATE_HZ`, deterministic in `seed`.
@@ -39,30 +44,46 @@ pub fn default_trajectory(track: &Track, seed: u64) -> Trajectory {
     for k in 0..WAYPOINTS {
         let a = start + direction * TAU * k as f32 / WAYPOINTS as f32;
         let radial = Vec2::new(a.cos(), a.sin());
-        let r = rng.range(0.55, 1.0);
-        let p = track.centre + radial * track.half * r;
-        points.push(p.extend(rng.range(1.4, 1.75)));
-        // Even waypoints look across the room, odd ones obliquely at the nearer walls.
-        let look = if k % 2 == 0 {
-            a + std::f32::consts::PI + rng.range(-0.9, 0.9)
-        } else {
-            a + direction * rng.range(0.9, 1.6)
+        let kind = View::of_waypoint(k);
+        let r = match kind {
+            View::NearestWall => 1.0,
+            _ => rng.range(0.55, 1.0),
         };
-        targets.push(wall_target(track, p, look).extend(rng.range(0.55, 1.1)));
+        let p = track.centre + radial * track.half * r;
+        let eye_height = rng.range(1.4, 1.75);
+        points.push(p.extend(eye_height));
+        let look = match kind {
+            View::Across => a + std::f32::consts::PI + rng.range(-0.9, 0.9),
+            View::AlongWall => a + direction * rng.range(0.9, 1.6),
+            View::NearestWall => a + direction * rng.range(0.6, 0.9),
+            View::CeilingCorner => a + direction * rng.range(0.5, 0.9),
+        };
+        let target = wall_target(track, p, look);
+        targets.push(
+            target.extend(match kind {
+                // 10–18° up, at most to the ceiling.
+                View::CeilingCorner => (eye_height
+                    + target.distance(p) * rng.range(0.17, 0.31).tan())
+                .min(track.height - 0.05),
+                View::NearestWall => rng.range(1.2, 1.6),
+                _ => rng.range(0.55, 1.1),
+            }),
+        );
     }
     let path = Spline::new(points, Vec3::ZERO);
     let turns = winding(&path.points, &targets);
     let aim = Spline::new(look_angles(&path.points, &targets), Vec3::X * TAU * turns);
     let lengths = path.arc_lengths();
     let total = *lengths.last().unwrap_or(&0.0);
+    let walk = Progress::new(&mut rng, 0.8);
+    let turn = Progress::new(&mut rng, 0.45);
     let wobble = Wobble::new(&mut rng);
     let poses = (0..FRAMES)
         .map(|i| {
             let tau = i as f32 / FRAMES as f32;
-            let progress = tau + 0.025 * (TAU * 3.0 * tau).sin();
-            let s = spline_parameter(&lengths, progress * total);
+            let s = spline_parameter(&lengths, walk.at(tau) * total);
             let t = i as f32 / RATE_HZ as f32;
-            let angles = aim.at(s);
+            let angles = aim.at(turn.at(tau) * WAYPOINTS as f32);
             let [yaw, pitch, roll] = wobble.angles(t);
             look_pose(
                 path.at(s) + wobble.offset(t),
@@ -73,6 +94,74 @@ pub fn default_trajectory(track: &Track, seed: u64) -> Trajectory {
         })
         .collect();
     Trajectory::from_poses_at_rate(poses, RATE_HZ)
+}
+
+/// What the camera looks at from a waypoint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum View {
+    /// The far side of the room.
+    Across,
+    /// Obliquely along the nearer walls.
+    AlongWall,
+    /// At the nearest wall, half turned, from the edge of the track.
+    NearestWall,
+    /// Up along a wall to where it meets the ceiling.
+    CeilingCorner,
+}
+
+impl View {
+    /// Once round the loop: one look at the nearest wall, one up to the ceiling.
+    fn of_waypoint(k: usize) -> View {
+        use View::*;
+        [
+            Across,
+            AlongWall,
+            NearestWall,
+            Across,
+            AlongWall,
+            Across,
+            AlongWall,
+            CeilingCorner,
+            Across,
+            AlongWall,
+        ][k % 10]
+    }
+}
+
+/// Progress round the loop in [0, 1] over time τ ∈ [0, 1], at a speed that varies smoothly and
+/// periodically between nearly stopped and about twice the mean (`depth` sets how far).
+struct Progress {
+    /// Cumulative progress at τ = k / STEPS, k = 0 ..= STEPS.
+    table: Vec<f32>,
+}
+
+impl Progress {
+    const STEPS: usize = 4096;
+
+    fn new(rng: &mut Rng, depth: f32) -> Self {
+        let (f1, f2) = (rng.int(3, 6) as f32, rng.int(7, 12) as f32);
+        let (p1, p2) = (rng.f32() * TAU, rng.f32() * TAU);
+        let speed = |tau: f32| {
+            let wave = 0.7 * (TAU * f1 * tau + p1).sin() + 0.3 * (TAU * f2 * tau + p2).sin();
+            (1.0 + depth * wave).max(0.05)
+        };
+        let mut table = Vec::with_capacity(Self::STEPS + 1);
+        let mut sum = 0.0;
+        table.push(0.0);
+        for k in 0..Self::STEPS {
+            sum += speed((k as f32 + 0.5) / Self::STEPS as f32);
+            table.push(sum);
+        }
+        table.iter_mut().for_each(|v| *v /= sum);
+        Self { table }
+    }
+
+    fn at(&self, tau: f32) -> f32 {
+        let x = tau.clamp(0.0, 1.0) * Self::STEPS as f32;
+        let k = (x.floor() as usize).min(Self::STEPS - 1);
+        let f = x - k as f32;
+        self.table[k] + (self.table[k + 1] - self.table[k]) * f
+    }
 }
 
 /// The point where a ray from `p` in direction `angle` leaves the room, pulled back 10 %.
@@ -245,6 +334,7 @@ mod tests {
             centre: Vec2::ZERO,
             half: Vec2::new(1.5, 1.0),
             room_half: Vec2::new(3.0, 2.5),
+            height: 2.7,
         }
     }
 
@@ -255,6 +345,24 @@ mod tests {
         assert_ne!(a, default_trajectory(&track(), 43));
         assert_eq!(a.len(), FRAMES);
         assert!((a.timestamps[1] - 0.05).abs() < 1e-12);
+    }
+
+    #[test]
+    fn progress_runs_from_zero_to_one_never_backwards_and_nearly_stops() {
+        let p = Progress::new(&mut Rng::new(7), 0.8);
+        assert_eq!(p.at(0.0), 0.0);
+        assert!((p.at(1.0) - 1.0).abs() < 1e-6);
+        let steps: Vec<f32> = (0..1000)
+            .map(|i| p.at((i + 1) as f32 / 1000.0) - p.at(i as f32 / 1000.0))
+            .collect();
+        assert!(steps.iter().all(|&d| d >= 0.0));
+        let (slowest, fastest) = steps
+            .iter()
+            .fold((f32::MAX, 0f32), |(lo, hi), &d| (lo.min(d), hi.max(d)));
+        assert!(
+            fastest > 5.0 * slowest,
+            "speed varies: {slowest} .. {fastest}"
+        );
     }
 
     #[test]

@@ -155,14 +155,14 @@ impl Room {
     ) {
         let f = self.wall_frame(wall, along);
         let (hw, z0, z1) = (width / 2.0, 0.9, 2.1);
-        let view = b.unique(Pattern::WindowView);
-        b.mesh.quad(
-            &f,
+        let view = b.unique(Pattern::WindowView).glowing();
+        let (corner, right, down) = (
             Vec3::new(-hw, -0.005, z1),
             Vec3::X * width,
             -Vec3::Z * (z1 - z0),
-            &view,
         );
+        b.mesh.quad(&f, corner, right, down, &view);
+        b.mesh.window_light(&f, corner, right, down);
         let frame = Faces::all(s.paint).without(Faces::BACK);
         let bar = 0.06;
         b.cuboid(
@@ -233,16 +233,6 @@ impl Room {
         } else {
             b.mesh
                 .ellipsoid(&f, Vec3::ZERO, Vec3::new(0.25, 0.25, 0.09), m);
-        }
-    }
-
-    /// Unit direction of daylight entering through `wall`.
-    pub fn inward(wall: Wall) -> Vec3 {
-        match wall {
-            Wall::South => Vec3::Y,
-            Wall::East => -Vec3::X,
-            Wall::North => -Vec3::Y,
-            Wall::West => Vec3::X,
         }
     }
 }

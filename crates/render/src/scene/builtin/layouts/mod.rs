@@ -7,7 +7,7 @@ mod rooms;
 
 use glam::Vec2;
 
-use super::furniture::architecture::{Finish, Room, Wall};
+use super::furniture::architecture::{Finish, Room};
 use super::furniture::Style;
 use super::scene_builder::SceneBuilder;
 
@@ -16,7 +16,6 @@ pub struct Blueprint {
     /// Ceiling lights (x, y).
     pub lamps: &'static [(f32, f32)],
     pub panel_lights: bool,
-    pub window_wall: Wall,
     pub track_centre: Vec2,
     pub track_margin: f32,
     pub finish: fn(&mut SceneBuilder, &Style) -> Finish,

@@ -26,18 +26,12 @@ pub fn room0() -> Blueprint {
         },
         lamps: &[(-1.6, 0.0), (1.6, 0.0)],
         panel_lights: false,
-        window_wall: North,
         track_centre: Vec2::ZERO,
         track_margin: 1.2,
         finish: |b, s| {
-            let paper = b.tiled(Wallpaper, 11, WHITE, 0.8);
+            let paint = b.tiled(Plaster, 11, WHITE, 1.5);
             Finish {
-                walls: [
-                    paper,
-                    b.tiled(Plaster, 12, WHITE, 1.5),
-                    paper,
-                    b.tiled(Brick, 13, WHITE, 1.2),
-                ],
+                walls: [paint, paint, paint, b.tiled(Wallpaper, 13, WHITE, 0.8)],
                 floor: b.tiled(FloorPlanks, 14, WHITE, 1.6),
                 ceiling: b.tiled(Plaster, 15, [1.0, 1.0, 0.98], 2.0),
                 skirting: s.paint,
@@ -84,7 +78,7 @@ pub fn room0() -> Blueprint {
             for x in [-0.65, 0.65] {
                 decor::trinket(b, s, &sideboard.then(Vec3::new(x, 0.0, top), 0.3), 0.25);
             }
-            // West: brick wall with a shelf, a painting, a chest of drawers; dining table.
+            // West: papered wall with a shelf, a painting, a chest of drawers; dining table.
             storage::wall_shelf(b, s, &r.wall_frame(West, 1.2), 1.0, 1.5);
             let art = b.unique(Painting);
             decor::picture(
@@ -123,7 +117,6 @@ pub fn room1() -> Blueprint {
         },
         lamps: &[(-0.6, 0.5), (1.2, -1.0)],
         panel_lights: false,
-        window_wall: East,
         track_centre: Vec2::new(0.2, -0.5),
         track_margin: 1.15,
         finish: |b, s| {
@@ -201,7 +194,6 @@ pub fn room2() -> Blueprint {
         },
         lamps: &[(-2.2, 0.0), (0.8, 0.0), (2.8, 1.5)],
         panel_lights: false,
-        window_wall: South,
         track_centre: Vec2::ZERO,
         track_margin: 1.25,
         finish: |b, s| {

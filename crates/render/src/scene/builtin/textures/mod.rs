@@ -2,6 +2,8 @@
 //! Patterns mapped in metres tile seamlessly; "fit" patterns (pictures, screens, doors) cover one
 //! face. Colours are sRGB in [0, 1]; the scene's baked lighting multiplies them.
 
+#[cfg(test)]
+mod families;
 mod noise;
 mod prints;
 mod surfaces;
@@ -110,5 +112,7 @@ impl TextureSpec {
     }
 }
 
+#[cfg(test)]
+use families::FAMILIES;
 #[cfg(test)]
 mod tests;

@@ -2,7 +2,7 @@
 
 use std::f32::consts::TAU;
 
-use super::noise::{cell, fbm, grid_distance, hsv, mix, scale, Rgb};
+use super::noise::{cell, fbm, grid_distance, hsv, mix, scale, value_noise, Rgb};
 
 /// 4 × 4 tiles per texture with grout, per-tile shade and speckle.
 pub fn floor_tiles(seed: u64, u: f32, v: f32) -> Rgb {
@@ -15,7 +15,7 @@ pub fn floor_tiles(seed: u64, u: f32, v: f32) -> Rgb {
         [0.45, 0.5, 0.55],
     ][(cell(seed, 0, 0, 50) * 4.0) as usize];
     let checker = if cell(seed, 0, 0, 51) < 0.5 && (i + j).rem_euclid(2) == 1 {
-        0.72
+        0.8
     } else {
         1.0
     };
@@ -25,19 +25,15 @@ pub fn floor_tiles(seed: u64, u: f32, v: f32) -> Rgb {
     if grid_distance(u * N) < 0.03 || grid_distance(v * N) < 0.03 {
         return [0.3, 0.29, 0.27];
     }
-    scale(base, checker * tone * (0.82 + 0.3 * speckle - 0.25 * vein))
+    scale(base, checker * tone * (0.87 + 0.2 * speckle - 0.15 * vein))
 }
 
-/// Striped paper with a half-drop repeat of flower motifs.
+/// Paper with a faint half-drop repeat of flower motifs: a few per cent darker than its ground,
+/// as in the matt, tone-on-tone papers of real rooms.
 pub fn wallpaper(seed: u64, u: f32, v: f32) -> Rgb {
     let h = cell(seed, 0, 0, 60);
-    let ground = hsv(h, 0.2 + 0.2 * cell(seed, 0, 0, 61), 0.85);
-    let ink = hsv(h + 0.05, 0.45, 0.5);
-    let accent = hsv(h + 0.45, 0.35, 0.65);
-    let mut c = ground;
-    if ((u * 8.0).fract() - 0.5).abs() < 0.05 {
-        c = mix(c, accent, 0.5);
-    }
+    let ground = hsv(h, 0.06 + 0.08 * cell(seed, 0, 0, 61), 0.88);
+    let ink = scale(ground, 0.92);
     // Motif cells: 4 × 4, odd columns dropped by half a cell.
     let (cu, row) = (
         u * 4.0,
@@ -51,27 +47,27 @@ pub fn wallpaper(seed: u64, u: f32, v: f32) -> Rgb {
     let (x, y) = (cu.fract() - 0.5, row.fract() - 0.5);
     let (r, a) = ((x * x + y * y).sqrt(), y.atan2(x));
     let petals = 0.28 * (0.55 + 0.45 * (5.0 * a).cos());
-    if r < 0.06 {
-        c = accent;
-    } else if r < petals {
-        c = mix(ink, ground, (r / petals).powi(3));
-    } else if (x.abs() < 0.012 && y > 0.1 && y < 0.45) || (r > 0.33 && r < 0.345) {
-        c = ink;
-    }
-    scale(c, 0.9 + 0.12 * fbm(seed, u, v, [48, 48], 2))
+    let c = if r < petals {
+        mix(ink, ground, (r / petals).powi(3))
+    } else {
+        ground
+    };
+    scale(c, 0.985 + 0.03 * fbm(seed, u, v, [48, 48], 2))
 }
 
-/// Trowelled plaster: mottled, with speckles and faint strokes.
+/// Painted plaster: one paint colour, a faint roller mottle and a fine grain of a per cent or two.
 pub fn plaster(seed: u64, u: f32, v: f32) -> Rgb {
-    let base = hsv(cell(seed, 0, 0, 70), 0.12, 0.86);
-    let mottle = fbm(seed, u, v, [6, 6], 5);
-    let strokes = fbm(seed ^ 5, u, v, [3, 24], 3);
-    let speck = if cell(seed, (u * 512.0) as i64, (v * 512.0) as i64, 71) > 0.97 {
-        0.8
-    } else {
-        1.0
-    };
-    scale(base, (0.45 + 0.8 * mottle + 0.2 * strokes) * speck)
+    const PAINTS: [Rgb; 5] = [
+        [0.93, 0.92, 0.89], // off-white
+        [0.9, 0.86, 0.78],  // magnolia
+        [0.84, 0.84, 0.82], // light grey
+        [0.86, 0.88, 0.84], // pale sage
+        [0.91, 0.88, 0.84], // warm white
+    ];
+    let base = PAINTS[(cell(seed, 0, 0, 70) * PAINTS.len() as f32) as usize];
+    let mottle = fbm(seed, u, v, [6, 6], 4);
+    let grain = value_noise(seed ^ 5, u * 256.0, v * 256.0, [256, 256]);
+    scale(base, 0.97 + 0.04 * mottle + 0.02 * grain)
 }
 
 /// Running-bond brick, 4 bricks by 15 courses per texture.
@@ -99,7 +95,7 @@ pub fn ceiling_tiles(seed: u64, u: f32, v: f32) -> Rgb {
     }
     let fissure = fbm(seed, u, v, [48, 48], 2);
     let dot = cell(seed, (u * 128.0) as i64, (v * 128.0) as i64, 90) > 0.88;
-    let k = if dot { 0.6 } else { 0.92 } - if fissure < 0.3 { 0.25 } else { 0.0 };
+    let k = if dot { 0.86 } else { 0.92 } - if fissure < 0.3 { 0.05 } else { 0.0 };
     scale([0.95, 0.94, 0.9], k)
 }
 
@@ -113,7 +109,7 @@ pub fn marble(seed: u64, u: f32, v: f32) -> Rgb {
     let t = fbm(seed, u, v, [4, 4], 5);
     let vein = ((u + v + 3.0 * t) * 3.0 * TAU).sin().abs().powf(0.25);
     scale(
-        mix(vein_col, ground, vein),
+        mix(mix(vein_col, ground, 0.6), ground, vein),
         0.9 + 0.15 * fbm(seed ^ 4, u, v, [32, 32], 2),
     )
 }

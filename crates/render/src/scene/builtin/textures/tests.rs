@@ -31,42 +31,70 @@ const ALL: [Pattern; 25] = [
 /// Patterns mapped in metres, which must repeat without a seam.
 const TILING: usize = 15;
 
-/// Least standard deviation of luma (0–1) for a texture to count as detailed, not blank.
-const MIN_LUMA_STD: f32 = 0.04;
-
 fn luma(t: &Texture, x: u32, y: u32) -> f32 {
     let i = 4 * (y * t.width + x) as usize;
     (0.299 * t.rgba[i] as f32 + 0.587 * t.rgba[i + 1] as f32 + 0.114 * t.rgba[i + 2] as f32) / 255.0
 }
 
+/// Mean linear luminance and standard deviation of luma.
+fn albedo_and_contrast(t: &Texture) -> (f32, f32) {
+    use crate::scene::srgb::srgb_to_linear;
+    let n = (t.width * t.height) as usize;
+    let values: Vec<f32> = (0..t.width * t.height)
+        .map(|i| luma(t, i % t.width, i / t.width))
+        .collect();
+    let mean = values.iter().sum::<f32>() / n as f32;
+    let std = (values.iter().map(|v| (v - mean).powi(2)).sum::<f32>() / n as f32).sqrt();
+    let albedo = t
+        .rgba
+        .chunks_exact(4)
+        .map(|p| {
+            0.2126 * srgb_to_linear(p[0])
+                + 0.7152 * srgb_to_linear(p[1])
+                + 0.0722 * srgb_to_linear(p[2])
+        })
+        .sum::<f32>()
+        / n as f32;
+    (albedo, std)
+}
+
 #[test]
-fn every_pattern_has_detail_and_is_deterministic() {
+fn every_pattern_is_in_one_family_of_the_table() {
+    for pattern in ALL {
+        let homes = FAMILIES
+            .iter()
+            .filter(|f| f.patterns.contains(&pattern))
+            .count();
+        assert_eq!(homes, 1, "{pattern:?} is in {homes} families");
+    }
+}
+
+#[test]
+fn every_pattern_keeps_the_albedo_and_contrast_of_its_family_and_is_deterministic() {
     let mut failures = Vec::new();
-    for (k, pattern) in ALL.into_iter().enumerate() {
-        for seed in [1, 2] {
-            let spec = TextureSpec { pattern, seed };
-            let t = spec.generate();
-            assert_eq!(t.rgba.len(), (TEXTURE_SIZE * TEXTURE_SIZE * 4) as usize);
-            let values: Vec<f32> = (0..TEXTURE_SIZE * TEXTURE_SIZE)
-                .map(|i| luma(&t, i % TEXTURE_SIZE, i / TEXTURE_SIZE))
-                .collect();
-            let mean = values.iter().sum::<f32>() / values.len() as f32;
-            let std = (values.iter().map(|v| (v - mean).powi(2)).sum::<f32>()
-                / values.len() as f32)
-                .sqrt();
-            if std <= MIN_LUMA_STD || !(0.1..0.95).contains(&mean) {
-                failures.push(format!(
-                    "{pattern:?} seed {seed}: luma mean {mean:.3}, std {std:.3}"
-                ));
-            }
-            if k < 3 && seed == 1 {
-                assert_eq!(t, spec.generate(), "{pattern:?} is not deterministic");
+    for family in &FAMILIES {
+        for (k, &pattern) in family.patterns.iter().enumerate() {
+            for seed in [1, 2, 3, 4] {
+                let spec = TextureSpec { pattern, seed };
+                let t = spec.generate();
+                assert_eq!(t.rgba.len(), (TEXTURE_SIZE * TEXTURE_SIZE * 4) as usize);
+                let (albedo, contrast) = albedo_and_contrast(&t);
+                let inside = |v: f32, (lo, hi): (f32, f32)| (lo..=hi).contains(&v);
+                if !inside(albedo, family.albedo) || !inside(contrast, family.contrast) {
+                    failures.push(format!(
+                        "{pattern:?} seed {seed}: albedo {albedo:.3} (table {:?}), luma std {contrast:.3} (table {:?}) — {}",
+                        family.albedo, family.contrast, family.name
+                    ));
+                }
+                if k == 0 && seed == 1 {
+                    assert_eq!(t, spec.generate(), "{pattern:?} is not deterministic");
+                }
             }
         }
     }
     assert!(
         failures.is_empty(),
-        "blank or badly exposed textures:\n{}",
+        "outside the material table:\n{}",
         failures.join("\n")
     );
 }

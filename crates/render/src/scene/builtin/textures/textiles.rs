@@ -6,23 +6,23 @@ use super::noise::{band, cell, fbm, grid_distance, hsv, mix, scale, value_noise,
 
 fn fabric_palette(seed: u64) -> [Rgb; 3] {
     let h = cell(seed, 0, 0, 10);
-    let s = 0.25 + 0.45 * cell(seed, 0, 0, 11);
+    let s = 0.1 + 0.3 * cell(seed, 0, 0, 11);
     [
-        hsv(h, s, 0.72),
-        hsv(h + 0.08, s * 0.8, 0.45),
-        hsv(h + 0.5, s * 0.6, 0.85),
+        hsv(h, s, 0.62),
+        hsv(h + 0.04, s * 0.8, 0.52),
+        hsv(h + 0.5, s * 0.5, 0.7),
     ]
 }
 
-/// Plain weave (over/under threads) under one of four designs: plain, tartan, stripes, dots.
+/// Plain weave (over/under threads); most upholstery is plain, some tartan, stripes or dots.
 pub fn fabric(seed: u64, u: f32, v: f32) -> Rgb {
     const THREADS: f32 = 128.0;
     let [a, b, accent] = fabric_palette(seed);
     let (tu, tv) = (u * THREADS, v * THREADS);
     let over = ((tu.floor() + tv.floor()) as i64).rem_euclid(2) == 0;
     let along = if over { tu.fract() } else { tv.fract() };
-    let thread = 0.75 + 0.25 * (along * PI).sin();
-    let design = (cell(seed, 0, 0, 12) * 4.0) as u32;
+    let thread = 0.88 + 0.12 * (along * PI).sin();
+    let design = (cell(seed, 0, 0, 12) * 8.0).max(4.0) as u32 - 4;
     let base = match design {
         0 => mix(a, b, fbm(seed, u, v, [8, 8], 3)),
         1 => {
@@ -61,7 +61,11 @@ pub fn leather(seed: u64, u: f32, v: f32) -> Rgb {
 
 /// Half-metre carpet tiles (two per texture side) laid in alternating pile direction.
 pub fn office_carpet(seed: u64, u: f32, v: f32) -> Rgb {
-    let base = mix([0.32, 0.35, 0.4], hsv(cell(seed, 0, 0, 30), 0.3, 0.45), 0.5);
+    let base = mix(
+        [0.32, 0.35, 0.4],
+        hsv(cell(seed, 0, 0, 30), 0.15, 0.45),
+        0.5,
+    );
     let (iu, iv) = ((u * 2.0).floor() as i64, (v * 2.0).floor() as i64);
     let turned = (iu + iv).rem_euclid(2) == 1;
     let (a, b) = if turned { (v, u) } else { (u, v) };
@@ -80,14 +84,14 @@ pub fn office_carpet(seed: u64, u: f32, v: f32) -> Rgb {
     let mottle = fbm(seed ^ 3, b, a, [4, 4], 3);
     scale(
         base,
-        seam * (0.75 + 0.4 * pile + rib + fleck) * (0.8 + 0.3 * mottle),
+        seam * (0.85 + 0.2 * pile + 0.4 * rib + 0.4 * fleck) * (0.9 + 0.15 * mottle),
     )
 }
 
 /// Vertical folds with a woven texture.
 pub fn curtain(seed: u64, u: f32, v: f32) -> Rgb {
     let fold = (u * 8.0 * TAU + 0.8 * fbm(seed, u, v, [4, 2], 2)).sin() * 0.5 + 0.5;
-    scale(fabric(seed, u, v), 0.65 + 0.45 * fold)
+    scale(fabric(seed, u, v), 0.8 + 0.25 * fold)
 }
 
 /// A rug fitted to its quad: fringe, borders, a medallion and a field of small diamonds.

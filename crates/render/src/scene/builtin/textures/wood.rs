@@ -21,7 +21,7 @@ fn grain_shade(seed: u64, u: f32, v: f32, rings: u32) -> f32 {
     let streak = fbm(seed, u, v, [2, 48], 3);
     let warp = fbm(seed ^ 0x51, u, v, [2, 4], 2);
     let ring = (TAU * (v * rings as f32 + 3.0 * warp)).sin() * 0.5 + 0.5;
-    0.62 + 0.6 * streak - 0.3 * ring.powi(4)
+    0.8 + 0.3 * streak - 0.15 * ring.powi(4)
 }
 
 /// Eight rows of staggered planks per tile, dark seams between them.
@@ -32,7 +32,7 @@ pub fn floor_planks(seed: u64, u: f32, v: f32) -> Rgb {
     let along = (u + offset) * 2.0;
     let plank = (along.floor() as i64).rem_euclid(2);
     let plank_seed = seed ^ ((row as u64 * 31 + plank as u64 + 1) * 0x9e37_79b9);
-    let tone = 0.82 + 0.3 * cell(seed, row, plank, 2);
+    let tone = 0.9 + 0.15 * cell(seed, row, plank, 2);
     let base = mix(
         palette(seed),
         [0.55, 0.4, 0.28],
@@ -42,7 +42,7 @@ pub fn floor_planks(seed: u64, u: f32, v: f32) -> Rgb {
     let seam_row = grid_distance(v * ROWS) < 0.035;
     let seam_joint = grid_distance(along) < 0.006;
     if seam_row || seam_joint {
-        c = scale(c, 0.35);
+        c = scale(c, 0.6);
     }
     c
 }
