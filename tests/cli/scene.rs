@@ -107,3 +107,53 @@ fn list_names_every_builtin_scene() {
         ["room0", "room1", "room2", "office0", "office1", "office2", "office3", "office4"]
     );
 }
+
+#[test]
+fn stats_measure_every_kth_frame_of_a_dataset_and_reject_a_zero_step() {
+    let ws = Workspace::new();
+    ws.rslam(&[
+        "render",
+        "--scene",
+        "room0",
+        "--frames",
+        "5",
+        "--camera",
+        "160,90,80,80,79.5,44.5",
+        "--out",
+        "d",
+    ])
+    .success();
+    let out = ws
+        .rslam(&[
+            "scene",
+            "stats",
+            "d",
+            "--every",
+            "2",
+            "--json",
+            "stats.json",
+        ])
+        .success();
+    assert!(out.contains("3 frames of d"), "{out}");
+    assert!(out.contains("FAST corners (threshold 20)"), "{out}");
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(ws.path("stats.json")).unwrap()).unwrap();
+    let frames: Vec<u64> = doc["frames"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["frame"].as_u64().unwrap())
+        .collect();
+    assert_eq!(frames, vec![0, 2, 4]);
+    for f in doc["frames"].as_array().unwrap() {
+        let s = &f["stats"];
+        assert!(
+            s["fast_corners"].as_u64().unwrap() > 0,
+            "a furnished room has corners: {s}"
+        );
+        let low = s["low_texture_cells"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&low), "{s}");
+    }
+    ws.rslam(&["scene", "stats", "d", "--every", "0"])
+        .fails_with(2, &["--every", "at least 1"]);
+}

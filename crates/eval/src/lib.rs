@@ -12,6 +12,9 @@
 //! as Markdown, CSV, JSON and one self-contained HTML page, with the CSR curves and per-category
 //! bar plots.
 //!
+//! For frames, [`image_stats`] gives the statistics behind `rslam scene stats` (FAST corners,
+//! gradients, saturation, low-texture cells) to set rendered frames beside real ones.
+//!
 //! For maps, [`recon`] measures a reconstructed mesh or point cloud against the ground-truth mesh
 //! (accuracy, completion, completion ratio; CO-SLAM's protocol, distances to surfaces).
 
@@ -19,6 +22,7 @@ mod alignment;
 mod association;
 mod error;
 mod evaluate;
+pub mod image_stats;
 mod plot;
 pub mod recon;
 mod rpe;

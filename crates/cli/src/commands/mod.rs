@@ -7,6 +7,7 @@ pub mod perturb;
 pub mod render;
 mod run_summary;
 pub mod scene;
+mod scene_stats;
 pub mod suite;
 pub mod verify;
 

@@ -29,6 +29,9 @@ enum SceneCommand {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Per-frame image statistics to set beside real data: FAST corners at ORB-SLAM's threshold,
+    /// gradient magnitudes, saturation, low-texture cells.
+    Stats(super::scene_stats::StatsArgs),
     /// List the built-in scenes.
     List,
 }
@@ -58,6 +61,7 @@ pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
                 .with_context(|| format!("writing the trajectory of scene '{scene}'"))?;
             println!("wrote {}: {} poses", out.display(), trajectory.len());
         }
+        SceneCommand::Stats(stats) => super::scene_stats::run(stats)?,
         SceneCommand::List => {
             for name in BUILTIN_SCENES {
                 println!("{name}");
