@@ -92,41 +92,53 @@ pub fn fast9_count(grey: &[u8], width: usize, height: usize, threshold: u8) -> u
 mod tests {
     use super::*;
 
+    /// A 40 × 40 image of grey `ground` with a 20-pixel square of grey `square` in its middle.
+    fn square(ground: u8, square: u8) -> Vec<u8> {
+        (0..40 * 40)
+            .map(|i| {
+                let inside = |c: usize| (10..30).contains(&c);
+                if inside(i % 40) && inside(i / 40) {
+                    square
+                } else {
+                    ground
+                }
+            })
+            .collect()
+    }
+
     #[test]
     fn a_bright_square_on_dark_has_four_corners_and_a_flat_image_none() {
-        let (w, h) = (40, 40);
-        let mut grey = vec![10u8; w * h];
-        for y in 10..30 {
-            for x in 10..30 {
-                grey[y * w + x] = 200;
-            }
-        }
-        assert_eq!(fast9_count(&grey, w, h, ORB_SLAM_THRESHOLD), 4);
+        assert_eq!(fast9_count(&square(10, 200), 40, 40, ORB_SLAM_THRESHOLD), 4);
         assert_eq!(
-            fast9_count(&vec![128u8; w * h], w, h, ORB_SLAM_THRESHOLD),
+            fast9_count(&square(128, 128), 40, 40, ORB_SLAM_THRESHOLD),
             0
         );
     }
 
     #[test]
     fn a_low_contrast_square_is_below_the_threshold() {
-        let (w, h) = (40, 40);
-        let mut grey = vec![100u8; w * h];
-        for y in 10..30 {
-            for x in 10..30 {
-                grey[y * w + x] = 115;
-            }
-        }
-        assert_eq!(fast9_count(&grey, w, h, ORB_SLAM_THRESHOLD), 0);
-        assert_eq!(fast9_count(&grey, w, h, 10), 4);
+        let grey = square(100, 115);
+        assert_eq!(fast9_count(&grey, 40, 40, ORB_SLAM_THRESHOLD), 0);
+        assert_eq!(fast9_count(&grey, 40, 40, 10), 4);
     }
 
     #[test]
-    fn a_straight_edge_is_not_a_corner() {
-        let (w, h) = (40, 40);
-        let grey: Vec<u8> = (0..w * h)
-            .map(|i| if i % w < 20 { 20 } else { 220 })
+    fn a_straight_edge_and_a_checkerboard_crossing_are_not_corners() {
+        // FAST needs 9 contiguous pixels of the circle on one side: an edge gives 7, the X
+        // junction of a checkerboard 4 per quadrant.
+        let edge: Vec<u8> = (0..40 * 40)
+            .map(|i| if i % 40 < 20 { 20 } else { 220 })
             .collect();
-        assert_eq!(fast9_count(&grey, w, h, ORB_SLAM_THRESHOLD), 0);
+        assert_eq!(fast9_count(&edge, 40, 40, ORB_SLAM_THRESHOLD), 0);
+        let checker: Vec<u8> = (0..40 * 40)
+            .map(|i| {
+                if (i % 40 < 20) == (i / 40 < 20) {
+                    20
+                } else {
+                    220
+                }
+            })
+            .collect();
+        assert_eq!(fast9_count(&checker, 40, 40, ORB_SLAM_THRESHOLD), 0);
     }
 }

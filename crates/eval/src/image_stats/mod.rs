@@ -177,17 +177,22 @@ mod tests {
     }
 
     #[test]
-    fn a_checkerboard_has_corners_texture_everywhere_and_known_gradients() {
-        // 8-pixel squares of grey 0 and 200: the Sobel magnitude / 8 across a vertical edge is
-        // 4 · 200 / 8 = 100 on the two columns beside it.
+    fn separate_squares_have_corners_texture_everywhere_and_edge_gradients() {
+        // 8-pixel squares of grey 200 every 16 pixels on black: four corners each; the Sobel
+        // magnitude / 8 across an edge is 4 · 200 / 8 = 100 on the two pixels beside it.
         let s = frame_stats(&image(128, 128, |x, y| {
-            let v = if (x / 8 + y / 8) % 2 == 0 { 0 } else { 200 };
+            let v = if x % 16 < 8 && y % 16 < 8 { 200 } else { 0 };
             [v, v, v]
         }));
-        assert!(s.fast_corners > 100, "{}", s.fast_corners);
+        // 64 squares, less the corners of the first row and column in the 3-pixel border FAST
+        // leaves out: 49 whole squares, 14 with two corners, one with one.
+        assert_eq!(s.fast_corners, 49 * 4 + 14 * 2 + 1);
         assert_eq!(s.low_texture_cells, 0.0);
-        assert_eq!(s.gradient_p50, 0.0, "most pixels are inside a square");
-        assert!((s.gradient_p90 - 100.0).abs() < 1e-3, "{}", s.gradient_p90);
+        assert_eq!(
+            s.gradient_p50, 0.0,
+            "most pixels are inside or between squares"
+        );
+        assert!(s.gradient_p90 >= 70.0, "{}", s.gradient_p90);
     }
 
     #[test]
