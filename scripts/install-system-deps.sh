@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian/Ubuntu machine lacks to run rslam: the Vulkan loader and Mesa's
-# Vulkan drivers (lavapipe renders on the CPU when there is no GPU).
+# Vulkan drivers (lavapipe renders on the CPU when there is no GPU), and for the Python package
+# libpython (cargo test links crates/python against it) and venv (scripts/test-python.sh).
 set -euo pipefail
 missing=()
-for pkg in libvulkan1 mesa-vulkan-drivers; do
+for pkg in libvulkan1 mesa-vulkan-drivers python3-dev python3-venv; do
   dpkg -s "$pkg" >/dev/null 2>&1 || missing+=("$pkg")
 done
 if [ ${#missing[@]} -eq 0 ]; then

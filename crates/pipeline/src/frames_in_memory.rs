@@ -20,16 +20,37 @@ use crate::PipelineError;
 pub struct FramesInMemory<S> {
     pipeline: Pipeline<S>,
     plan: FramePlan,
+    spec: PerturbSpec,
+    seed: u64,
 }
 
 impl FramesInMemory<SceneSource> {
     /// A scene along its path (see [`SceneJob`]).
     pub fn scene(ctx: &GpuContext, job: &SceneJob) -> Result<Self, PipelineError> {
-        let resolved = job.resolve()?;
+        Self::resolved(ctx, job, job.resolve()?)
+    }
+
+    /// A scene along `poses` (camera-to-world) instead of the job's path
+    /// ([`SceneJob::resolve_along`]).
+    pub fn scene_along(
+        ctx: &GpuContext,
+        job: &SceneJob,
+        poses: Vec<rslam_core::Pose>,
+    ) -> Result<Self, PipelineError> {
+        Self::resolved(ctx, job, job.resolve_along(poses)?)
+    }
+
+    fn resolved(
+        ctx: &GpuContext,
+        job: &SceneJob,
+        resolved: crate::scene_job::ResolvedScene,
+    ) -> Result<Self, PipelineError> {
         let source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, &job.spec, job.seed)?,
             plan: resolved.plan,
+            spec: job.spec.clone(),
+            seed: job.seed,
         })
     }
 }
@@ -46,6 +67,8 @@ impl FramesInMemory<DatasetSource> {
         Ok(Self {
             pipeline: Pipeline::new(ctx, DatasetSource::new(dataset), spec, seed)?,
             plan: dataset_plan(dataset, spec, seed),
+            spec: spec.clone(),
+            seed,
         })
     }
 }
@@ -58,24 +81,48 @@ impl FramesInMemory<BufferSource> {
         spec: &PerturbSpec,
         seed: u64,
     ) -> Result<Self, PipelineError> {
-        if !spec.depth.is_empty() && !source.has_depth() {
-            return Err(PipelineError::option(
-                "--perturb",
-                format!("'{spec}': depth corruptions need depth, and the frames have none"),
-            ));
-        }
+        check_depth(spec, &source)?;
         check_frame_items_only(spec)?;
-        let plan = FramePlan::images(source.len(), source.has_depth(), spec, seed);
+        let plan = FramePlan::images_at(source.frame_numbers(), source.has_depth(), spec, seed);
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, spec, seed)?,
             plan,
+            spec: spec.clone(),
+            seed,
         })
+    }
+
+    /// Other frames of the same size through the same perturbations: the GPU pipelines built by
+    /// [`FramesInMemory::buffers`] are kept, the plan is made anew for the new frame numbers.
+    pub fn set_frames(&mut self, source: BufferSource) -> Result<(), PipelineError> {
+        let (width, height) = self.pipeline.source().size();
+        if source.size() != (width, height) {
+            let (w, h) = source.size();
+            return Err(PipelineError::option(
+                "frames",
+                format!("{w}x{h} frames given to perturbations built for {width}x{height}"),
+            ));
+        }
+        check_depth(&self.spec, &source)?;
+        self.plan = FramePlan::images_at(
+            source.frame_numbers(),
+            source.has_depth(),
+            &self.spec,
+            self.seed,
+        );
+        self.pipeline.set_source(source);
+        Ok(())
     }
 }
 
 impl<S: FrameSource> FramesInMemory<S> {
     pub fn plan(&self) -> &FramePlan {
         &self.plan
+    }
+
+    /// Width and height of every frame.
+    pub fn frame_size(&self) -> (u32, u32) {
+        self.pipeline.source().size()
     }
 
     /// Output frames `outputs`, in order, to `deliver`; the GPU keeps several frames in flight.
@@ -111,4 +158,14 @@ impl<S: FrameSource> FramesInMemory<S> {
         })?;
         got.ok_or_else(|| PipelineError::Worker(format!("frame {index} was not delivered")))
     }
+}
+
+fn check_depth(spec: &PerturbSpec, source: &BufferSource) -> Result<(), PipelineError> {
+    if !spec.depth.is_empty() && !source.has_depth() {
+        return Err(PipelineError::option(
+            "--perturb",
+            format!("'{spec}': depth corruptions need depth, and the frames have none"),
+        ));
+    }
+    Ok(())
 }

@@ -35,7 +35,7 @@ pub use frames_in_memory::FramesInMemory;
 pub use input::PerturbInput;
 pub use output_folder::FolderState;
 pub use perturb_dataset::{perturb_dataset, PerturbDatasetJob};
-pub use perturb_images::{image_files, perturb_images, PerturbImagesJob};
+pub use perturb_images::{check_frame_items_only, image_files, perturb_images, PerturbImagesJob};
 pub use pipeline::Pipeline;
 pub use plan::{FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};

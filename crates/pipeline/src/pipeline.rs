@@ -32,6 +32,11 @@ impl<S: FrameSource> Pipeline<S> {
         &self.source
     }
 
+    /// Replaces the source; the caller keeps the frame size the perturbations were built for.
+    pub(crate) fn set_source(&mut self, source: S) {
+        self.source = source;
+    }
+
     /// Runs source frames `sources` (in that order) into `sink`, reporting to `progress`.
     pub fn run(
         &mut self,

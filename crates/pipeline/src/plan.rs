@@ -95,6 +95,13 @@ impl FramePlan {
     /// and the RNG's frame i; no capture times.
     pub fn images(count: usize, with_depth: bool, spec: &PerturbSpec, seed: u64) -> Self {
         let sources: Vec<usize> = (0..count).collect();
+        Self::images_at(&sources, with_depth, spec, seed)
+    }
+
+    /// Separate images that are frames `numbers` of a sequence: output frame i is source frame
+    /// `numbers[i]`, which keys its randomness; no capture times.
+    pub fn images_at(numbers: &[usize], with_depth: bool, spec: &PerturbSpec, seed: u64) -> Self {
+        let sources = numbers.to_vec();
         let depth_source = if with_depth {
             sources.clone()
         } else {

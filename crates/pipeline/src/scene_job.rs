@@ -43,6 +43,26 @@ impl SceneJob {
         }
         let scene = load_scene(&self.scene)?;
         let clean = self.camera_path(&scene)?;
+        self.resolve_path(scene, clean)
+    }
+
+    /// Like [`SceneJob::resolve`], along `poses` (camera-to-world, one per frame at `rate_hz`)
+    /// instead of a path file or the scene's own path; `trajectory` and `frames` are not used.
+    pub fn resolve_along(&self, poses: Vec<Pose>) -> Result<ResolvedScene, PipelineError> {
+        if !(self.rate_hz.is_finite() && self.rate_hz > 0.0) {
+            return Err(PipelineError::option(
+                "--rate",
+                format!("{}: expected a positive number of Hz", self.rate_hz),
+            ));
+        }
+        if poses.is_empty() {
+            return Err(PipelineError::option("poses", "expected at least one pose"));
+        }
+        self.resolve_path(load_scene(&self.scene)?, poses)
+    }
+
+    /// The clean path deviated by the spec's `rot`/`trans`, and the plan.
+    fn resolve_path(&self, scene: Scene, clean: Vec<Pose>) -> Result<ResolvedScene, PipelineError> {
         let clean = rslam_core::Trajectory::from_poses_at_rate(clean, self.rate_hz);
         let deviated = rslam_perturb::trajectory::deviate(&clean, &self.spec, self.seed);
         let plan = FramePlan::rendered(deviated.len(), self.rate_hz, &self.spec, self.seed);

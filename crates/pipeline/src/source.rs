@@ -2,6 +2,8 @@
 //! the GPU — a scene draws it from its pose, a dataset uploads its decoded images. A rig of
 //! several sensors is several sources, one per camera, each with its own plan and sink.
 
+use std::collections::HashMap;
+
 use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFrame, SourceDataset};
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
@@ -196,10 +198,16 @@ fn check_size(
 }
 
 /// Frames already in memory (numpy arrays from Python, images the viewer holds), all of one size.
+/// Each buffer is one frame of a sequence: its frame number keys the perturbations' randomness,
+/// as the frame index does in `rslam perturb`.
 pub struct BufferSource {
     width: u32,
     height: u32,
     frames: Vec<(RgbImage, Option<DepthImage>)>,
+    /// Frame number of each buffer, all different.
+    numbers: Vec<usize>,
+    /// Buffer of each frame number.
+    buffer_of: HashMap<usize, usize>,
 }
 
 impl BufferSource {
@@ -229,15 +237,54 @@ impl BufferSource {
                 ));
             }
         }
+        let numbers: Vec<usize> = (0..frames.len()).collect();
+        let buffer_of = numbers.iter().map(|&n| (n, n)).collect();
         Ok(Self {
             width,
             height,
             frames,
+            numbers,
+            buffer_of,
         })
     }
-}
 
-impl BufferSource {
+    /// Like [`BufferSource::new`], with buffer i as frame `numbers[i]` of the sequence (a data
+    /// loader's batch of frames 40, 7, 12, …); fails unless there is one number per buffer and
+    /// no number is given twice.
+    pub fn at_frames(
+        frames: Vec<(RgbImage, Option<DepthImage>)>,
+        numbers: Vec<usize>,
+    ) -> Result<Self, PipelineError> {
+        if numbers.len() != frames.len() {
+            return Err(PipelineError::option(
+                "frame_indices",
+                format!(
+                    "{} frame indices for {} frames: expected one per frame",
+                    numbers.len(),
+                    frames.len()
+                ),
+            ));
+        }
+        let mut source = Self::new(frames)?;
+        let mut buffer_of = HashMap::with_capacity(numbers.len());
+        for (i, &n) in numbers.iter().enumerate() {
+            if buffer_of.insert(n, i).is_some() {
+                return Err(PipelineError::option(
+                    "frame_indices",
+                    format!("frame index {n} is given twice"),
+                ));
+            }
+        }
+        source.numbers = numbers;
+        source.buffer_of = buffer_of;
+        Ok(source)
+    }
+
+    /// The frame number of each buffer, in buffer order.
+    pub fn frame_numbers(&self) -> &[usize] {
+        &self.numbers
+    }
+
     pub fn len(&self) -> usize {
         self.frames.len()
     }
@@ -257,7 +304,13 @@ impl FrameSource for BufferSource {
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
-        check_in_range(sources, self.frames.len(), "frames given")
+        match sources.iter().find(|s| !self.buffer_of.contains_key(s)) {
+            Some(s) => Err(PipelineError::option(
+                "frame",
+                format!("{s} is not one of the frames given"),
+            )),
+            None => Ok(()),
+        }
     }
 
     fn record(
@@ -267,7 +320,10 @@ impl FrameSource for BufferSource {
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        let (color, depth) = &self.frames[index];
+        let buffer = *self.buffer_of.get(&index).ok_or_else(|| {
+            PipelineError::option("frame", format!("{index} is not one of the frames given"))
+        })?;
+        let (color, depth) = &self.frames[buffer];
         frame.upload(ctx, color, depth.as_ref());
         Ok(())
     }

@@ -1,0 +1,9 @@
+from rslam import eval as eval
+from rslam._rslam import Perturber as Perturber
+from rslam._rslam import __version__ as __version__
+from rslam._rslam import corrupt as corrupt
+from rslam._rslam import get_corruption_names as get_corruption_names
+from rslam._rslam import gpu_adapter as gpu_adapter
+from rslam._rslam import perturbation_names as perturbation_names
+from rslam._rslam import render as render
+from rslam._rslam import scene_poses as scene_poses
