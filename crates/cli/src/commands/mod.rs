@@ -9,6 +9,7 @@ mod run_summary;
 pub mod scene;
 pub mod suite;
 pub mod verify;
+pub mod view;
 
 /// The command line as typed, with the program called `rslam` whatever path started it, so that
 /// the same command records the same manifest.
