@@ -146,7 +146,11 @@ mod tests {
         let [r, g, b] = turbo(0.1);
         assert!(b > 0.8 && b > g && g > r, "near is blue: {:?}", turbo(0.1));
         let [_, g_mid, b_mid] = turbo(0.5);
-        assert!(g_mid > 0.8 && b_mid < 0.5, "middle is green: {:?}", turbo(0.5));
+        assert!(
+            g_mid > 0.8 && b_mid < 0.5,
+            "middle is green: {:?}",
+            turbo(0.5)
+        );
         let [r, g, b] = turbo(0.9);
         assert!(r > 0.6 && r > g && g > b, "far is red: {:?}", turbo(0.9));
         assert_eq!(turbo(-1.0), turbo(0.0), "clamped below");

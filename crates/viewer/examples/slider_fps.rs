@@ -15,9 +15,7 @@ use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::SceneJob;
-use rslam_viewer::{
-    render_state_for, ItemSetting, Session, ViewOptions, ViewSource, ViewerApp,
-};
+use rslam_viewer::{render_state_for, ItemSetting, Session, ViewOptions, ViewSource, ViewerApp};
 
 const FRAMES: usize = 40;
 
