@@ -13,3 +13,4 @@ mod render;
 mod resume;
 mod scene;
 mod suite;
+mod view;

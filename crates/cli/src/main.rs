@@ -43,6 +43,8 @@ enum Command {
     Verify(commands::verify::VerifyArgs),
     /// The benchmark matrix: make, shard, watch and schedule a suite of datasets.
     Suite(commands::suite::SuiteArgs),
+    /// Open a window on a scene or dataset: tune perturbations live, scrub, compare trajectories.
+    View(commands::view::ViewArgs),
 }
 
 /// Mesa's Vulkan drivers probe for a Wayland display and print an "error:" line when
@@ -65,6 +67,7 @@ fn main() -> ExitCode {
         Command::Eval(args) => commands::eval::run(args),
         Command::Verify(args) => commands::verify::run(args),
         Command::Suite(args) => commands::suite::run(args),
+        Command::View(args) => commands::view::run(args),
     };
     match result {
         Ok(code) => code,

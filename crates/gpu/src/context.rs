@@ -9,8 +9,11 @@ pub struct AdapterChoice {
     pub name_contains: Option<String>,
 }
 
-/// Device, queue and the adapter they came from; one per process, shared by reference.
+/// Device, queue and the adapter they came from; one per process, shared by reference. Instance
+/// and adapter are kept so that a window (the viewer's eframe) can present with the same device.
 pub struct GpuContext {
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     pub adapter_info: wgpu::AdapterInfo,
@@ -87,6 +90,8 @@ impl GpuContext {
             slot.get_or_insert_with(|| error.to_string());
         }));
         Ok(Self {
+            instance,
+            adapter,
             device,
             queue,
             adapter_info,

@@ -121,6 +121,70 @@ impl FrameReadback {
     }
 }
 
+/// Reads single texels of 4-byte formats (`Rgba8Unorm`, `R32Float`): each `(texture, x, y)` in
+/// order, as its raw bytes. For a pixel readout under a cursor; blocks until the GPU is done.
+pub fn read_texels(
+    ctx: &GpuContext,
+    texels: &[(&wgpu::Texture, u32, u32)],
+) -> Result<Vec<[u8; 4]>, GpuError> {
+    let stride = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT as u64;
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback texels"),
+        size: stride * texels.len().max(1) as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    for (i, &(texture, x, y)) in texels.iter().enumerate() {
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x, y, z: 0 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: stride * i as u64,
+                    bytes_per_row: Some(stride as u32),
+                    rows_per_image: Some(1),
+                },
+            },
+            wgpu::Extent3d {
+                width: 1,
+                height: 1,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    let submission = ctx.queue.submit([encoder.finish()]);
+    let (tx, rx) = mpsc::channel();
+    buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+        let _ = tx.send(r);
+    });
+    ctx.device
+        .poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: None,
+        })
+        .map_err(readback_failed)?;
+    rx.recv()
+        .map_err(readback_failed)?
+        .map_err(readback_failed)?;
+    ctx.check()?;
+    let view = buffer.get_mapped_range(..).map_err(readback_failed)?;
+    let out = (0..texels.len())
+        .map(|i| {
+            let at = i * stride as usize;
+            [view[at], view[at + 1], view[at + 2], view[at + 3]]
+        })
+        .collect();
+    drop(view);
+    buffer.unmap();
+    Ok(out)
+}
+
 fn readback_failed(e: impl std::fmt::Display) -> GpuError {
     GpuError::Readback {
         message: e.to_string(),

@@ -108,6 +108,25 @@ impl Perturber {
         self.items.is_empty()
     }
 
+    /// Takes the levels and seed of `spec` when it has this perturber's frame items in the same
+    /// order (a severity, mode or seed change: nothing is rebuilt) and says whether it could;
+    /// `false` leaves it unchanged, and a new [`Perturber`] is needed.
+    pub fn set_levels(&mut self, spec: &PerturbSpec, seed: u64) -> bool {
+        let same_items = spec.frame_items().count() == self.items.len()
+            && spec
+                .frame_items()
+                .zip(&self.items)
+                .all(|(wanted, item)| wanted.name == item.name);
+        if !same_items {
+            return false;
+        }
+        for (wanted, item) in spec.frame_items().zip(&mut self.items) {
+            item.level = wanted.level.clone();
+        }
+        self.seed = seed;
+        true
+    }
+
     /// The severity every item gets on `frame` (pure: no GPU work).
     pub fn severities(&self, frame: u32) -> FrameSeverities {
         let items = self
@@ -240,6 +259,39 @@ mod tests {
             seen.iter().all(|&s| s),
             "40 frames drew every severity: {seen:?}"
         );
+    }
+
+    /// A new severity through `set_levels` gives what a perturber built for it gives; another
+    /// list of items is refused.
+    #[test]
+    fn set_levels_matches_a_rebuilt_perturber() {
+        let ctx = testing::context();
+        let (w, h) = (32, 24);
+        let run = |perturber: &mut Perturber| {
+            let frame = FrameTextures::new(ctx, w, h);
+            frame.upload(
+                ctx,
+                &testing::test_image(w, h),
+                Some(&testing::test_depth(w, h)),
+            );
+            let readback = FrameReadback::new(ctx, w, h, false);
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            perturber.encode(ctx, &mut encoder, &frame, 3).unwrap();
+            readback.encode_copy(&mut encoder, &frame);
+            readback
+                .read(ctx, ctx.queue.submit([encoder.finish()]))
+                .unwrap()
+                .0
+        };
+        let two = PerturbSpec::parse("brightness:2").unwrap();
+        let five = PerturbSpec::parse("brightness:5").unwrap();
+        let mut relevelled = Perturber::new(ctx, &two, w, h, 1).unwrap();
+        assert!(relevelled.set_levels(&five, 1));
+        let mut built = Perturber::new(ctx, &five, w, h, 1).unwrap();
+        assert_eq!(run(&mut relevelled), run(&mut built));
+        let other = PerturbSpec::parse("contrast:5").unwrap();
+        assert!(!relevelled.set_levels(&other, 1));
+        assert_eq!(relevelled.severities(0).items[0].name, "brightness");
     }
 
     #[test]

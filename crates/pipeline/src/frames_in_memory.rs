@@ -1,18 +1,22 @@
 //! Frames in memory, for the viewer and the Python package: a source, its perturbations and its
-//! plan on the caller's GPU context; output frames come back as buffers and nothing is written.
+//! plan on the caller's GPU context; output frames come back as buffers and nothing is written,
+//! or stay on the GPU in a [`ShownFrame`] for display. The spec can change between frames.
 
 use std::ops::Range;
 
 use rslam_core::dataset::SourceDataset;
+use rslam_core::{Pose, Trajectory};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 
-use crate::perturb_dataset::{check_dataset_spec, dataset_plan};
+use crate::depth_colormap::DepthRange;
+use crate::perturb_dataset::{check_dataset_spec, dataset_plan, output_ground_truth};
 use crate::perturb_images::check_frame_items_only;
 use crate::pipeline::Pipeline;
 use crate::plan::FramePlan;
 use crate::progress::Silent;
 use crate::scene_job::SceneJob;
+use crate::shown_frame::{Held, ShownFrame, ShownSources};
 use crate::sink::{MemorySink, RgbdFrame};
 use crate::source::{BufferSource, DatasetSource, FrameSource, SceneSource};
 use crate::PipelineError;
@@ -22,6 +26,16 @@ pub struct FramesInMemory<S> {
     plan: FramePlan,
     spec: PerturbSpec,
     seed: u64,
+    /// What a new spec needs to make its plan.
+    origin: Origin,
+    /// Counts changes of the source frames themselves (a new deviation of the path).
+    generation: u64,
+}
+
+enum Origin {
+    Scene { clean: Trajectory, rate_hz: f64 },
+    Dataset(Box<SourceDataset>),
+    Buffers,
 }
 
 impl FramesInMemory<SceneSource> {
@@ -51,7 +65,64 @@ impl FramesInMemory<SceneSource> {
             plan: resolved.plan,
             spec: job.spec.clone(),
             seed: job.seed,
+            origin: Origin::Scene {
+                clean: resolved.clean,
+                rate_hz: job.rate_hz,
+            },
+            generation: 0,
         })
+    }
+
+    /// The poses of the output frames with their times: the ground truth a render writes.
+    pub fn ground_truth(&self) -> Trajectory {
+        self.plan.ground_truth(self.pipeline.source().poses())
+    }
+
+    /// Another spec and seed; trajectory items deviate the path anew.
+    pub fn set_spec(
+        &mut self,
+        ctx: &GpuContext,
+        spec: &PerturbSpec,
+        seed: u64,
+    ) -> Result<(), PipelineError> {
+        let Origin::Scene { clean, rate_hz } = &self.origin else {
+            return Err(PipelineError::Worker(
+                "scene frames without their path".into(),
+            ));
+        };
+        let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
+        let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
+        if deviated.poses != self.pipeline.source().poses() {
+            self.pipeline.source_mut().set_poses(deviated.poses);
+            self.generation += 1;
+        }
+        self.take_spec(ctx, spec, seed, plan)
+    }
+
+    /// The view from `world_from_camera` (a free camera) in `shown`, perturbed as output frame
+    /// `index` would be.
+    pub fn show_from(
+        &mut self,
+        ctx: &GpuContext,
+        world_from_camera: &Pose,
+        index: usize,
+        shown: &mut ShownFrame,
+        range: DepthRange,
+    ) -> Result<(), PipelineError> {
+        let source = self.output_sources(index)?.rgb;
+        let held = Held {
+            sources: ShownSources {
+                rgb: source,
+                depth: source,
+            },
+            pose: Some(*world_from_camera),
+            generation: self.generation,
+        };
+        self.pipeline
+            .show_with(ctx, held, shown, range, |scene, encoder, frame, _| {
+                scene.record_from(ctx, encoder, frame, world_from_camera);
+                Ok(())
+            })
     }
 }
 
@@ -69,7 +140,36 @@ impl FramesInMemory<DatasetSource> {
             plan: dataset_plan(dataset, spec, seed),
             spec: spec.clone(),
             seed,
+            origin: Origin::Dataset(Box::new(dataset.clone())),
+            generation: 0,
         })
+    }
+
+    /// The ground truth a perturbed copy of the dataset would carry (empty without one).
+    pub fn ground_truth(&self) -> Trajectory {
+        match &self.origin {
+            Origin::Dataset(dataset) => {
+                output_ground_truth(dataset, &self.plan, self.spec.fast.is_some())
+            }
+            _ => Trajectory::default(),
+        }
+    }
+
+    /// Another spec and seed; trajectory items are refused (recorded frames cannot move).
+    pub fn set_spec(
+        &mut self,
+        ctx: &GpuContext,
+        spec: &PerturbSpec,
+        seed: u64,
+    ) -> Result<(), PipelineError> {
+        let Origin::Dataset(dataset) = &self.origin else {
+            return Err(PipelineError::Worker(
+                "dataset frames without their dataset".into(),
+            ));
+        };
+        check_dataset_spec(dataset, spec)?;
+        let plan = dataset_plan(dataset, spec, seed);
+        self.take_spec(ctx, spec, seed, plan)
     }
 }
 
@@ -84,11 +184,14 @@ impl FramesInMemory<BufferSource> {
         check_depth(spec, &source)?;
         check_frame_items_only(spec)?;
         let plan = FramePlan::images_at(source.frame_numbers(), source.has_depth(), spec, seed);
+        let origin = Origin::Buffers;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, spec, seed)?,
             plan,
             spec: spec.clone(),
             seed,
+            origin,
+            generation: 0,
         })
     }
 
@@ -115,14 +218,102 @@ impl FramesInMemory<BufferSource> {
     }
 }
 
+impl FramesInMemory<BufferSource> {
+    /// Another spec and seed (image and depth corruptions only).
+    pub fn set_spec(
+        &mut self,
+        ctx: &GpuContext,
+        spec: &PerturbSpec,
+        seed: u64,
+    ) -> Result<(), PipelineError> {
+        check_frame_items_only(spec)?;
+        let source = self.pipeline.source();
+        check_depth(spec, source)?;
+        let plan = FramePlan::images_at(source.frame_numbers(), source.has_depth(), spec, seed);
+        self.take_spec(ctx, spec, seed, plan)
+    }
+}
+
 impl<S: FrameSource> FramesInMemory<S> {
     pub fn plan(&self) -> &FramePlan {
         &self.plan
     }
 
+    pub fn spec(&self) -> &PerturbSpec {
+        &self.spec
+    }
+
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
     /// Width and height of every frame.
-    pub fn frame_size(&self) -> (u32, u32) {
+    pub fn size(&self) -> (u32, u32) {
         self.pipeline.source().size()
+    }
+
+    fn take_spec(
+        &mut self,
+        ctx: &GpuContext,
+        spec: &PerturbSpec,
+        seed: u64,
+        plan: FramePlan,
+    ) -> Result<(), PipelineError> {
+        self.pipeline.set_spec(ctx, spec, seed)?;
+        self.plan = plan;
+        self.spec = spec.clone();
+        self.seed = seed;
+        Ok(())
+    }
+
+    /// The source frames output frame `index` is made of.
+    pub fn output_sources(&self, index: usize) -> Result<ShownSources, PipelineError> {
+        if index >= self.plan.len() {
+            return Err(PipelineError::option(
+                "frame",
+                format!("{index} is past the {} output frames", self.plan.len()),
+            ));
+        }
+        Ok(ShownSources {
+            rgb: self.plan.rgb_source[index],
+            depth: self
+                .plan
+                .depth_source
+                .get(index)
+                .copied()
+                .unwrap_or(self.plan.rgb_source[index]),
+        })
+    }
+
+    /// Output frame `index` left on the GPU in `shown`, clean and perturbed, its depth
+    /// colour-mapped at `range`: what [`FramesInMemory::frame`] returns, without the readback.
+    /// Source frames `shown` holds already are not drawn again (a spec change re-perturbs only).
+    pub fn show(
+        &mut self,
+        ctx: &GpuContext,
+        index: usize,
+        shown: &mut ShownFrame,
+        range: DepthRange,
+    ) -> Result<(), PipelineError> {
+        if shown.size() != self.size() {
+            return Err(PipelineError::option(
+                "frame",
+                format!(
+                    "shown frame is {:?}, the frames are {:?}",
+                    shown.size(),
+                    self.size()
+                ),
+            ));
+        }
+        let held = Held {
+            sources: self.output_sources(index)?,
+            pose: None,
+            generation: self.generation,
+        };
+        self.pipeline
+            .show_with(ctx, held, shown, range, |source, encoder, frame, i| {
+                source.record(ctx, encoder, frame, i)
+            })
     }
 
     /// Output frames `outputs`, in order, to `deliver`; the GPU keeps several frames in flight.

@@ -7,11 +7,14 @@
 //! and every frame's severities. The [`Pipeline`] records each needed source frame and its image
 //! then depth corruptions into one command encoder, keeps several frames in flight and reads each
 //! back once; a [`sink`] encodes it into a dataset on worker threads or assembles output frames
-//! in memory. A dataset run first marks its folder with `rslam.run.json` ([`output_folder`]), so
-//! that the same job resumes where it stopped, and finishes with checksums and the manifest.
+//! in memory. For display, [`FramesInMemory::show`] leaves an output frame on the GPU in a
+//! [`ShownFrame`] instead (clean, perturbed, depth colour-mapped), with no readback. A dataset
+//! run first marks its folder with `rslam.run.json` ([`output_folder`]), so that the same job
+//! resumes where it stopped, and finishes with checksums and the manifest.
 
 mod dataset_run;
 mod decode_ahead;
+pub mod depth_colormap;
 mod encoder_pool;
 mod error;
 mod frame_loop;
@@ -26,10 +29,12 @@ mod plan;
 mod progress;
 mod render;
 mod scene_job;
+mod shown_frame;
 pub mod sink;
 pub mod source;
 
 pub use dataset_run::RunReport;
+pub use depth_colormap::DepthRange;
 pub use error::PipelineError;
 pub use frames_in_memory::FramesInMemory;
 pub use input::PerturbInput;
@@ -41,4 +46,5 @@ pub use plan::{FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
 pub use render::{render_dataset, RenderJob};
 pub use scene_job::{ResolvedScene, SceneJob};
+pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;

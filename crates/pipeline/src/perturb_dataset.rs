@@ -117,7 +117,11 @@ pub fn perturb_dataset(
 
 /// The source's ground truth for the output frames. Without re-stamping it is kept whole (at its
 /// own rate); with `fast` each kept frame takes the pose nearest its original capture time.
-fn output_ground_truth(src: &SourceDataset, plan: &FramePlan, restamp: bool) -> Trajectory {
+pub(crate) fn output_ground_truth(
+    src: &SourceDataset,
+    plan: &FramePlan,
+    restamp: bool,
+) -> Trajectory {
     let Some(gt) = &src.ground_truth else {
         return Trajectory::default();
     };

@@ -1,11 +1,13 @@
 //! One source and its perturbations on the GPU: every source frame asked for is recorded,
 //! perturbed in the same command encoder, read back once and handed to a sink.
 
-use rslam_gpu::GpuContext;
+use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 use rslam_perturb::{PerturbSpec, Perturber};
 
+use crate::depth_colormap::DepthRange;
 use crate::frame_loop::FrameRun;
 use crate::progress::Progress;
+use crate::shown_frame::{copy_frame, Held, ShownFrame, ShownSources};
 use crate::sink::FrameSink;
 use crate::source::FrameSource;
 use crate::PipelineError;
@@ -35,6 +37,72 @@ impl<S: FrameSource> Pipeline<S> {
     /// Replaces the source; the caller keeps the frame size the perturbations were built for.
     pub(crate) fn set_source(&mut self, source: S) {
         self.source = source;
+    }
+
+    pub fn source_mut(&mut self) -> &mut S {
+        &mut self.source
+    }
+
+    /// Takes another spec and seed for the frame corruptions: new levels in place when the items
+    /// are the same (a severity slider moving), else a new perturber.
+    pub fn set_spec(
+        &mut self,
+        ctx: &GpuContext,
+        spec: &PerturbSpec,
+        seed: u64,
+    ) -> Result<(), PipelineError> {
+        if !self.perturber.set_levels(spec, seed) {
+            let (width, height) = self.source.size();
+            self.perturber = Perturber::new(ctx, spec, width, height, seed)?;
+        }
+        Ok(())
+    }
+
+    /// The frame loop's record step without its readback, for display: the source frames of one
+    /// output frame are drawn by `draw` into `shown` (unless it holds `held` already), copied,
+    /// perturbed there, and the depth colour-mapped at `range`. Each source frame is its own
+    /// submission, as in the frame loop (uniforms are written at record time).
+    pub(crate) fn show_with(
+        &mut self,
+        ctx: &GpuContext,
+        held: Held,
+        shown: &mut ShownFrame,
+        range: DepthRange,
+        mut draw: impl FnMut(
+            &mut S,
+            &mut wgpu::CommandEncoder,
+            &FrameTextures,
+            usize,
+        ) -> Result<(), PipelineError>,
+    ) -> Result<(), PipelineError> {
+        let ShownSources { rgb, depth } = held.sources;
+        let redraw = shown.held.as_ref() != Some(&held);
+        shown.held = None;
+        shown.set_has_depth(self.source.has_depth());
+        let mut frames = vec![(rgb, &shown.clean, &shown.perturbed)];
+        if depth != rgb {
+            frames.push((depth, &shown.lagged_clean, &shown.lagged_perturbed));
+        }
+        if redraw {
+            let sources: Vec<usize> = frames.iter().map(|f| f.0).collect();
+            self.source.prepare(&sources)?;
+        }
+        for (index, clean, perturbed) in frames {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            if redraw {
+                draw(&mut self.source, &mut encoder, clean, index)?;
+            }
+            copy_frame(&mut encoder, clean, perturbed);
+            self.perturber
+                .encode(ctx, &mut encoder, perturbed, index as u32)?;
+            ctx.queue.submit([encoder.finish()]);
+        }
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        shown.encode_depth_colors(ctx, &mut encoder, held.sources, range);
+        ctx.queue.submit([encoder.finish()]);
+        ctx.check()?;
+        shown.held = Some(held);
+        Ok(())
     }
 
     /// Runs source frames `sources` (in that order) into `sink`, reporting to `progress`.

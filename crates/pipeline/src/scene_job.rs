@@ -29,6 +29,8 @@ pub struct SceneJob {
 /// A [`SceneJob`] made concrete: the mesh, one (deviated) pose per source frame, the plan.
 pub struct ResolvedScene {
     pub scene: Scene,
+    /// The path as given, at the job's rate, before any deviation.
+    pub clean: rslam_core::Trajectory,
     pub poses: Vec<Pose>,
     pub plan: FramePlan,
 }
@@ -68,6 +70,7 @@ impl SceneJob {
         let plan = FramePlan::rendered(deviated.len(), self.rate_hz, &self.spec, self.seed);
         Ok(ResolvedScene {
             scene,
+            clean,
             poses: deviated.poses,
             plan,
         })

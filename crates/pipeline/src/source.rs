@@ -52,6 +52,23 @@ impl SceneSource {
     pub fn poses(&self) -> &[Pose] {
         &self.poses
     }
+
+    /// Replaces the path (a new deviation of it); frame `i` is then the view from `poses[i]`.
+    pub fn set_poses(&mut self, poses: Vec<Pose>) {
+        self.poses = poses;
+    }
+
+    /// Records the view from `world_from_camera`, off the path (a free camera).
+    pub fn record_from(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        world_from_camera: &Pose,
+    ) {
+        self.rasterizer
+            .encode(ctx, encoder, frame, world_from_camera);
+    }
 }
 
 impl FrameSource for SceneSource {

@@ -42,9 +42,7 @@ pub fn run(
     let ctx = gpu::context().map_err(RunError::NoGpu)?;
     let source = BufferSource::at_frames(frames, numbers)?;
     let count = source.len();
-    let reusable = slot
-        .as_ref()
-        .is_some_and(|f| f.frame_size() == source.size());
+    let reusable = slot.as_ref().is_some_and(|f| f.size() == source.size());
     let frames = match slot {
         Some(built) if reusable => {
             built.set_frames(source)?;

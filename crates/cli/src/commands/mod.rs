@@ -10,6 +10,7 @@ pub mod scene;
 mod scene_stats;
 pub mod suite;
 pub mod verify;
+pub mod view;
 
 /// The command line as typed, with the program called `rslam` whatever path started it, so that
 /// the same command records the same manifest.
