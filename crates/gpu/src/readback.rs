@@ -73,25 +73,7 @@ impl FrameReadback {
     ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
         // A failed submission shows up here first, with the real cause.
         ctx.check()?;
-        let (tx, rx) = mpsc::channel();
-        for buffer in self.buffers() {
-            let tx = tx.clone();
-            buffer.map_async(wgpu::MapMode::Read, .., move |r| {
-                let _ = tx.send(r);
-            });
-        }
-        ctx.device
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(submission),
-                timeout: None,
-            })
-            .map_err(readback_failed)?;
-        for _ in self.buffers() {
-            rx.recv()
-                .map_err(readback_failed)?
-                .map_err(readback_failed)?;
-        }
-        ctx.check()?;
+        map_and_wait(ctx, self.buffers(), submission)?;
         let padded = self.padded_row_bytes as usize;
         let color = {
             let view = self.color.get_mapped_range(..).map_err(readback_failed)?;
@@ -159,20 +141,7 @@ pub fn read_texels(
         );
     }
     let submission = ctx.queue.submit([encoder.finish()]);
-    let (tx, rx) = mpsc::channel();
-    buffer.map_async(wgpu::MapMode::Read, .., move |r| {
-        let _ = tx.send(r);
-    });
-    ctx.device
-        .poll(wgpu::PollType::Wait {
-            submission_index: Some(submission),
-            timeout: None,
-        })
-        .map_err(readback_failed)?;
-    rx.recv()
-        .map_err(readback_failed)?
-        .map_err(readback_failed)?;
-    ctx.check()?;
+    map_and_wait(ctx, [&buffer], submission)?;
     let view = buffer.get_mapped_range(..).map_err(readback_failed)?;
     let out = (0..texels.len())
         .map(|i| {
@@ -189,6 +158,35 @@ fn readback_failed(e: impl std::fmt::Display) -> GpuError {
     GpuError::Readback {
         message: e.to_string(),
     }
+}
+
+/// Maps `buffers` for reading once `submission` has run, and waits until they are.
+fn map_and_wait<'a>(
+    ctx: &GpuContext,
+    buffers: impl IntoIterator<Item = &'a wgpu::Buffer>,
+    submission: wgpu::SubmissionIndex,
+) -> Result<(), GpuError> {
+    let (tx, rx) = mpsc::channel();
+    let mut mapping = 0;
+    for buffer in buffers {
+        let tx = tx.clone();
+        buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+            let _ = tx.send(r);
+        });
+        mapping += 1;
+    }
+    ctx.device
+        .poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: None,
+        })
+        .map_err(readback_failed)?;
+    for _ in 0..mapping {
+        rx.recv()
+            .map_err(readback_failed)?
+            .map_err(readback_failed)?;
+    }
+    ctx.check()
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 
 use std::path::PathBuf;
 
+use crate::render::pose_of_matrix;
 use glam::{DQuat, DVec3};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -54,16 +55,7 @@ fn trajectory(
         });
     }
     if let Ok(matrices) = obj.extract::<Vec<[[f64; 4]; 4]>>() {
-        let poses: Vec<Pose> = matrices
-            .iter()
-            .map(|m| {
-                let mut rows = [0.0; 16];
-                for (r, row) in m.iter().enumerate() {
-                    rows[r * 4..r * 4 + 4].copy_from_slice(row);
-                }
-                Pose::from_row_major(&rows)
-            })
-            .collect();
+        let poses: Vec<Pose> = matrices.iter().map(pose_of_matrix).collect();
         return Ok(TrajectoryFile {
             format: TrajectoryFormat::Replica,
             time_source: TimeSource::FrameIndex,

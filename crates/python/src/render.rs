@@ -19,16 +19,16 @@ fn poses_from(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Pose>> {
             "poses: expected an Nx4x4 array of camera-to-world matrices (OpenCV camera axes)",
         )
     })?;
-    Ok(matrices
-        .iter()
-        .map(|m| {
-            let mut rows = [0.0; 16];
-            for (r, row) in m.iter().enumerate() {
-                rows[r * 4..r * 4 + 4].copy_from_slice(row);
-            }
-            Pose::from_row_major(&rows)
-        })
-        .collect())
+    Ok(matrices.iter().map(pose_of_matrix).collect())
+}
+
+/// A 4x4 camera-to-world matrix (as numpy gives it, rows first) as a pose.
+pub(crate) fn pose_of_matrix(m: &[[f64; 4]; 4]) -> Pose {
+    let mut rows = [0.0; 16];
+    for (r, row) in m.iter().enumerate() {
+        rows[r * 4..r * 4 + 4].copy_from_slice(row);
+    }
+    Pose::from_row_major(&rows)
 }
 
 /// Renders a scene along camera poses on the GPU.
