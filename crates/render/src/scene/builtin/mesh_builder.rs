@@ -7,6 +7,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::exposure::exposure;
 use super::lighting::{bake, BakeInput, Lighting, Window};
 use super::textures::Rgb;
 use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
@@ -107,10 +108,6 @@ impl From<Material> for Faces {
     }
 }
 
-/// Median shade of the lit vertices after exposure: like a camera's auto-exposure on a mid-grey
-/// scene, brighter spots (near lamps and windows) still saturate.
-const EXPOSURE_TARGET: f32 = 0.75;
-
 pub struct MeshBuilder {
     mesh: Mesh,
     normals: Vec<Vec3>,
@@ -162,7 +159,12 @@ impl MeshBuilder {
             emissive: &self.emissive,
             lighting: &self.lighting,
         });
-        let exposure = exposure(&irradiance, &self.emissive);
+        let radiance: Vec<Vec3> = irradiance
+            .iter()
+            .zip(&albedo)
+            .map(|(&e, &a)| e * a)
+            .collect();
+        let exposure = exposure(&self.mesh, &radiance, &self.emissive);
         for (i, v) in self.mesh.vertices.iter_mut().enumerate() {
             let shade = if self.emissive[i] {
                 Vec3::ONE
@@ -341,24 +343,4 @@ impl MeshBuilder {
 /// An sRGB tint in [0, 1] as linear light.
 fn linear(t: Rgb) -> Vec3 {
     Vec3::from(t.map(|c| srgb_to_linear((c.clamp(0.0, 1.0) * 255.0).round() as u8)))
-}
-
-/// The factor that puts the lit vertices' median luminance at [`EXPOSURE_TARGET`].
-fn exposure(irradiance: &[Vec3], emissive: &[bool]) -> f32 {
-    let mut lum: Vec<f32> = irradiance
-        .iter()
-        .zip(emissive)
-        .filter(|(_, &g)| !g)
-        .map(|(e, _)| e.dot(Vec3::new(0.2126, 0.7152, 0.0722)))
-        .collect();
-    if lum.is_empty() {
-        return 1.0;
-    }
-    let mid = lum.len() / 2;
-    let median = *lum.select_nth_unstable_by(mid, f32::total_cmp).1;
-    if median > 0.0 {
-        EXPOSURE_TARGET / median
-    } else {
-        1.0
-    }
 }

@@ -3,6 +3,7 @@
 //! RNG): [`layouts`] places the furniture, [`textures`] paints the surfaces, [`lighting`] bakes a
 //! view-independent light (shadows, bounces) into the vertex colours and [`trajectory`] draws the default camera path.
 
+mod exposure;
 mod furniture;
 mod layouts;
 mod lighting;
