@@ -1,10 +1,10 @@
-//! Default trajectories: a hand-held loop around a scene's free "track", like the Replica and TUM
-//! sequences: the walker slows down, nearly stops and speeds up again; the view turns on its own
+//! Default trajectories: a hand-held walk twice round a scene's free "track", like the Replica and
+//! TUM sequences: the walker slows down, nearly stops and speeds up again; the view turns on its own
 //! clock, so the camera sometimes turns almost in place; it looks across the room, obliquely along
 //! the walls, at the nearest (often plain) wall from the edge of the track, and up into a ceiling
 //! corner.
 //!
-//! Waypoints sit on an ellipse inside the track (radius and height jittered per scene); the path
+//! Waypoints sit on an ellipse inside the track, ten a lap (radius and height jittered per scene); the path
 //! is a periodic Catmull–Rom spline through them. Each waypoint has a look-at target; targets are
 //! splined too, walked with a progress of their own, and slow sinusoids add hand-held yaw, pitch,
 //! roll and position wobble.
@@ -18,7 +18,12 @@ use super::rng::Rng;
 
 pub const FRAMES: usize = 2000;
 pub const RATE_HZ: f64 = rslam_core::REPLICA_RATE_HZ;
-const WAYPOINTS: usize = 10;
+/// Twice round the room in a sequence: a mean walking speed of about 0.2 m/s and turns of about
+/// 20°/s, as in hand-held TUM sequences (fr1: 0.2–0.4 m/s, 9–30°/s), with the second lap on
+/// waypoints of its own.
+const LAPS: usize = 2;
+const WAYPOINTS_PER_LAP: usize = 10;
+const WAYPOINTS: usize = LAPS * WAYPOINTS_PER_LAP;
 /// Dense spline samples per waypoint for the arc-length table.
 const SAMPLES_PER_SPAN: usize = 64;
 
@@ -42,7 +47,7 @@ pub fn default_trajectory(track: &Track, seed: u64) -> Trajectory {
     let mut points = Vec::with_capacity(WAYPOINTS);
     let mut targets = Vec::with_capacity(WAYPOINTS);
     for k in 0..WAYPOINTS {
-        let a = start + direction * TAU * k as f32 / WAYPOINTS as f32;
+        let a = start + direction * TAU * k as f32 / WAYPOINTS_PER_LAP as f32;
         let radial = Vec2::new(a.cos(), a.sin());
         let kind = View::of_waypoint(k);
         let r = match kind {
@@ -110,7 +115,7 @@ enum View {
 }
 
 impl View {
-    /// Once round the loop: one look at the nearest wall, one up to the ceiling.
+    /// Each lap: one look at the nearest wall, one up to the ceiling.
     fn of_waypoint(k: usize) -> View {
         use View::*;
         [
