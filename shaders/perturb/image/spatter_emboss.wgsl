@@ -1,4 +1,4 @@
-// spatter (water), pass 15: the equalised distance through imagecorruptions' emboss kernel
+// spatter (water), pass 12: the equalised distance through imagecorruptions' emboss kernel
 // [[-2, -1, 0], [-1, 1, 1], [0, 1, 2]] (cv2.filter2D to 8 bits, BORDER_REFLECT_101).
 
 @group(0) @binding(0) var equalised: texture_2d<f32>;

@@ -1,11 +1,11 @@
 // spatter (water), pass 6: Canny's hysteresis, one step (a weak edge survives next to a strong
-// one), and the seeds of the jump-flooding distance transform: an edge pixel is its own nearest
-// edge; other pixels have none yet (0xffffffff). Seeds are packed x | y << 16.
+// one), as the input of the distance transform: 0 on an edge, NONE (no edge) elsewhere.
 
 @group(0) @binding(0) var classes: texture_2d<f32>;
 @group(0) @binding(1) var seeds: texture_storage_2d<r32uint, write>;
 
-const NONE: u32 = 0xffffffffu;
+// spatter_squared_distance.wgsl's NONE.
+const NONE: u32 = 1024u;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -24,6 +24,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
     }
-    let seed = select(NONE, u32(p.x) | (u32(p.y) << 16u), edge);
-    textureStore(seeds, p, vec4<u32>(seed, 0u, 0u, 0u));
+    textureStore(seeds, p, vec4<u32>(select(NONE, 0u, edge), 0u, 0u, 0u));
 }

@@ -1,4 +1,4 @@
-// spatter (water), pass 16: 3x3 box mean of the embossed distance (cv2.blur on 8 bits: rounded,
+// spatter (water), pass 13: 3x3 box mean of the embossed distance (cv2.blur on 8 bits: rounded,
 // BORDER_REFLECT_101) times the 8-bit liquid layer; the maximum goes to an atomic (the values are
 // non-negative, so their f32 bits order like the values).
 
