@@ -7,10 +7,11 @@
 #   python scripts/bench_corruptions.py RSLAM ROUNDTRIP FRAME_DIR [--corruptions a,b] ...
 # rslam's figure is its steady state, (time of FRAMES frames - time of 1 frame) / (FRAMES - 1)
 # for whole `rslam perturb` processes (start-up, shader builds and frost's per-seed texture left
-# out), the median of REPEATS such pairs. The references' figure is the median over their
-# per-frame loop in this process (imports left out), REF_FRAMES frames per repeat. Each
-# corruption's figures are taken one right after the other, so a load change on a shared machine
-# moves all three.
+# out), the median of REPEATS such pairs; the I/O limit is measured the same way right before
+# each of them, and its column is the median of the paired ratios. The references' figure is the
+# median over their per-frame loop in this process (imports left out), REF_FRAMES frames per
+# repeat. Each corruption's figures are taken one right after the other, so a load change on a
+# shared machine moves all of them.
 import argparse
 import os
 import shutil
@@ -131,41 +132,39 @@ def main():
     reference_out = os.path.join(folders.root, "reference")
     os.makedirs(reference_out)
     try:
-        io_runs = [folders.steady_ms(lambda i, o: [args.roundtrip, i, o])[0]
-                   for _ in range(args.repeats)]
-        io_ms = statistics.median(io_runs)
         load = os.getloadavg()[0]
         print(f"# {size[0]}x{size[1]} PNG frames from {args.frames_dir}, severity "
               f"{args.severity}; rslam: {args.frames} frames per run, median of {args.repeats} "
               f"runs; references: median of {args.ref_frames} frames x {args.repeats}; "
               f"{os.cpu_count()} CPU cores, load average {load:.1f} at the start")
-        print(f"# I/O limit (rslam's PNG decode + encode + write, all cores): {io_ms:.1f} "
-              "ms/frame")
         print("| corruption | rslam ms/frame | rslam, 1 frame (ms) | imagecorruptions ms/frame | "
               "albumentations ms/frame | × vs imagecorruptions | × vs albumentations | "
-              "rslam / I/O limit |")
-        print("|---|--:|--:|--:|--:|--:|--:|--:|")
+              "I/O limit ms/frame | rslam / I/O limit |")
+        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|")
         columns = {"ic": [], "album": [], "io": []}
         for name in args.corruptions.split(","):
-            ours, first, theirs, album = [], [], [], []
+            ours, first, theirs, album, io, io_ratios = [], [], [], [], [], []
             refs = sources[:args.ref_frames]
             for _ in range(args.repeats):
+                io.append(folders.steady_ms(lambda i, o: [args.roundtrip, i, o])[0])
                 steady, one = folders.steady_ms(lambda i, o: [
                     args.rslam, "perturb", "--input", i, "--out", o,
                     "--perturb", f"{name}:{args.severity}"])
                 ours.append(steady)
+                io_ratios.append(steady / io[-1])
                 first.append(one)
                 theirs += imagecorruptions_ms(name, args.severity, refs, reference_out)
                 album += albumentations_ms(name, refs, reference_out)
             ours_ms = statistics.median(ours)
             ic_ms, album_ms = median_or_none(theirs), median_or_none(album)
-            row = [ratio(ic_ms, ours_ms), ratio(album_ms, ours_ms), ours_ms / io_ms]
+            row = [ratio(ic_ms, ours_ms), ratio(album_ms, ours_ms), statistics.median(io_ratios)]
             for key, value in zip(columns, row):
                 if value is not None:
                     columns[key].append(value)
             shown = [f"{v:.1f}×" if v is not None else "-" for v in row]
             print(f"| {name} | {fmt(ours_ms)} | {fmt(statistics.median(first))} | {fmt(ic_ms)} "
-                  f"| {fmt(album_ms)} | {' | '.join(shown)} |", flush=True)
+                  f"| {fmt(album_ms)} | {shown[0]} | {shown[1]} | {fmt(statistics.median(io))} "
+                  f"| {shown[2]} |", flush=True)
         for key, what in (("ic", "faster than imagecorruptions"),
                           ("album", "faster than albumentations"),
                           ("io", "rslam / I/O limit")):
