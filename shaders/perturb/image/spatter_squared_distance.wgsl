@@ -1,4 +1,4 @@
-// spatter (water), passes 7-8: the squared distance to the nearest edge, truncated, as two 1-D
+// spatter (water), passes 8-9: the squared distance to the nearest edge, truncated, as two 1-D
 // minimisations (Felzenszwalb & Huttenlocher 2012, "Distance transforms of sampled functions"):
 // along columns, then along rows, each output = min over |d| <= 20 of d^2 + input at offset d,
 // in integers. The seeds pass gives 0 on edges and NONE elsewhere; after columns each pixel

@@ -147,6 +147,7 @@ struct Pipelines {
     noise: wgpu::ComputePipeline,
     liquid: wgpu::ComputePipeline,
     edges: wgpu::ComputePipeline,
+    suppress: wgpu::ComputePipeline,
     seeds: wgpu::ComputePipeline,
     squared_distance: wgpu::ComputePipeline,
     distance: wgpu::ComputePipeline,
@@ -185,12 +186,26 @@ fn image_pipeline(kit: &Kit, pass: &str) -> Result<wgpu::ComputePipeline, Pertur
     kit.pipeline(&format!("perturb/image/spatter_{pass}.wgsl"))
 }
 
+/// A pass of `window_runs.wgsl`'s 3×3 windows: runs of 8 pixels of a row per invocation.
+fn dispatch_windows(
+    kit: &Kit,
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    label: &str,
+    resources: &[wgpu::BindingResource],
+) {
+    let bind_group = kit.bind_group(pipeline, label, resources);
+    let runs = kit.width.div_ceil(8);
+    kit.dispatch_grid(encoder, pipeline, &bind_group, label, runs, kit.height);
+}
+
 impl Spatter {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         let pipelines = Pipelines {
             noise: image_pipeline(kit, "noise")?,
             liquid: image_pipeline(kit, "liquid")?,
             edges: image_pipeline(kit, "edges")?,
+            suppress: image_pipeline(kit, "suppress")?,
             seeds: image_pipeline(kit, "seeds")?,
             squared_distance: kit.pipeline(SQUARED_DISTANCE_SHADER)?,
             distance: image_pipeline(kit, "distance")?,
@@ -236,7 +251,7 @@ impl Spatter {
         })
     }
 
-    /// Passes 5–14: shading from the liquid layer's edges, then the turquoise composite.
+    /// Passes 5–15: shading from the liquid layer's edges, then the turquoise composite.
     fn encode_water(
         &self,
         kit: &Kit,
@@ -248,11 +263,29 @@ impl Spatter {
         let p = &self.pipelines;
         let [spare, work] = self.planes.each_ref().map(view);
         let liquid = view(&self.layers[2]);
+        let gradient = view(&self.layers[0]);
         let seeds = self.seeds.each_ref().map(view);
-        let edges = kit.bind_group(&p.edges, "spatter edges", &[T(&liquid), T(&work)]);
-        kit.dispatch(encoder, &p.edges, &edges, "spatter edges");
-        let init = kit.bind_group(&p.seeds, "spatter seeds", &[T(&work), T(&seeds[0])]);
-        kit.dispatch(encoder, &p.seeds, &init, "spatter seeds");
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.edges,
+            "spatter edges",
+            &[T(&liquid), T(&gradient)],
+        );
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.suppress,
+            "spatter suppress",
+            &[T(&gradient), T(&work)],
+        );
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.seeds,
+            "spatter seeds",
+            &[T(&work), T(&seeds[0])],
+        );
         // Runs of 8 along columns, then along rows.
         let grids = [
             (kit.width, kit.height.div_ceil(8)),
@@ -269,8 +302,7 @@ impl Spatter {
         encoder.clear_buffer(&self.histogram, 0, None);
         encoder.clear_buffer(&self.maximum, 0, None);
         let resources = [T(nearest), T(&work), self.histogram.as_entire_binding()];
-        let distance = kit.bind_group(&p.distance, "spatter distance", &resources);
-        kit.dispatch(encoder, &p.distance, &distance, "spatter distance");
+        dispatch_windows(kit, encoder, &p.distance, "spatter distance", &resources);
         let resources = [
             self.histogram.as_entire_binding(),
             self.lut.as_entire_binding(),
@@ -287,16 +319,20 @@ impl Spatter {
         let resources = [T(&work), T(&spare), self.lut_uniform.as_entire_binding()];
         let lut = kit.bind_group(&p.lut, "spatter lut", &resources);
         kit.dispatch(encoder, &p.lut, &lut, "spatter lut");
-        let emboss = kit.bind_group(&p.emboss, "spatter emboss", &[T(&spare), T(&work)]);
-        kit.dispatch(encoder, &p.emboss, &emboss, "spatter emboss");
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.emboss,
+            "spatter emboss",
+            &[T(&spare), T(&work)],
+        );
         let resources = [
             T(&work),
             T(&liquid),
             T(&spare),
             self.maximum.as_entire_binding(),
         ];
-        let shade = kit.bind_group(&p.shade, "spatter shade", &resources);
-        kit.dispatch(encoder, &p.shade, &shade, "spatter shade");
+        dispatch_windows(kit, encoder, &p.shade, "spatter shade", &resources);
         let params = Water {
             color: [WATER_COLOR[0], WATER_COLOR[1], WATER_COLOR[2], 0.0],
             intensity,
