@@ -19,8 +19,8 @@ if [ $# -gt 0 ] && [ "$1" != "--" ]; then
 fi
 [ "${1:-}" != "--" ] || shift
 
-cargo build --release -q -p rslam-cli -p rslam-core --example png_roundtrip \
-    --manifest-path "$root/Cargo.toml"
+cargo build --release -q -p rslam-cli --manifest-path "$root/Cargo.toml"
+cargo build --release -q -p rslam-core --example png_roundtrip --manifest-path "$root/Cargo.toml"
 release=$root/target/release
 
 venv=$root/target/bench-venv
