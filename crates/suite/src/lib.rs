@@ -30,7 +30,7 @@ mod suite_file;
 mod timings;
 mod work_queue;
 
-pub use disk::{available_bytes, format_bytes};
+pub use disk::{available_bytes, folder_bytes, format_bytes};
 pub use error::SuiteError;
 pub use init::write_suite;
 pub use plan::{plan, SequencePlan, SuitePlan};

@@ -1,8 +1,9 @@
 // defocus_blur, pass 2 of 2: imagecorruptions' anti-aliased disk kernel (OpenCV filter2D,
-// BORDER_REFLECT_101) applied exactly, as a sum of centred row boxes: every kernel row is
-// symmetric, so it is a sum of boxes [-k, k] with weights a, each box one difference of the
-// running sums of pass 1. Boxes are built on the CPU from the kernel. Each invocation writes a
-// run of 8 pixels of a row (one box parameter read per 8 outputs; see filter.wgsl).
+// BORDER_REFLECT_101) applied exactly, as a sum of centred row boxes [-k, k] with weights a, each
+// box one difference of the running sums of pass 1: one box per disk row over the blurred
+// image's sums, then the kernel's correction boxes over the plain image's sums (the rows from
+// row h on). Boxes are built on the CPU from the kernel. Each invocation writes a run of 8
+// pixels of a row (one box parameter read per 8 outputs; see filter.wgsl).
 #include "common/color.wgsl"
 #include "perturb/image/filter.wgsl"
 
@@ -13,7 +14,7 @@ struct Boxes {
     // 1/2 x the kernel's sum: the running sums are of (I - 1/2).
     offset: f32,
     _pad: f32,
-    // (row offset dy, half width k, weight a, 0)
+    // (row offset dy, half width k, weight a, first prefix row: 0 blurred, h plain)
     boxes: array<vec4<f32>, 128>,
 }
 
@@ -49,7 +50,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var s7 = vec3<f32>(params.offset);
     for (var b = 0; b < params.count; b++) {
         let box = params.boxes[b];
-        let row = reflect101(y + i32(box.x), size.y);
+        let row = i32(box.w) + reflect101(y + i32(box.x), size.y);
         let k = i32(box.y);
         // Columns x-k..=x+k of the image are prefix columns x-k+R+1 ..= x+k+R+1.
         let right = x0 + k + params.radius + 1;

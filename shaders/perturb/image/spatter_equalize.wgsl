@@ -1,4 +1,4 @@
-// spatter (water), pass 13: cv2.equalizeHist's lookup table from the histogram (one invocation):
+// spatter (water), pass 11: cv2.equalizeHist's lookup table from the histogram (one invocation):
 // the first occupied level maps to 0, each later level to round(cdf * 255 / (total - first)).
 
 @group(0) @binding(0) var<storage, read> histogram: array<u32, 256>;

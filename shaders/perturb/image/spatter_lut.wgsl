@@ -1,4 +1,4 @@
-// spatter (water), pass 14: the distance through the equalisation table, once per pixel (the
+// spatter (water), pass 12: the distance through the equalisation table, once per pixel (the
 // emboss pass reads each pixel seven times). The table is a uniform copy of the equalize pass's
 // storage buffer, four entries per vec4: per-pixel storage-buffer reads are slow on lavapipe.
 

@@ -87,7 +87,7 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
                 command,
             };
             let report = perturb_dataset(&ctx, &job, &progress)?;
-            print_summary(&report, &job.out, &progress);
+            print_summary(&report, &job.out, &progress)?;
             return Ok(ExitCode::SUCCESS);
         }
         PerturbInput::ImageFolder(dir) => (image_files(&dir)?, false),
@@ -103,7 +103,7 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
         command,
     };
     match perturb_images(&ctx, &job, &progress)? {
-        Some(report) => print_summary(&report, &job.out, &progress),
+        Some(report) => print_summary(&report, &job.out, &progress)?,
         None => eprintln!("wrote {}", job.out.display()),
     }
     Ok(ExitCode::SUCCESS)

@@ -82,6 +82,6 @@ pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
     eprintln!("adapter: {}", ctx.describe());
     let progress = ProgressBar::new();
     let report = render_dataset(&ctx, &job, &progress)?;
-    print_summary(&report, &job.out, &progress);
+    print_summary(&report, &job.out, &progress)?;
     Ok(ExitCode::SUCCESS)
 }

@@ -2,11 +2,19 @@
 
 use std::path::Path;
 
+use anyhow::Context;
 use rslam_pipeline::{FolderState, RunReport};
+use rslam_suite::{folder_bytes, format_bytes};
 
 use crate::progress_bar::ProgressBar;
 
-pub fn print_summary(report: &RunReport, out: &Path, progress: &ProgressBar) {
+pub fn print_summary(report: &RunReport, out: &Path, progress: &ProgressBar) -> anyhow::Result<()> {
+    let bytes = folder_bytes(out).with_context(|| format!("size of {}", out.display()))?;
+    let size = format!(
+        "{} per frame, {} in all",
+        format_bytes(bytes / report.frames.max(1) as u64),
+        format_bytes(bytes)
+    );
     let out = out.display();
     let rate = progress
         .rate()
@@ -18,9 +26,10 @@ pub fn print_summary(report: &RunReport, out: &Path, progress: &ProgressBar) {
             report.frames
         ),
         FolderState::Resume => eprintln!(
-            "resumed {out}: {} source frames made now{rate}, the rest kept; {} frames",
+            "resumed {out}: {} source frames made now{rate}, the rest kept; {} frames, {size}",
             report.made, report.frames
         ),
-        FolderState::Fresh => eprintln!("wrote {} frames to {out}{rate}", report.frames),
+        FolderState::Fresh => eprintln!("wrote {} frames to {out}{rate}: {size}", report.frames),
     }
+    Ok(())
 }

@@ -1,7 +1,7 @@
 //! spatter: imagecorruptions' `spatter`. A liquid layer of blurred Gaussian noise, cut at a
 //! threshold, makes droplets. Water (severities 1–3) brightens them with pale turquoise shaded
-//! like theirs: Canny edges of the layer → distance to the nearest edge (jump flooding, truncated
-//! at 20) → box blur → histogram equalisation → emboss → box blur, times the layer, normalised by
+//! like theirs: Canny edges of the layer → distance to the nearest edge (exact, truncated at
+//! 20) → box blur → histogram equalisation → emboss → box blur, times the layer, normalised by
 //! its maximum. Mud (4–5) pastes brown where the blurred droplet mask exceeds 0.8.
 //! Differences from OpenCV, all small: Canny's hysteresis is one step (weak edges next to strong
 //! ones survive), and distances are exact Euclidean instead of the 5×5 chamfer.
@@ -24,6 +24,7 @@ pub use twin::twin;
 const NAME: &str = "spatter";
 const WATER_SHADER: &str = "perturb/image/spatter.wgsl";
 const MUD_SHADER: &str = "perturb/image/spatter_mud.wgsl";
+const SQUARED_DISTANCE_SHADER: &str = "perturb/image/spatter_squared_distance.wgsl";
 
 /// Water or mud.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -45,9 +46,6 @@ pub const PARAMS: [(f32, f32, f64, f32, f32, Liquid); 5] = [
 /// Pale turquoise (175, 238, 238) and mud brown (63, 42, 20), as imagecorruptions adds them.
 pub const WATER_COLOR: [f32; 3] = [175.0 / 255.0, 238.0 / 255.0, 238.0 / 255.0];
 pub const MUD_COLOR: [f32; 3] = [63.0 / 255.0, 42.0 / 255.0, 20.0 / 255.0];
-
-/// Jump-flooding steps: enough to find every edge within the truncation distance (20).
-pub const JUMPS: [i32; 5] = [16, 8, 4, 2, 1];
 
 /// SciPy's default truncation for skimage's `gaussian`.
 const TRUNCATE: f64 = 4.0;
@@ -90,9 +88,9 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
             shader: "perturb/image/spatter_liquid.wgsl",
         },
         UniformLayout {
-            rust: rust_layout!(Jump { step }),
-            wgsl: "Jump",
-            shader: "perturb/image/spatter_jump.wgsl",
+            rust: rust_layout!(Axis { axis }),
+            wgsl: "Axis",
+            shader: SQUARED_DISTANCE_SHADER,
         },
         UniformLayout {
             rust: rust_layout!(Water { color, intensity }),
@@ -125,8 +123,9 @@ struct LiquidParams {
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct Jump {
-    step: i32,
+struct Axis {
+    /// 0 along rows, 1 along columns.
+    axis: i32,
     _pad: [i32; 3],
 }
 
@@ -148,8 +147,9 @@ struct Pipelines {
     noise: wgpu::ComputePipeline,
     liquid: wgpu::ComputePipeline,
     edges: wgpu::ComputePipeline,
+    suppress: wgpu::ComputePipeline,
     seeds: wgpu::ComputePipeline,
-    jump: wgpu::ComputePipeline,
+    squared_distance: wgpu::ComputePipeline,
     distance: wgpu::ComputePipeline,
     equalize: wgpu::ComputePipeline,
     lut: wgpu::ComputePipeline,
@@ -161,7 +161,8 @@ struct Spatter {
     pipelines: Pipelines,
     noise: wgpu::Buffer,
     threshold: wgpu::Buffer,
-    jumps: Vec<wgpu::Buffer>,
+    /// The squared distance pass along columns, then along rows.
+    axes: [wgpu::Buffer; 2],
     /// The noise blur and the mud mask blur (each with its own kernel uniforms).
     liquid_blur: SeparableFilter,
     mask_blur: SeparableFilter,
@@ -169,7 +170,7 @@ struct Spatter {
     planes: [wgpu::Texture; 2],
     /// rgba32float: [blur rows, blurred noise / blurred mask, liquid layer + mud mask]
     layers: [wgpu::Texture; 3],
-    /// r32uint jump-flooding seeds, ping-pong
+    /// r32uint: edges, then squared distances (ping-pong)
     seeds: [wgpu::Texture; 2],
     histogram: wgpu::Buffer,
     lut: wgpu::Buffer,
@@ -185,34 +186,46 @@ fn image_pipeline(kit: &Kit, pass: &str) -> Result<wgpu::ComputePipeline, Pertur
     kit.pipeline(&format!("perturb/image/spatter_{pass}.wgsl"))
 }
 
+/// A pass of `window_runs.wgsl`'s 3×3 windows: runs of 8 pixels of a row per invocation.
+fn dispatch_windows(
+    kit: &Kit,
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    label: &str,
+    resources: &[wgpu::BindingResource],
+) {
+    let bind_group = kit.bind_group(pipeline, label, resources);
+    let runs = kit.width.div_ceil(8);
+    kit.dispatch_grid(encoder, pipeline, &bind_group, label, runs, kit.height);
+}
+
 impl Spatter {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         let pipelines = Pipelines {
             noise: image_pipeline(kit, "noise")?,
             liquid: image_pipeline(kit, "liquid")?,
             edges: image_pipeline(kit, "edges")?,
+            suppress: image_pipeline(kit, "suppress")?,
             seeds: image_pipeline(kit, "seeds")?,
-            jump: image_pipeline(kit, "jump")?,
+            squared_distance: kit.pipeline(SQUARED_DISTANCE_SHADER)?,
             distance: image_pipeline(kit, "distance")?,
             equalize: image_pipeline(kit, "equalize")?,
             lut: image_pipeline(kit, "lut")?,
             emboss: image_pipeline(kit, "emboss")?,
             shade: image_pipeline(kit, "shade")?,
         };
-        let jumps: Vec<wgpu::Buffer> = JUMPS
-            .iter()
-            .map(|_| kit.uniform_buffer::<Jump>("spatter jump"))
-            .collect();
-        for (buffer, &step) in jumps.iter().zip(&JUMPS) {
-            kit.write_uniform(buffer, &Jump { step, _pad: [0; 3] });
-        }
+        let axes = [1, 0].map(|axis| {
+            let buffer = kit.uniform_buffer::<Axis>("spatter distance axis");
+            kit.write_uniform(&buffer, &Axis { axis, _pad: [0; 3] });
+            buffer
+        });
         let texture = |label, format| storage_texture(kit, label, format, kit.width, kit.height);
         use wgpu::TextureFormat::{R32Float, R32Uint, Rgba32Float};
         Ok(Self {
             pipelines,
             noise: kit.uniform_buffer::<Noise>("spatter noise"),
             threshold: kit.uniform_buffer::<LiquidParams>("spatter threshold"),
-            jumps,
+            axes,
             liquid_blur: SeparableFilter::new(kit)?,
             mask_blur: SeparableFilter::new(kit)?,
             planes: [
@@ -238,7 +251,7 @@ impl Spatter {
         })
     }
 
-    /// Passes 5–17: shading from the liquid layer's edges, then the turquoise composite.
+    /// Passes 5–15: shading from the liquid layer's edges, then the turquoise composite.
     fn encode_water(
         &self,
         kit: &Kit,
@@ -250,23 +263,46 @@ impl Spatter {
         let p = &self.pipelines;
         let [spare, work] = self.planes.each_ref().map(view);
         let liquid = view(&self.layers[2]);
+        let gradient = view(&self.layers[0]);
         let seeds = self.seeds.each_ref().map(view);
-        let edges = kit.bind_group(&p.edges, "spatter edges", &[T(&liquid), T(&work)]);
-        kit.dispatch(encoder, &p.edges, &edges, "spatter edges");
-        let init = kit.bind_group(&p.seeds, "spatter seeds", &[T(&work), T(&seeds[0])]);
-        kit.dispatch(encoder, &p.seeds, &init, "spatter seeds");
-        for (i, buffer) in self.jumps.iter().enumerate() {
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.edges,
+            "spatter edges",
+            &[T(&liquid), T(&gradient)],
+        );
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.suppress,
+            "spatter suppress",
+            &[T(&gradient), T(&work)],
+        );
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.seeds,
+            "spatter seeds",
+            &[T(&work), T(&seeds[0])],
+        );
+        // Runs of 8 along columns, then along rows.
+        let grids = [
+            (kit.width, kit.height.div_ceil(8)),
+            (kit.width.div_ceil(8), kit.height),
+        ];
+        for (i, (buffer, (w, h))) in self.axes.iter().zip(grids).enumerate() {
             let (from, to) = (&seeds[i % 2], &seeds[(i + 1) % 2]);
             let resources = [T(from), T(to), buffer.as_entire_binding()];
-            let jump = kit.bind_group(&p.jump, "spatter jump", &resources);
-            kit.dispatch(encoder, &p.jump, &jump, "spatter jump");
+            let label = "spatter squared distance";
+            let pass = kit.bind_group(&p.squared_distance, label, &resources);
+            kit.dispatch_grid(encoder, &p.squared_distance, &pass, label, w, h);
         }
-        let nearest = &seeds[JUMPS.len() % 2];
+        let nearest = &seeds[self.axes.len() % 2];
         encoder.clear_buffer(&self.histogram, 0, None);
         encoder.clear_buffer(&self.maximum, 0, None);
         let resources = [T(nearest), T(&work), self.histogram.as_entire_binding()];
-        let distance = kit.bind_group(&p.distance, "spatter distance", &resources);
-        kit.dispatch(encoder, &p.distance, &distance, "spatter distance");
+        dispatch_windows(kit, encoder, &p.distance, "spatter distance", &resources);
         let resources = [
             self.histogram.as_entire_binding(),
             self.lut.as_entire_binding(),
@@ -283,16 +319,20 @@ impl Spatter {
         let resources = [T(&work), T(&spare), self.lut_uniform.as_entire_binding()];
         let lut = kit.bind_group(&p.lut, "spatter lut", &resources);
         kit.dispatch(encoder, &p.lut, &lut, "spatter lut");
-        let emboss = kit.bind_group(&p.emboss, "spatter emboss", &[T(&spare), T(&work)]);
-        kit.dispatch(encoder, &p.emboss, &emboss, "spatter emboss");
+        dispatch_windows(
+            kit,
+            encoder,
+            &p.emboss,
+            "spatter emboss",
+            &[T(&spare), T(&work)],
+        );
         let resources = [
             T(&work),
             T(&liquid),
             T(&spare),
             self.maximum.as_entire_binding(),
         ];
-        let shade = kit.bind_group(&p.shade, "spatter shade", &resources);
-        kit.dispatch(encoder, &p.shade, &shade, "spatter shade");
+        dispatch_windows(kit, encoder, &p.shade, "spatter shade", &resources);
         let params = Water {
             color: [WATER_COLOR[0], WATER_COLOR[1], WATER_COLOR[2], 0.0],
             intensity,

@@ -1,6 +1,6 @@
 //! CPU twin of spatter's passes, step by step in the shaders' order.
 
-use super::{Liquid, JUMPS, MUD_COLOR, NAME, PARAMS, TRUNCATE, WATER_COLOR};
+use super::{Liquid, MUD_COLOR, NAME, PARAMS, TRUNCATE, WATER_COLOR};
 use crate::image::kernels::{gaussian_half_kernel, symmetric_filter, Axis, Edge};
 use crate::image_f32::{truncate8, RgbF32};
 use crate::perturbation::FrameKey;
@@ -106,12 +106,16 @@ fn edge_classes(liquid: &Plane) -> Plane {
     })
 }
 
-const NONE: u32 = u32::MAX;
+/// No edge within the truncation distance, as `spatter_squared_distance.wgsl`.
+const NONE: u32 = 1024;
+/// The truncation distance of the distance transform.
+const REACH: i64 = 20;
 
-/// Nearest edge pixel per pixel by jump flooding (as `spatter_seeds` + `spatter_jump`).
-fn nearest_edges(classes: &Plane) -> Vec<u32> {
+/// Squared distance to the nearest edge pixel, NONE-capped, as `spatter_seeds` and the two
+/// `spatter_squared_distance` passes (columns, then rows).
+fn squared_distances(classes: &Plane) -> Vec<u32> {
     let (w, h) = (classes.width, classes.height);
-    let mut seeds: Vec<u32> = (0..h)
+    let seeds: Vec<u32> = (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
         .map(|(x, y)| {
             let class = classes.at(x, y);
@@ -120,46 +124,28 @@ fn nearest_edges(classes: &Plane) -> Vec<u32> {
                 .any(|(dx, dy)| classes.clamped(x + dx, y + dy) == 2.0);
             let edge = class == 2.0 || (class == 1.0 && near_strong);
             if edge {
-                x as u32 | (y as u32) << 16
+                0
             } else {
                 NONE
             }
         })
         .collect();
-    let distance2 = |seed: u32, x: i64, y: i64| {
-        let (sx, sy) = ((seed & 0xffff) as i64, (seed >> 16) as i64);
-        let (dx, dy) = ((sx - x) as f32, (sy - y) as f32);
-        dx * dx + dy * dy
+    // min over |d| ≤ REACH of d² + v at offset d along (dx, dy), inside the image.
+    let pass = |v: &[u32], (dx, dy): (i64, i64)| -> Vec<u32> {
+        (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                (-REACH..=REACH)
+                    .filter_map(|d| {
+                        let (qx, qy) = (x + d * dx, y + d * dy);
+                        let inside = qx >= 0 && qy >= 0 && qx < w && qy < h;
+                        inside.then(|| (d * d) as u32 + v[(qy * w + qx) as usize])
+                    })
+                    .fold(NONE, u32::min)
+            })
+            .collect()
     };
-    for step in JUMPS {
-        let step = step as i64;
-        let previous = seeds.clone();
-        for y in 0..h {
-            for x in 0..w {
-                let mut best = previous[(y * w + x) as usize];
-                let mut best_distance = if best == NONE {
-                    1e30
-                } else {
-                    distance2(best, x, y)
-                };
-                for dy in -1..=1 {
-                    for dx in -1..=1 {
-                        let (qx, qy) = (x + step * dx, y + step * dy);
-                        if qx < 0 || qy < 0 || qx >= w || qy >= h {
-                            continue;
-                        }
-                        let seed = previous[(qy * w + qx) as usize];
-                        if seed != NONE && distance2(seed, x, y) < best_distance {
-                            best = seed;
-                            best_distance = distance2(seed, x, y);
-                        }
-                    }
-                }
-                seeds[(y * w + x) as usize] = best;
-            }
-        }
-    }
-    seeds
+    pass(&pass(&seeds, (0, 1)), (1, 0))
 }
 
 /// cv2.equalizeHist's table.
@@ -180,20 +166,13 @@ fn equalisation(histogram: &[u32; 256]) -> [u32; 256] {
     lut
 }
 
-/// The water shading m (before normalisation), as passes 10–13.
+/// The water shading m (before normalisation), as passes 5–14.
 fn water_shade(liquid: &Plane) -> Plane {
     let w = liquid.width;
-    let seeds = nearest_edges(&edge_classes(liquid));
+    let squared = squared_distances(&edge_classes(liquid));
     let truncated = liquid.map(|x, y| {
-        let seed = seeds[(y * w + x) as usize];
-        if seed == NONE {
-            return 20.0;
-        }
-        let (dx, dy) = (
-            ((seed & 0xffff) as i64 - x) as f32,
-            ((seed >> 16) as i64 - y) as f32,
-        );
-        (dx * dx + dy * dy).sqrt().min(20.0)
+        let d2 = squared[(y * w + x) as usize].min((REACH * REACH) as u32);
+        (d2 as f32).sqrt()
     });
     let box_sum = |plane: &Plane, x: i64, y: i64| -> f32 {
         (-1..=1)
