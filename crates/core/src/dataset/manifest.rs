@@ -3,7 +3,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::dataset::{write_atomically, DepthPng};
-use crate::{CoreError, Intrinsics};
+use crate::{read_text_file, CoreError, Intrinsics};
 
 /// Written last into every dataset: without it a dataset is incomplete.
 pub const MANIFEST_FILE: &str = "rslam.json";
@@ -74,9 +74,15 @@ impl Manifest {
 
     pub fn read_as(dir: &Path, name: &str) -> Result<Self, CoreError> {
         let path = dir.join(name);
-        let text = std::fs::read_to_string(&path).map_err(|e| CoreError::io(&path, e))?;
-        serde_json::from_str(&text)
-            .map_err(|e| CoreError::bad_file(&path, format!("not an rslam manifest: {e}")))
+        let text = read_text_file(&path, "an rslam manifest (JSON)")?;
+        let manifest: Manifest = serde_json::from_str(&text)
+            .map_err(|e| CoreError::bad_file(&path, format!("not an rslam manifest: {e}")))?;
+        if let Some(camera) = &manifest.camera {
+            camera
+                .check()
+                .map_err(|message| CoreError::bad_file(&path, format!("camera.{message}")))?;
+        }
+        Ok(manifest)
     }
 
     /// What the run does, without how it was typed or what it made: two runs with the same job

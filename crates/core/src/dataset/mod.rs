@@ -15,8 +15,8 @@ mod writer;
 
 pub use atomic_write::write_atomically;
 pub use checksums::{
-    blake3_hex, content_files, is_bookkeeping, ChecksumDifferences, Checksums, ContentWriter,
-    CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,
+    blake3_hex, content_files, is_bookkeeping, is_inside, ChecksumDifferences, Checksums,
+    ContentWriter, CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,
 };
 pub use codec::{
     decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, encode_rgb_like,
