@@ -8,6 +8,7 @@ mod codec;
 mod depth_png;
 mod layout;
 mod manifest;
+mod no_symlinks;
 mod orbslam3;
 mod reader;
 mod verify;
@@ -25,6 +26,7 @@ pub use codec::{
 pub use depth_png::DepthPng;
 pub use layout::DatasetFormat;
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
+pub use no_symlinks::refuse_symlinks;
 pub use reader::{read_dataset, DatasetFrame, DatasetOverrides, SourceDataset};
 pub use verify::{verify_output, Verification};
 pub use writer::{DatasetWriter, FrameFiles, OutputFrame};
