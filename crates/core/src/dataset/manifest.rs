@@ -148,6 +148,27 @@ mod tests {
         assert_eq!(serde_json::to_value(&small).unwrap()["depth_png"], "small");
     }
 
+    /// serde_json's default float parser read 98752.20364687759 back as 98752.2036468776, so the
+    /// same job looked like another one; found by the manifest round-trip property.
+    #[test]
+    fn camera_numbers_read_back_bit_for_bit() {
+        let mut manifest: Manifest = serde_json::from_value(serde_json::json!({
+            "tool": "rslam", "tool_version": "0.1.0", "command": [], "source": "room0",
+            "source_hash": "", "format": "tum", "camera": null, "rate_hz": 0.001,
+            "frame_count": 0, "seed": 0, "perturbation": "", "perturbation_parsed": null,
+            "severities": [], "rgb_source": [], "depth_source": [], "extra": null
+        }))
+        .unwrap();
+        manifest.camera = Some(Intrinsics {
+            fx: 98752.20364687759,
+            fy: 98752.20364687759,
+            ..Intrinsics::TUM
+        });
+        let dir = tempfile::tempdir().unwrap();
+        manifest.write(dir.path()).unwrap();
+        assert_eq!(Manifest::read(dir.path()).unwrap(), manifest);
+    }
+
     #[test]
     fn scalar_arrays_stay_on_one_line_and_the_text_parses_back() {
         let value = serde_json::json!({"a": [1, 2, 3], "b": {"c": "x", "d": [{"e": []}]}});

@@ -151,17 +151,25 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshGeometry, String> {
     Ok(mesh)
 }
 
-fn parse_header(bytes: &[u8]) -> Result<Header, String> {
-    const END: &[u8] = b"end_header";
-    let end = bytes
-        .windows(END.len())
-        .position(|w| w == END)
-        .ok_or("not a PLY file: no 'end_header' line")?;
-    let mut body_start = end + END.len();
-    while body_start < bytes.len() && bytes[body_start] != b'\n' {
-        body_start += 1;
+/// Where the header ends: the start of the `end_header` line and the first byte after it. The
+/// words may appear earlier inside a comment (a scene called `end_header` exports one).
+fn find_end_header(bytes: &[u8]) -> Option<(usize, usize)> {
+    let mut start = 0;
+    while start < bytes.len() {
+        let end = bytes[start..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(bytes.len(), |i| start + i);
+        if bytes[start..end].trim_ascii() == b"end_header" {
+            return Some((start, end + 1));
+        }
+        start = end + 1;
     }
-    body_start += 1;
+    None
+}
+
+fn parse_header(bytes: &[u8]) -> Result<Header, String> {
+    let (end, body_start) = find_end_header(bytes).ok_or("not a PLY file: no 'end_header' line")?;
     let text = String::from_utf8_lossy(&bytes[..end]);
     let mut lines = text.lines().enumerate();
     if lines.next().map(|(_, l)| l.trim()) != Some("ply") {

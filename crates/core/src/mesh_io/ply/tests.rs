@@ -153,3 +153,13 @@ fn claimed_counts_are_checked_before_they_are_believed() {
                           element nothing 1000000000000000000\nend_header\n0 0 0 1 0 0 0 1 0\n";
     assert_eq!(parse_ply(empty_records).unwrap().positions.len(), 3);
 }
+
+/// A header comment holding the words `end_header` (the export writes the scene's name there)
+/// ended the header early; found while writing the export round-trip property, which tries it.
+#[test]
+fn only_an_end_header_line_ends_the_header() {
+    let bytes =
+        b"ply\nformat ascii 1.0\ncomment scene 'end_header'\nelement vertex 1\nproperty float x\n\
+                  property float y\nproperty float z\nend_header\n1 2 3\n";
+    assert_eq!(parse_ply(bytes).unwrap().positions, vec![[1.0, 2.0, 3.0]]);
+}
