@@ -4,6 +4,8 @@ use std::cell::RefCell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Once;
 
+use rslam_core::printable;
+
 use crate::{Scratch, Target};
 
 /// What one input did.
@@ -97,10 +99,10 @@ pub fn finding_key(finding: &Finding, scratch: &Scratch) -> String {
 /// own wording stays.
 pub fn signature(message: &str, input: &[u8], scratch: &Scratch) -> String {
     let message = message.replace(&scratch.dir.display().to_string(), "");
-    let letters: String = input
-        .iter()
-        .filter(|b| b.is_ascii_alphabetic())
-        .map(|&b| b as char)
+    // As errors quote it: control characters escaped (a line break reads `\n`).
+    let letters: String = printable(&String::from_utf8_lossy(input))
+        .chars()
+        .filter(char::is_ascii_alphabetic)
         .collect();
     message
         .split(|c: char| !c.is_ascii_alphabetic())

@@ -96,7 +96,14 @@ pub fn fuzz_target(target: &Target, options: &RunOptions) -> Result<TargetReport
         } else {
             "worker died"
         };
-        let last = stderr.lines().last().unwrap_or("").trim().to_string();
+        // The line that says why: the allocation that failed, the watchdog's, else the last.
+        let last = stderr
+            .lines()
+            .find(|l| l.contains("memory allocation of") || l.starts_with("timeout:"))
+            .or_else(|| stderr.lines().last())
+            .unwrap_or("")
+            .trim()
+            .to_string();
         let message = format!("{kind} ({status}): {last}");
         let input = std::fs::read(current_file(options.out, target.name))
             .map_err(|e| format!("the input that killed the {} worker: {e}", target.name))?;

@@ -9,7 +9,7 @@ use super::MeshGeometry;
 use crate::limits::{
     MAX_MESH_FILE_BYTES, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYGON_CORNERS,
 };
-use crate::{printable, CoreError};
+use crate::{printable, read_limited, CoreError};
 
 #[derive(Clone, Copy, PartialEq, Debug)]
 enum Encoding {
@@ -93,16 +93,7 @@ pub fn read_ply(path: &Path) -> Result<MeshGeometry, CoreError> {
 
 /// The bytes of a mesh file, refused past [`MAX_MESH_FILE_BYTES`] before any is read.
 pub fn read_mesh_bytes(path: &Path) -> Result<Vec<u8>, CoreError> {
-    let size = std::fs::metadata(path)
-        .map_err(|e| CoreError::io(path, e))?
-        .len();
-    if size > MAX_MESH_FILE_BYTES {
-        return Err(CoreError::bad_file(
-            path,
-            format!("{size} bytes, over the limit of {MAX_MESH_FILE_BYTES} bytes for a mesh file"),
-        ));
-    }
-    std::fs::read(path).map_err(|e| CoreError::io(path, e))
+    read_limited(path, MAX_MESH_FILE_BYTES, "a mesh file")
 }
 
 /// Parses a PLY file's bytes; the error is one line, without the file's name.

@@ -101,6 +101,8 @@ fn bad_files_give_one_line_errors_naming_the_problem() {
         (b"plx\nformat ascii 1.0\nend_header\n".to_vec(), "first line is not 'ply'"),
         (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n0\n".to_vec(), "header line 4: unknown property type"),
         (b"ply\nformat zip 1.0\nend_header\n".to_vec(), "unknown format"),
+        // Found by fuzzing: a carriage return inside a header line was quoted as is.
+        (b"ply\nformat ascii 1.0\nprope\rty float z\nend_header\n".to_vec(), "unrecognised header line: 'prope\\rty float z'"),
         (
             b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n3 0 1 2\n".to_vec(),
             "face 0 refers to vertex 1 but the file has 1 vertices",
