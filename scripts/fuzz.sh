@@ -5,6 +5,7 @@
 # target/fuzz/crashes/. Exits 1 if anything crashed.
 #   scripts/fuzz.sh 60           # a minute per target
 #   scripts/fuzz.sh 5 ply obj    # only these targets (scripts/fuzz.sh 0 lists them)
+# A saved crash runs again with: target/debug/rslam-fuzz replay TARGET target/fuzz/crashes/FILE.bin
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-10}

@@ -11,7 +11,7 @@ use cap::Cap;
 use clap::{Parser, Subcommand};
 use rslam_fuzz::supervisor::{fuzz_target, RunOptions};
 use rslam_fuzz::worker::{run_worker, WorkerOptions};
-use rslam_fuzz::{target, TARGETS};
+use rslam_fuzz::{run_one, target, Outcome, Scratch, TARGETS};
 
 /// Every allocation goes through the cap; a worker sets it, so that an allocation sized from an
 /// unchecked header fails (the process aborts, the supervisor reports the input).
@@ -46,6 +46,8 @@ enum Commands {
     },
     /// Lists the targets.
     List,
+    /// Runs one saved input (a crash) through its target and says what it does now.
+    Replay { target: String, input: PathBuf },
     /// One target in this process (started by `run`).
     #[command(hide = true)]
     Worker {
@@ -80,6 +82,24 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
                 println!("{}", t.name);
             }
             Ok(ExitCode::SUCCESS)
+        }
+        Commands::Replay {
+            target: name,
+            input,
+        } => {
+            let target = target(&name).ok_or(format!("unknown target '{name}'"))?;
+            let bytes = std::fs::read(&input).map_err(|e| format!("{}: {e}", input.display()))?;
+            let dir = tempfile::tempdir().map_err(|e| e.to_string())?;
+            (target.prepare)(dir.path()).map_err(|e| e.to_string())?;
+            let scratch = Scratch {
+                dir: dir.path().to_path_buf(),
+            };
+            let outcome = run_one(target, &scratch, &bytes);
+            println!("{outcome:?}");
+            Ok(match outcome {
+                Outcome::Found(_) => ExitCode::FAILURE,
+                Outcome::Accepted | Outcome::Rejected(_) => ExitCode::SUCCESS,
+            })
         }
         Commands::Worker {
             target: name,

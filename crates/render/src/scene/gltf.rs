@@ -10,6 +10,7 @@ use ::gltf::image::{Format, Source};
 use ::gltf::mesh::Mode;
 use glam::{Mat4, Vec3};
 use rslam_core::mesh_io::read_mesh_bytes;
+use rslam_core::printable;
 
 use super::srgb::linear_to_srgb;
 use super::{Mesh, Texture, Vertex};
@@ -185,7 +186,7 @@ impl Collector<'_> {
         }
         let bad = |message: String| RenderError::BadTexture {
             path: self.path.to_path_buf(),
-            texture: self.describe(image),
+            texture: printable(&self.describe(image)),
             message,
         };
         if let Source::Uri { uri, .. } = image.source() {

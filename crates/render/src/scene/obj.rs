@@ -145,7 +145,7 @@ fn check_geometry(path: &Path, models: &[tobj::Model]) -> Result<(), RenderError
 fn load_texture(obj: &Path, file: &Path) -> Result<Texture, RenderError> {
     let bad = |message: String| RenderError::BadTexture {
         path: obj.to_path_buf(),
-        texture: file.display().to_string(),
+        texture: printable(&file.display().to_string()),
         message,
     };
     let image = image::open(file)

@@ -144,3 +144,21 @@ fn non_finite_coordinates_are_an_error_naming_the_object() {
         );
     }
 }
+
+/// Found by fuzzing: a texture name holding a carriage return was quoted as is.
+#[test]
+fn a_texture_name_with_a_line_break_is_quoted_on_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("quad.obj");
+    std::fs::write(&obj, QUAD_OBJ).unwrap();
+    std::fs::write(
+        dir.path().join("quad.mtl"),
+        "newmtl painted\nmap_Kd wo\rod.png\n",
+    )
+    .unwrap();
+    let err = load_scene(obj.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.contains("wo\\rod.png") && !err.contains('\r'),
+        "{err:?}"
+    );
+}
