@@ -3,7 +3,7 @@ use std::path::PathBuf;
 /// Errors of rslam-core: each names the file, line or value that was wrong.
 #[derive(Debug, thiserror::Error)]
 pub enum CoreError {
-    #[error("camera '{text}': expected 'replica', 'tum' or W,H,FX,FY,CX,CY with positive sizes and focal lengths")]
+    #[error("camera '{text}': expected 'replica', 'tum' or W,H,FX,FY,CX,CY with sizes of 1 to {max} pixels, positive focal lengths and finite numbers", max = crate::limits::MAX_IMAGE_SIDE)]
     BadCamera { text: String },
     #[error("{path}: {source}")]
     Io {
@@ -23,6 +23,21 @@ pub enum CoreError {
     BadRate { hz: f64 },
     #[error("encoding {message}")]
     Encode { message: String },
+}
+
+/// `text` as it may be quoted in a one-line error: control characters (line breaks, tabs, NUL)
+/// written as escapes, everything else as is.
+pub fn printable(text: &str) -> String {
+    text.chars()
+        .flat_map(|c| {
+            let escaped: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            escaped
+        })
+        .collect()
 }
 
 impl CoreError {

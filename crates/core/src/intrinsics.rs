@@ -1,6 +1,7 @@
 use serde::{Deserialize, Serialize};
 
-use crate::CoreError;
+use crate::limits::MAX_IMAGE_SIDE;
+use crate::{printable, CoreError};
 
 /// Frame rate of the Replica camera preset and of Replica `traj.txt` files (formats.md).
 pub const REPLICA_RATE_HZ: f64 = 20.0;
@@ -57,7 +58,7 @@ impl Intrinsics {
             _ => {}
         }
         let bad = || CoreError::BadCamera {
-            text: text.to_string(),
+            text: printable(text),
         };
         let parts: Vec<&str> = text.split(',').map(str::trim).collect();
         if parts.len() != 6 {
@@ -77,15 +78,33 @@ impl Intrinsics {
             cx: f[2],
             cy: f[3],
         };
-        if width == 0
-            || height == 0
-            || f.iter().any(|v| !v.is_finite())
-            || k.fx <= 0.0
-            || k.fy <= 0.0
-        {
-            return Err(bad());
-        }
+        k.check().map_err(|_| bad())?;
         Ok(k)
+    }
+
+    /// Whether this is a camera rslam can use: 1 to [`MAX_IMAGE_SIDE`] pixels a side, positive
+    /// finite focal lengths, a finite principal point. The error says what is wrong.
+    pub fn check(&self) -> Result<(), String> {
+        for (name, side) in [("width", self.width), ("height", self.height)] {
+            if !(1..=MAX_IMAGE_SIDE).contains(&side) {
+                return Err(format!(
+                    "{name} {side}: expected 1 to {MAX_IMAGE_SIDE} pixels"
+                ));
+            }
+        }
+        for (name, f) in [("fx", self.fx), ("fy", self.fy)] {
+            if !(f.is_finite() && f > 0.0) {
+                return Err(format!(
+                    "{name} {f}: expected a positive finite focal length"
+                ));
+            }
+        }
+        for (name, c) in [("cx", self.cx), ("cy", self.cy)] {
+            if !c.is_finite() {
+                return Err(format!("{name} {c}: expected a finite principal point"));
+            }
+        }
+        Ok(())
     }
 
     pub fn pixel_count(&self) -> usize {
@@ -112,6 +131,9 @@ mod tests {
             "0,48,50,50,1,1",
             "64,48,-1,50,1,1",
             "a,b,c,d,e,f",
+            "64,48,50,50,nan,1",
+            "64,48,inf,50,1,1",
+            "16385,48,50,50,1,1",
         ] {
             assert!(Intrinsics::parse(bad).is_err(), "{bad}");
         }

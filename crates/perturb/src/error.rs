@@ -1,3 +1,4 @@
+use rslam_core::printable;
 use rslam_gpu::GpuError;
 
 /// Errors of the perturbation crate.
@@ -18,9 +19,10 @@ pub enum PerturbError {
 
 impl PerturbError {
     pub fn spec(item: impl Into<String>, message: impl Into<String>) -> Self {
+        // The item and the message quote what was typed, line breaks included.
         Self::Spec {
-            item: item.into(),
-            message: message.into(),
+            item: printable(&item.into()),
+            message: printable(&message.into()),
         }
     }
 }

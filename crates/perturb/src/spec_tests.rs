@@ -130,3 +130,20 @@ fn every_catalogue_entry_parses_at_every_severity() {
         }
     }
 }
+
+/// Found by fuzzing: an item holding a line break was quoted as is, and the error spanned lines.
+#[test]
+fn errors_quote_line_breaks_as_escapes() {
+    let err = PerturbSpec::parse("fog:3,depth_range:x\r2")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("--perturb item 'depth_range:x\\r2': "),
+        "{err}"
+    );
+    let err = PerturbSpec::parse("fo\ng:3").unwrap_err().to_string();
+    assert!(
+        err.starts_with("--perturb item 'fo\\ng:3': unknown perturbation 'fo\\ng'"),
+        "{err}"
+    );
+}

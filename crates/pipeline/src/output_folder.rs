@@ -5,7 +5,9 @@
 
 use std::path::Path;
 
-use rslam_core::dataset::{Checksums, Manifest, MANIFEST_FILE, PARTIAL_SUFFIX, RUN_FILE};
+use rslam_core::dataset::{
+    refuse_symlinks, Checksums, Manifest, MANIFEST_FILE, PARTIAL_SUFFIX, RUN_FILE,
+};
 use rslam_core::CoreError;
 
 use crate::PipelineError;
@@ -22,6 +24,7 @@ pub enum FolderState {
 
 /// Prepares `root` for `job` and says what it holds.
 pub fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, PipelineError> {
+    refuse_symlinks(root, root)?;
     let state = if !root.exists() {
         FolderState::Fresh
     } else if root.join(RUN_FILE).is_file() {
@@ -154,4 +157,42 @@ fn remove_partial_files(root: &Path) -> Result<(), PipelineError> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn job() -> Manifest {
+        serde_json::from_value(serde_json::json!({
+            "tool": "rslam", "tool_version": "0.1.0", "command": [], "source": "room0",
+            "source_hash": "", "format": "replica", "camera": null, "rate_hz": 20.0,
+            "frame_count": 0, "seed": 0, "perturbation": "", "perturbation_parsed": null,
+            "severities": [], "rgb_source": [], "depth_source": [], "extra": null
+        }))
+        .unwrap()
+    }
+
+    /// A link planted in an output folder would take frames, or the clean-up of partial files,
+    /// outside it: the folder is refused, with or without --force, and nothing outside changes.
+    #[test]
+    fn an_output_folder_holding_a_symlink_is_refused_and_nothing_outside_is_touched() {
+        let out = tempfile::tempdir().unwrap();
+        let elsewhere = tempfile::tempdir().unwrap();
+        let victim = elsewhere.path().join("notes.partial");
+        std::fs::write(&victim, "keep me").unwrap();
+        let root = out.path().join("fog3");
+        std::fs::create_dir(&root).unwrap();
+        job().write_as(&root, RUN_FILE).unwrap();
+        std::os::unix::fs::symlink(elsewhere.path(), root.join("results")).unwrap();
+        for force in [false, true] {
+            let err = prepare(&root, &job(), force).unwrap_err().to_string();
+            assert!(
+                err.contains("results: is a symbolic link inside the output folder"),
+                "{err}"
+            );
+        }
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+        assert_eq!(std::fs::read_dir(elsewhere.path()).unwrap().count(), 1);
+    }
 }

@@ -40,6 +40,8 @@ pub enum RenderError {
     },
     #[error(transparent)]
     Gpu(#[from] rslam_gpu::GpuError),
+    #[error(transparent)]
+    Core(#[from] rslam_core::CoreError),
     #[error("{name}: {count} textures exceed the GPU's limit of {limit} texture layers")]
     TooManyTextures {
         name: String,

@@ -6,6 +6,7 @@ use std::fs::{File, TryLockError};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use rslam_core::dataset::refuse_symlinks;
 use rslam_gpu::GpuContext;
 use rslam_pipeline::{render_dataset, FolderState, PipelineError, Progress};
 
@@ -133,6 +134,7 @@ fn make_one(
     state: &SequenceState,
     progress: &dyn SuiteProgress,
 ) -> Result<SequenceOutcome, SuiteError> {
+    refuse_symlinks(&suite.dir, &sequence.dir(&suite.dir))?;
     let Some(_lock) = lock(&suite.dir, &sequence.name)? else {
         return Ok(SequenceOutcome::Busy);
     };

@@ -4,6 +4,7 @@
 use std::fmt;
 
 use rslam_core::hash::{fnv1a64, splitmix64};
+use rslam_core::printable;
 
 use crate::SuiteError;
 
@@ -37,7 +38,12 @@ impl Shard {
 
     /// `I/N`, e.g. `0/4`.
     pub fn parse(text: &str) -> Result<Self, SuiteError> {
-        let bad = || SuiteError::option("--shard", format!("'{text}': expected I/N, e.g. 0/4"));
+        let bad = || {
+            SuiteError::option(
+                "--shard",
+                format!("'{}': expected I/N, e.g. 0/4", printable(text)),
+            )
+        };
         let (index, count) = text.split_once('/').ok_or_else(bad)?;
         let index = index.trim().parse().map_err(|_| bad())?;
         let count = count.trim().parse().map_err(|_| bad())?;
@@ -121,6 +127,12 @@ mod tests {
                 .find(|(k, _)| *k == name)
                 .map(|(_, v)| v.to_string())
         }
+    }
+
+    #[test]
+    fn a_shard_with_a_line_break_is_quoted_on_one_line() {
+        let err = Shard::parse("0/\n4x").unwrap_err().to_string();
+        assert_eq!(err, "--shard: '0/\\n4x': expected I/N, e.g. 0/4");
     }
 
     #[test]

@@ -4,8 +4,9 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use rslam_core::dataset::{DatasetFormat, DepthPng};
+use rslam_core::limits::{MAX_POSES, MAX_SUITE_SEQUENCES};
 use rslam_core::trajectory_io::ReadOptions;
-use rslam_core::Intrinsics;
+use rslam_core::{read_text_file, Intrinsics};
 use rslam_perturb::PerturbSpec;
 
 use crate::sequence::{sequence_seed, Sequence};
@@ -35,7 +36,7 @@ impl Suite {
                         .into(),
             });
         }
-        let text = std::fs::read_to_string(&path).map_err(|e| SuiteError::io(&path, e))?;
+        let text = read_text_file(&path, "a suite in TOML")?;
         let file = SuiteFile::parse(&path, &text)?;
         let bad_row = |offset: usize, message: String| SuiteError::SuiteFile {
             path: path.clone(),
@@ -51,6 +52,14 @@ impl Suite {
         }
         if file.sequences.is_empty() {
             return Err(bad_row(0, "no [[sequence]] rows".into()));
+        }
+        if let Some(row) = file.sequences.get(MAX_SUITE_SEQUENCES) {
+            return Err(bad_row(
+                row.span().start,
+                format!(
+                    "more than {MAX_SUITE_SEQUENCES} [[sequence]] rows, the most a suite may hold"
+                ),
+            ));
         }
         let mut names = HashSet::new();
         let mut sequences = Vec::with_capacity(file.sequences.len());
@@ -142,8 +151,10 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
             "rate {rate_hz}: expected a positive number of Hz"
         )));
     }
-    if row.frames == Some(0) {
-        return Err(in_row("frames = 0: expected at least one frame".into()));
+    if let Some(frames) = row.frames.filter(|f| !(1..=MAX_POSES).contains(f)) {
+        return Err(in_row(format!(
+            "frames = {frames}: expected 1 to {MAX_POSES} frames"
+        )));
     }
     let is_builtin = rslam_render::builtin_path_length(&scene).is_some();
     if row.traj.is_none() && !is_builtin {
@@ -273,6 +284,40 @@ mod tests {
         .to_string();
         assert!(
             err.contains("suite.toml:1: [defaults] may not set name"),
+            "{err}"
+        );
+    }
+
+    /// A sequence name is the folder under datasets/ that rslam writes (and, with --force,
+    /// clears): nothing that climbs out, starts at the root or names a subfolder passes.
+    #[test]
+    fn sequence_names_that_would_leave_datasets_are_refused() {
+        for name in [
+            "../room0__x",
+            "room0__../../x",
+            "/tmp/room0__x",
+            "room0__a/b",
+            "..__x",
+            ".hidden__x",
+            "room0__x\\y",
+            "room0__",
+        ] {
+            let text = format!("[[sequence]]\nname = {name:?}\nscene = \"room0\"\n");
+            let err = open(&text).unwrap_err().to_string();
+            assert!(
+                err.contains("suite.toml:1: sequence name")
+                    && err.contains("expected <scene>__<setting>"),
+                "{name}: {err}"
+            );
+        }
+    }
+
+    #[test]
+    fn suite_limits_are_errors_naming_the_row() {
+        let rows = "[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\nframes = 20000000\n";
+        let err = open(rows).unwrap_err().to_string();
+        assert!(
+            err.contains("suite.toml:1: sequence 'room0__a': frames = 20000000: expected 1 to 10000000 frames"),
             "{err}"
         );
     }

@@ -10,7 +10,7 @@ use std::sync::Mutex;
 use rayon::prelude::*;
 
 use crate::dataset::{write_atomically, Manifest, MANIFEST_FILE};
-use crate::CoreError;
+use crate::{read_text_file, CoreError};
 
 /// The checksum list beside the manifest.
 pub const CHECKSUM_FILE: &str = "rslam.b3sum";
@@ -22,6 +22,17 @@ pub fn is_bookkeeping(relative: &str) -> bool {
         || relative == CHECKSUM_FILE
         || relative == RUN_FILE
         || relative.ends_with(PARTIAL_SUFFIX)
+}
+
+/// Whether a relative path written in a dataset file stays inside the dataset: no root, no
+/// drive, no `..`.
+pub fn is_inside(relative: &str) -> bool {
+    Path::new(relative).components().all(|c| {
+        matches!(
+            c,
+            std::path::Component::Normal(_) | std::path::Component::CurDir
+        )
+    })
 }
 
 /// Written first and removed last by a run: a folder holding it is an unfinished run.
@@ -105,13 +116,19 @@ impl Checksums {
             let parsed = line.split_once("  ").filter(|(hex, name)| {
                 hex.len() == 64 && hex.bytes().all(|b| b.is_ascii_hexdigit()) && !name.is_empty()
             });
-            let Some((hex, name)) = parsed else {
-                return Err(CoreError::BadLine {
-                    path: path.to_path_buf(),
-                    line: i + 1,
-                    message: "expected '<64 hex digits>  <file>' (b3sum format)".into(),
-                });
+            let bad = |message: &str| CoreError::BadLine {
+                path: path.to_path_buf(),
+                line: i + 1,
+                message: message.into(),
             };
+            let Some((hex, name)) = parsed else {
+                return Err(bad("expected '<64 hex digits>  <file>' (b3sum format)"));
+            };
+            if !is_inside(name) {
+                return Err(bad(
+                    "expected a path relative to the dataset, without '..' (b3sum format)",
+                ));
+            }
             entries.insert(name.to_string(), hex.to_string());
         }
         Ok(Self { entries })
@@ -119,7 +136,7 @@ impl Checksums {
 
     pub fn read(root: &Path) -> Result<Self, CoreError> {
         let path = root.join(CHECKSUM_FILE);
-        let text = std::fs::read_to_string(&path).map_err(|e| CoreError::io(&path, e))?;
+        let text = read_text_file(&path, "b3sum lines")?;
         Self::parse(&path, &text)
     }
 

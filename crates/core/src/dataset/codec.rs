@@ -9,7 +9,8 @@ use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ExtendedColorType, ImageEncoder};
 
 use crate::dataset::DepthPng;
-use crate::{CoreError, DepthImage, RgbImage};
+use crate::limits::MAX_IMAGE_SIDE;
+use crate::{printable, CoreError, DepthImage, RgbImage};
 
 fn encode_failed(what: &str, e: impl std::fmt::Display) -> CoreError {
     CoreError::Encode {
@@ -95,20 +96,43 @@ pub fn read_rgb(path: &Path) -> Result<RgbImage, CoreError> {
 
 /// Width and height of a PNG or JPEG from its header, without decoding the pixels.
 pub fn read_image_size(path: &Path) -> Result<(u32, u32), CoreError> {
-    image::ImageReader::open(path)
+    let (width, height) = image::ImageReader::open(path)
         .map_err(|e| CoreError::io(path, e))?
         .with_guessed_format()
         .map_err(|e| CoreError::io(path, e))?
         .into_dimensions()
-        .map_err(|e| CoreError::bad_file(path, format!("not a readable image: {e}")))
+        .map_err(|e| {
+            CoreError::bad_file(
+                path,
+                format!("not a readable image: {}", printable(e.to_string().trim())),
+            )
+        })?;
+    if width.max(height) > MAX_IMAGE_SIDE {
+        return Err(CoreError::bad_file(
+            path,
+            format!("{width}x{height} image: over the limit of {MAX_IMAGE_SIDE} pixels a side"),
+        ));
+    }
+    Ok((width, height))
+}
+
+/// A decoder for `bytes` that refuses images over [`MAX_IMAGE_SIDE`] pixels a side before
+/// allocating their pixels.
+fn limited_reader(bytes: &[u8]) -> Result<image::ImageReader<Cursor<&[u8]>>, String> {
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    let mut reader = image::ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| e.to_string())?;
+    reader.limits(limits);
+    Ok(reader)
 }
 
 pub fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
-    let image = image::ImageReader::new(Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| e.to_string())?
+    let image = limited_reader(bytes)?
         .decode()
-        .map_err(|e| format!("not a readable image: {e}"))?
+        .map_err(|e| format!("not a readable image: {}", printable(e.to_string().trim())))?
         .into_rgb8();
     Ok(RgbImage {
         width: image.width(),
@@ -120,8 +144,12 @@ pub fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
 /// A 16-bit (or 8-bit) single-channel PNG as metric depth.
 pub fn decode_depth_png(path: &Path, scale: f64) -> Result<DepthImage, CoreError> {
     let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
-    let image = image::load_from_memory(&bytes)
-        .map_err(|e| CoreError::bad_file(path, format!("not a readable depth PNG: {e}")))?;
+    let not_readable =
+        |e: String| CoreError::bad_file(path, format!("not a readable depth PNG: {e}"));
+    let image = limited_reader(&bytes)
+        .map_err(not_readable)?
+        .decode()
+        .map_err(|e| not_readable(printable(e.to_string().trim())))?;
     if image.color().channel_count() != 1 {
         return Err(CoreError::bad_file(
             path,

@@ -8,6 +8,7 @@ mod codec;
 mod depth_png;
 mod layout;
 mod manifest;
+mod no_symlinks;
 mod orbslam3;
 mod reader;
 mod verify;
@@ -15,8 +16,8 @@ mod writer;
 
 pub use atomic_write::write_atomically;
 pub use checksums::{
-    blake3_hex, content_files, is_bookkeeping, ChecksumDifferences, Checksums, ContentWriter,
-    CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,
+    blake3_hex, content_files, is_bookkeeping, is_inside, ChecksumDifferences, Checksums,
+    ContentWriter, CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,
 };
 pub use codec::{
     decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, encode_rgb_like,
@@ -25,6 +26,7 @@ pub use codec::{
 pub use depth_png::DepthPng;
 pub use layout::DatasetFormat;
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
+pub use no_symlinks::refuse_symlinks;
 pub use reader::{read_dataset, DatasetFrame, DatasetOverrides, SourceDataset};
 pub use verify::{verify_output, Verification};
 pub use writer::{DatasetWriter, FrameFiles, OutputFrame};

@@ -3,8 +3,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::dataset::{DatasetFormat, Manifest, MANIFEST_FILE};
+use crate::limits::{MAX_IMAGE_SIDE, MAX_POSES};
 use crate::trajectory_io::{read_trajectory_with, ReadOptions, TrajectoryFormat};
-use crate::{nearest_time, CoreError, Intrinsics, Trajectory};
+use crate::{nearest_time, read_text_file, CoreError, Intrinsics, Trajectory};
 
 /// Largest RGB–depth time difference when pairing TUM rgb.txt and depth.txt without associations.
 const TUM_PAIR_MAX_DIFF_S: f64 = 0.02;
@@ -85,7 +86,7 @@ fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
     let Some(path) = candidates.iter().find(|p| p.is_file()) else {
         return Ok(None);
     };
-    let text = std::fs::read_to_string(path).map_err(|e| CoreError::io(path, e))?;
+    let text = read_text_file(path, "the camera as JSON")?;
     let json: serde_json::Value = serde_json::from_str(&text)
         .map_err(|e| CoreError::bad_file(path, format!("not JSON: {e}")))?;
     let camera = &json["camera"];
@@ -96,12 +97,14 @@ fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
     };
     let size = |key: &str| {
         let value = number(key)?;
-        if value >= 1.0 && value.fract() == 0.0 && value <= u32::MAX as f64 {
+        if value >= 1.0 && value.fract() == 0.0 && value <= MAX_IMAGE_SIDE as f64 {
             Ok(value as u32)
         } else {
             Err(CoreError::bad_file(
                 path,
-                format!("expected a positive whole number of pixels at camera.{key}, got {value}"),
+                format!(
+                    "expected a whole number of pixels from 1 to {MAX_IMAGE_SIDE} at camera.{key}, got {value}"
+                ),
             ))
         }
     };
@@ -113,12 +116,9 @@ fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
         cx: number("cx")?,
         cy: number("cy")?,
     };
-    if !(camera.fx > 0.0 && camera.fy > 0.0) {
-        return Err(CoreError::bad_file(
-            path,
-            "expected positive focal lengths camera.fx and camera.fy",
-        ));
-    }
+    camera
+        .check()
+        .map_err(|message| CoreError::bad_file(path, format!("camera.{message}")))?;
     Ok(Some(camera))
 }
 
@@ -211,7 +211,8 @@ fn read_replica(
 
 /// `<t> <file>` lines of rgb.txt / depth.txt, `#` comments skipped.
 fn tum_list(path: &Path) -> Result<Vec<(f64, PathBuf)>, CoreError> {
-    let text = std::fs::read_to_string(path).map_err(|e| CoreError::io(path, e))?;
+    let text = read_text_file(path, "'<timestamp> <file>' lines")?;
+    check_frame_count(path, &text)?;
     let root = path.parent().unwrap_or(Path::new("."));
     let mut entries = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -244,6 +245,11 @@ fn read_tum(
     overrides: &DatasetOverrides,
 ) -> Result<SourceDataset, CoreError> {
     let associations = root.join("associations.txt");
+    let listed_in = if associations.is_file() {
+        associations.clone()
+    } else {
+        root.join("rgb.txt")
+    };
     let frames: Vec<DatasetFrame> = if associations.is_file() {
         read_associations(&associations)?
     } else {
@@ -269,7 +275,7 @@ fn read_tum(
             .collect()
     };
     if frames.is_empty() {
-        return Err(CoreError::bad_file(root.join("rgb.txt"), "lists no frames"));
+        return Err(CoreError::bad_file(listed_in, "lists no frames"));
     }
     let gt_path = root.join("groundtruth.txt");
     let ground_truth = if gt_path.is_file() {
@@ -310,7 +316,8 @@ fn read_tum(
 }
 
 fn read_associations(path: &Path) -> Result<Vec<DatasetFrame>, CoreError> {
-    let text = std::fs::read_to_string(path).map_err(|e| CoreError::io(path, e))?;
+    let text = read_text_file(path, "'t_rgb rgb t_depth depth' lines")?;
+    check_frame_count(path, &text)?;
     let root = path.parent().unwrap_or(Path::new("."));
     let mut frames = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -319,15 +326,18 @@ fn read_associations(path: &Path) -> Result<Vec<DatasetFrame>, CoreError> {
             continue;
         }
         let parts: Vec<&str> = line.split_whitespace().collect();
-        let times: Option<(f64, f64)> = match parts.as_slice() {
-            [t0, _, t1, _] => t0.parse().ok().zip(t1.parse().ok()),
+        let time = |text: &str| text.parse::<f64>().ok().filter(|t| t.is_finite());
+        let times = match parts.as_slice() {
+            [t0, _, t1, _] => time(t0).zip(time(t1)),
             _ => None,
         };
         let Some((rgb_time, depth_time)) = times else {
             return Err(CoreError::BadLine {
                 path: path.to_path_buf(),
                 line: i + 1,
-                message: "expected 't_rgb rgb/<t>.png t_depth depth/<t>.png'".into(),
+                message:
+                    "expected 't_rgb rgb/<t>.png t_depth depth/<t>.png' with finite timestamps"
+                        .into(),
             });
         };
         frames.push(DatasetFrame {
@@ -338,6 +348,17 @@ fn read_associations(path: &Path) -> Result<Vec<DatasetFrame>, CoreError> {
         });
     }
     Ok(frames)
+}
+
+/// Refuses a frame list of more than [`MAX_POSES`] lines before any is parsed.
+fn check_frame_count(path: &Path, text: &str) -> Result<(), CoreError> {
+    if text.lines().nth(MAX_POSES).is_some() {
+        return Err(CoreError::bad_file(
+            path,
+            format!("more than {MAX_POSES} lines, the most frames a dataset may hold"),
+        ));
+    }
+    Ok(())
 }
 
 /// Median frame interval of the colour stream, as a rate; `None` without two distinct times.

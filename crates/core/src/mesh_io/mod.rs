@@ -4,7 +4,7 @@
 
 mod ply;
 
-pub use ply::{parse_ply, read_ply};
+pub use ply::{parse_ply, read_mesh_bytes, read_ply};
 
 /// Vertices and triangles of a mesh file, in the file's coordinates (metres for rslam).
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -6,7 +6,10 @@
 use std::path::Path;
 
 use super::MeshGeometry;
-use crate::CoreError;
+use crate::limits::{
+    MAX_MESH_FILE_BYTES, MAX_MESH_TRIANGLES, MAX_MESH_VERTICES, MAX_POLYGON_CORNERS,
+};
+use crate::{printable, read_limited, CoreError};
 
 #[derive(Clone, Copy, PartialEq, Debug)]
 enum Encoding {
@@ -84,8 +87,13 @@ struct Header {
 
 /// Reads the vertices, vertex colours and triangles of a PLY file.
 pub fn read_ply(path: &Path) -> Result<MeshGeometry, CoreError> {
-    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
+    let bytes = read_mesh_bytes(path)?;
     parse_ply(&bytes).map_err(|message| CoreError::bad_file(path, message))
+}
+
+/// The bytes of a mesh file, refused past [`MAX_MESH_FILE_BYTES`] before any is read.
+pub fn read_mesh_bytes(path: &Path) -> Result<Vec<u8>, CoreError> {
+    read_limited(path, MAX_MESH_FILE_BYTES, "a mesh file")
 }
 
 /// Parses a PLY file's bytes; the error is one line, without the file's name.
@@ -102,6 +110,10 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshGeometry, String> {
     };
     let mut mesh = MeshGeometry::default();
     for element in &header.elements {
+        check_record_count(element, header.encoding, values.as_ref())?;
+        if element.properties.is_empty() && element.name != "vertex" {
+            continue; // records of nothing: no bytes to read, however many
+        }
         match element.name.as_str() {
             "vertex" => read_vertices(element, values.as_mut(), &mut mesh)?,
             "face" => read_faces(element, values.as_mut(), &mut mesh)?,
@@ -130,17 +142,25 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshGeometry, String> {
     Ok(mesh)
 }
 
-fn parse_header(bytes: &[u8]) -> Result<Header, String> {
-    const END: &[u8] = b"end_header";
-    let end = bytes
-        .windows(END.len())
-        .position(|w| w == END)
-        .ok_or("not a PLY file: no 'end_header' line")?;
-    let mut body_start = end + END.len();
-    while body_start < bytes.len() && bytes[body_start] != b'\n' {
-        body_start += 1;
+/// Where the header ends: the start of the `end_header` line and the first byte after it. The
+/// words may appear earlier inside a comment (a scene called `end_header` exports one).
+fn find_end_header(bytes: &[u8]) -> Option<(usize, usize)> {
+    let mut start = 0;
+    while start < bytes.len() {
+        let end = bytes[start..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(bytes.len(), |i| start + i);
+        if bytes[start..end].trim_ascii() == b"end_header" {
+            return Some((start, end + 1));
+        }
+        start = end + 1;
     }
-    body_start += 1;
+    None
+}
+
+fn parse_header(bytes: &[u8]) -> Result<Header, String> {
+    let (end, body_start) = find_end_header(bytes).ok_or("not a PLY file: no 'end_header' line")?;
     let text = String::from_utf8_lossy(&bytes[..end]);
     let mut lines = text.lines().enumerate();
     if lines.next().map(|(_, l)| l.trim()) != Some("ply") {
@@ -150,7 +170,13 @@ fn parse_header(bytes: &[u8]) -> Result<Header, String> {
     let mut elements: Vec<Element> = Vec::new();
     for (n, line) in lines {
         let words: Vec<&str> = line.split_whitespace().collect();
-        let bad = |what: &str| format!("header line {}: {what}: '{}'", n + 1, line.trim());
+        let bad = |what: &str| {
+            format!(
+                "header line {}: {what}: '{}'",
+                n + 1,
+                printable(line.trim())
+            )
+        };
         match words.as_slice() {
             [] | ["comment", ..] | ["obj_info", ..] => {}
             ["format", f, _version] => {
@@ -195,6 +221,50 @@ fn parse_header(bytes: &[u8]) -> Result<Header, String> {
     })
 }
 
+/// Refuses an element whose count the rest of the file cannot hold, before anything is
+/// allocated or looped over for it: every record takes at least [`min_record_size`] bytes or
+/// tokens.
+fn check_record_count(
+    element: &Element,
+    encoding: Encoding,
+    values: &dyn Values,
+) -> Result<(), String> {
+    let limit = match element.name.as_str() {
+        "vertex" => Some(("vertices", MAX_MESH_VERTICES)),
+        "face" => Some(("faces", MAX_MESH_TRIANGLES)),
+        _ => None,
+    };
+    if let Some((what, limit)) = limit.filter(|&(_, limit)| element.count > limit) {
+        return Err(format!(
+            "element '{}' declares {} {what}, over the limit of {limit}",
+            element.name, element.count
+        ));
+    }
+    let record = min_record_size(element, encoding);
+    let room = values.remaining().checked_div(record).unwrap_or(usize::MAX);
+    if element.count > room {
+        return Err(format!(
+            "element '{}' declares {} records, but the rest of the file holds at most {room}",
+            element.name, element.count
+        ));
+    }
+    Ok(())
+}
+
+/// The fewest bytes (binary) or tokens (ASCII) one record of `element` takes: every scalar, and
+/// the count of every list (lists may be empty).
+fn min_record_size(element: &Element, encoding: Encoding) -> usize {
+    element
+        .properties
+        .iter()
+        .map(|p| match (p, encoding) {
+            (_, Encoding::Ascii) => 1,
+            (Property::Scalar { kind, .. }, _) => kind.size(),
+            (Property::List { count, .. }, _) => count.size(),
+        })
+        .sum()
+}
+
 fn truncated(element: &Element, record: usize, e: String) -> String {
     format!(
         "{e} in element '{}' record {record} of {}",
@@ -231,6 +301,7 @@ fn read_vertices(
     {
         return Err(format!("the 'vertex' element has no '{axis}' property"));
     }
+    // The count was checked against the file's size: these reservations are bounded by it.
     let mut colors = (0..3)
         .all(|c| declares(element, |name| color_channel(name) == Some(c)))
         .then(|| Vec::with_capacity(element.count));
@@ -295,8 +366,13 @@ fn read_faces(
                 {
                     let n = values
                         .read(*count)
-                        .map_err(|e| truncated(element, record, e))?
-                        as usize;
+                        .map_err(|e| truncated(element, record, e))?;
+                    if !(0.0..=MAX_POLYGON_CORNERS as f64).contains(&n) {
+                        return Err(format!(
+                            "face {record} has {n} corners; expected 0 to {MAX_POLYGON_CORNERS}"
+                        ));
+                    }
+                    let n = n as usize;
                     let mut polygon = Vec::with_capacity(n);
                     for _ in 0..n {
                         let i = values
@@ -311,6 +387,11 @@ fn read_faces(
                         mesh.indices
                             .extend_from_slice(&[polygon[0], polygon[k], polygon[k + 1]]);
                     }
+                    if mesh.triangle_count() > MAX_MESH_TRIANGLES {
+                        return Err(format!(
+                            "face {record}: more than {MAX_MESH_TRIANGLES} triangles, the most a mesh may hold"
+                        ));
+                    }
                 }
                 other => read_property(other, values).map_err(|e| truncated(element, record, e))?,
             }
@@ -323,8 +404,13 @@ fn read_property(p: &Property, values: &mut dyn Values) -> Result<(), String> {
     match p {
         Property::Scalar { kind, .. } => values.read(*kind).map(|_| ()),
         Property::List { count, item, .. } => {
-            let n = values.read(*count)? as usize;
-            (0..n).try_for_each(|_| values.read(*item).map(|_| ()))
+            // Every item takes a byte or token at least: a count past the file's end fails at
+            // the end, never loops on.
+            let n = values.read(*count)?;
+            if n < 0.0 {
+                return Err(format!("list length {n} is negative"));
+            }
+            (0..n as usize).try_for_each(|_| values.read(*item).map(|_| ()))
         }
     }
 }
@@ -332,6 +418,8 @@ fn read_property(p: &Property, values: &mut dyn Values) -> Result<(), String> {
 /// The body as a stream of numbers.
 trait Values {
     fn read(&mut self, kind: Scalar) -> Result<f64, String>;
+    /// Bytes (binary) or tokens (ASCII) not read yet.
+    fn remaining(&self) -> usize;
 }
 
 struct BinaryValues<'a> {
@@ -341,6 +429,10 @@ struct BinaryValues<'a> {
 }
 
 impl Values for BinaryValues<'_> {
+    fn remaining(&self) -> usize {
+        self.bytes.len() - self.pos
+    }
+
     fn read(&mut self, kind: Scalar) -> Result<f64, String> {
         let n = kind.size();
         let raw = self
@@ -366,26 +458,33 @@ impl Values for BinaryValues<'_> {
     }
 }
 
-struct AsciiValues {
-    tokens: std::vec::IntoIter<String>,
+/// Tokens taken one by one from the text (a copy of each would take several times the file).
+struct AsciiValues<'a> {
+    tokens: std::str::SplitWhitespace<'a>,
+    left: usize,
 }
 
-impl AsciiValues {
-    fn new(body: &[u8]) -> Result<Self, String> {
+impl<'a> AsciiValues<'a> {
+    fn new(body: &'a [u8]) -> Result<Self, String> {
         let text = std::str::from_utf8(body).map_err(|_| "ASCII body is not text")?;
-        let tokens: Vec<String> = text.split_whitespace().map(str::to_string).collect();
         Ok(Self {
-            tokens: tokens.into_iter(),
+            tokens: text.split_whitespace(),
+            left: text.split_whitespace().count(),
         })
     }
 }
 
-impl Values for AsciiValues {
+impl Values for AsciiValues<'_> {
     fn read(&mut self, _kind: Scalar) -> Result<f64, String> {
         let token = self.tokens.next().ok_or("file ends early")?;
+        self.left -= 1;
         token
             .parse()
             .map_err(|_| format!("'{token}' is not a number"))
+    }
+
+    fn remaining(&self) -> usize {
+        self.left
     }
 }
 

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use glam::{DMat3, DQuat, DVec3};
 
+use crate::limits::MAX_POSES;
 use crate::{CoreError, Pose};
 
 /// Largest |RᵀR − I| entry accepted for a rotation block read from a matrix: files printed with
@@ -21,6 +22,16 @@ pub(super) fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
         .enumerate()
         .map(|(i, line)| (i + 1, line.trim()))
         .filter(|(_, line)| !line.is_empty() && !line.starts_with('#'))
+}
+
+/// Refuses a file of more than [`MAX_POSES`] data lines, before any is parsed.
+pub(super) fn check_line_count(path: &Path, text: &str) -> Result<(), CoreError> {
+    if let Some((line, _)) = data_lines(text).nth(MAX_POSES) {
+        return Err(LineRef { path, line }.error(format!(
+            "more than {MAX_POSES} poses, the most a trajectory may hold"
+        )));
+    }
+    Ok(())
 }
 
 /// Where a line came from, to name it in errors.
@@ -79,14 +90,22 @@ impl LineRef<'_> {
         Ok(values)
     }
 
-    /// A unit quaternion from possibly unnormalised components; all zero is an error.
+    /// A unit quaternion from possibly unnormalised components; all zero is an error, and so
+    /// are components whose squares overflow or underflow (no finite unit quaternion from them).
     pub fn quaternion(&self, x: f64, y: f64, z: f64, w: f64) -> Result<DQuat, CoreError> {
         let q = DQuat::from_xyzw(x, y, z, w);
         let norm = q.length();
         if norm == 0.0 {
             return Err(self.error("zero quaternion (qx qy qz qw all 0); expected a rotation"));
         }
-        Ok(q / norm)
+        let unit = q / norm;
+        if !(norm.is_finite() && unit.is_finite()) {
+            return Err(self.error(format!(
+                "quaternion ({x:e} {y:e} {z:e} {w:e}) cannot be normalised in 64-bit floats; \
+                 expected a rotation"
+            )));
+        }
+        Ok(unit)
     }
 
     /// A pose from the first three rows of a row-major rigid matrix `[R | t]`.

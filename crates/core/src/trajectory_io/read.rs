@@ -1,9 +1,10 @@
 use std::path::Path;
 
 use super::detect::detect;
+use super::lines::check_line_count;
 use super::{euroc, kitti, replica, tum};
 use super::{ReadOptions, TimeSource, TrajectoryFile, TrajectoryFormat};
-use crate::{CoreError, Trajectory};
+use crate::{read_text_file, CoreError, Trajectory};
 
 /// Reads a trajectory file, detecting its format from the content unless `format` forces one.
 /// Replica frames are stamped at 20 Hz; KITTI poses get their frame index as timestamp
@@ -31,7 +32,8 @@ pub fn read_trajectory_with(
     if !(rate.is_finite() && rate > 0.0) {
         return Err(CoreError::BadRate { hz: rate });
     }
-    let text = read_text(path)?;
+    let text = read_text_file(path, "a trajectory in text form")?;
+    check_line_count(path, &text)?;
     let format = match options.format {
         Some(format) => format,
         None => detect(path, &text)?,
@@ -68,7 +70,9 @@ fn read_kitti(
         let indices = (0..poses.len()).map(|i| i as f64).collect();
         return Ok((Trajectory::new(indices, poses), TimeSource::FrameIndex));
     };
-    let times = kitti::parse_times(times_path, &read_text(times_path)?)?;
+    let times_text = read_text_file(times_path, "a times file in text form")?;
+    check_line_count(times_path, &times_text)?;
+    let times = kitti::parse_times(times_path, &times_text)?;
     if times.len() != poses.len() {
         return Err(CoreError::bad_file(
             times_path,
@@ -81,17 +85,4 @@ fn read_kitti(
         ));
     }
     Ok((Trajectory::new(times, poses), TimeSource::File))
-}
-
-fn read_text(path: &Path) -> Result<String, CoreError> {
-    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
-    String::from_utf8(bytes).map_err(|e| {
-        CoreError::bad_file(
-            path,
-            format!(
-                "not a text file (invalid UTF-8 at byte {}); expected a trajectory in text form",
-                e.utf8_error().valid_up_to()
-            ),
-        )
-    })
 }

@@ -111,6 +111,32 @@ fn zero_quaternion_is_an_error_on_its_line() {
     );
 }
 
+/// Finite components whose squares overflow gave a zero "unit" quaternion, then NaN poses.
+#[test]
+fn quaternion_too_large_to_normalise_is_an_error_not_a_nan_pose() {
+    assert_eq!(
+        error_of("0 0 0 0 1e200 0 0 1e200\n", None),
+        "F:1: quaternion (1e200 0e0 0e0 1e200) cannot be normalised in 64-bit floats; expected a rotation"
+    );
+    assert_eq!(
+        error_of("1403636579758555392,1,2,3,1e300,0,0,0\n", None),
+        "F:1: quaternion (0e0 0e0 0e0 1e300) cannot be normalised in 64-bit floats; expected a rotation"
+    );
+}
+
+#[test]
+fn more_poses_than_the_limit_is_an_error_before_parsing() {
+    let text = "0 0 0 0 0 0 0 1\n".repeat(crate::limits::MAX_POSES + 1);
+    assert_eq!(
+        error_of(&text, None),
+        format!(
+            "F:{}: more than {} poses, the most a trajectory may hold",
+            crate::limits::MAX_POSES + 1,
+            crate::limits::MAX_POSES
+        )
+    );
+}
+
 #[test]
 fn empty_or_comment_only_file_has_no_poses() {
     let expected = "F: no poses (the file is empty or only comments)";

@@ -9,6 +9,8 @@ use std::path::Path;
 use ::gltf::image::{Format, Source};
 use ::gltf::mesh::Mode;
 use glam::{Mat4, Vec3};
+use rslam_core::mesh_io::read_mesh_bytes;
+use rslam_core::printable;
 
 use super::srgb::linear_to_srgb;
 use super::{Mesh, Texture, Vertex};
@@ -17,7 +19,8 @@ use crate::RenderError;
 /// Reads the meshes and base-colour textures of a .gltf or .glb file.
 pub fn read_gltf(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
     let bad = |e: ::gltf::Error| RenderError::bad_mesh(path, e.to_string());
-    let ::gltf::Gltf { document, blob } = ::gltf::Gltf::open(path).map_err(bad)?;
+    let ::gltf::Gltf { document, blob } =
+        ::gltf::Gltf::from_slice(&read_mesh_bytes(path)?).map_err(bad)?;
     let base = path.parent().unwrap_or(Path::new("."));
     // gltf panics on a relative URI whose %-escapes do not decode to UTF-8.
     for buffer in document.buffers() {
@@ -183,7 +186,7 @@ impl Collector<'_> {
         }
         let bad = |message: String| RenderError::BadTexture {
             path: self.path.to_path_buf(),
-            texture: self.describe(image),
+            texture: printable(&self.describe(image)),
             message,
         };
         if let Source::Uri { uri, .. } = image.source() {

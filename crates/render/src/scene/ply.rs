@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use rslam_core::mesh_io::parse_ply;
+use rslam_core::mesh_io::{parse_ply, read_mesh_bytes};
 
 use super::{Mesh, Vertex};
 use crate::RenderError;
@@ -13,7 +13,7 @@ const DEFAULT_COLOR: [u8; 3] = [200, 200, 200];
 
 /// Reads the triangles and vertex colours of a PLY file.
 pub fn read_ply(path: &Path) -> Result<Mesh, RenderError> {
-    let bytes = std::fs::read(path).map_err(|e| RenderError::io(path, e))?;
+    let bytes = read_mesh_bytes(path)?;
     let geometry = parse_ply(&bytes).map_err(|message| RenderError::bad_mesh(path, message))?;
     let color = |i: usize| {
         let [r, g, b] = geometry.colors.as_ref().map_or(DEFAULT_COLOR, |c| c[i]);

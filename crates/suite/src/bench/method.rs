@@ -18,6 +18,8 @@
 use std::path::{Path, PathBuf};
 
 use rslam_core::dataset::DatasetFormat;
+use rslam_core::limits::MAX_REPEATS;
+use rslam_core::read_text_file;
 use serde::Deserialize;
 
 use crate::suite_file::line_of;
@@ -75,7 +77,7 @@ pub struct RunPlaces<'a> {
 
 impl Method {
     pub fn read(path: &Path) -> Result<Self, SuiteError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SuiteError::io(path, e))?;
+        let text = read_text_file(path, "a method in TOML")?;
         let bad = |line: usize, message: String| SuiteError::SuiteFile {
             path: path.to_path_buf(),
             line,
@@ -132,10 +134,13 @@ impl Method {
                 ),
             ));
         }
-        if file.repeats == 0 {
+        if !(1..=MAX_REPEATS).contains(&file.repeats) {
             return Err(bad(
                 line_with("repeats"),
-                "repeats = 0: expected at least one run per sequence".into(),
+                format!(
+                    "repeats = {}: expected 1 to {MAX_REPEATS} runs per sequence",
+                    file.repeats
+                ),
             ));
         }
         let dir = path
@@ -307,6 +312,26 @@ mod tests {
                 "name = \"a/b\"\nreads = \"tum\"\ncommand = [\"x\"]\ntimeout_s = 1\n",
                 ":1",
                 "name 'a/b'",
+            ),
+            (
+                "name = \"../../etc\"\nreads = \"tum\"\ncommand = [\"x\"]\ntimeout_s = 1\n",
+                ":1",
+                "name '../../etc': expected letters, digits",
+            ),
+            (
+                "name = \"/abs\"\nreads = \"tum\"\ncommand = [\"x\"]\ntimeout_s = 1\n",
+                ":1",
+                "name '/abs'",
+            ),
+            (
+                "name = \"..\"\nreads = \"tum\"\ncommand = [\"x\"]\ntimeout_s = 1\n",
+                ":1",
+                "name '..'",
+            ),
+            (
+                "name = \"a\"\nreads = \"tum\"\ncommand = [\"x\"]\ntimeout_s = 1\nrepeats = 1000000\n",
+                ":5",
+                "repeats = 1000000: expected 1 to 1000 runs per sequence",
             ),
             (
                 "name = \"a\"\nreads = \"tum\"\ncommand = [\"x {\"]\ntimeout_s = 1\n",

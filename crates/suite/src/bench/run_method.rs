@@ -5,7 +5,7 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
-use rslam_core::dataset::DatasetFormat;
+use rslam_core::dataset::{refuse_symlinks, DatasetFormat};
 use rslam_core::trajectory_io::{read_trajectory, TrajectoryFormat};
 
 use super::method::{Method, RunPlaces};
@@ -131,6 +131,7 @@ fn run_once(
     interrupted: &AtomicBool,
 ) -> Result<RunRecord, SuiteError> {
     let files = RunFiles::new(&suite.dir, &method.name, &sequence.name, repeat);
+    refuse_symlinks(&suite.dir, &files.dir)?;
     files.clear()?;
     let work = files.work();
     std::fs::create_dir_all(&work).map_err(|e| SuiteError::io(&work, e))?;

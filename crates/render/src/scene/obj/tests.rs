@@ -100,3 +100,65 @@ fn undecodable_texture_is_an_error_naming_texture_and_obj() {
     assert_eq!(scene.textures.len(), 1);
     assert!(scene.mesh.vertices.iter().all(|v| v.layer == 0));
 }
+
+/// tobj 4.0.5 panicked (`parse_float3` unwraps) on a colour with fewer than three numbers; found
+/// by fuzzing the material library.
+#[test]
+fn a_short_colour_in_the_material_library_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("quad.obj");
+    std::fs::write(&obj, QUAD_OBJ).unwrap();
+    for short in ["Kd 1.0", "Ka", "Ks 0.1 0.1", "Ke -1"] {
+        std::fs::write(
+            dir.path().join("quad.mtl"),
+            format!("newmtl painted\n{short}\n"),
+        )
+        .unwrap();
+        let err = load_scene(obj.to_str().unwrap()).unwrap_err().to_string();
+        assert!(
+            err.contains("quad.obj: cannot read its material library")
+                && err.contains("quad.mtl: material parse error"),
+            "{short}: {err}"
+        );
+    }
+}
+
+#[test]
+fn non_finite_coordinates_are_an_error_naming_the_object() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("tri.obj");
+    for (text, bad) in [
+        ("o tri\nv 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "NaN"),
+        (
+            "o tri\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 inf\nf 1/1 2/1 3/1\n",
+            "inf",
+        ),
+    ] {
+        std::fs::write(&obj, text).unwrap();
+        let err = load_scene(obj.to_str().unwrap()).unwrap_err().to_string();
+        assert!(
+            err.ends_with(&format!(
+                "tri.obj: object 'tri': coordinate {bad} is not a finite number"
+            )),
+            "{err}"
+        );
+    }
+}
+
+/// Found by fuzzing: a texture name holding a carriage return was quoted as is.
+#[test]
+fn a_texture_name_with_a_line_break_is_quoted_on_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("quad.obj");
+    std::fs::write(&obj, QUAD_OBJ).unwrap();
+    std::fs::write(
+        dir.path().join("quad.mtl"),
+        "newmtl painted\nmap_Kd wo\rod.png\n",
+    )
+    .unwrap();
+    let err = load_scene(obj.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.contains("wo\\rod.png") && !err.contains('\r'),
+        "{err:?}"
+    );
+}

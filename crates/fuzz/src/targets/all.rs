@@ -1,0 +1,115 @@
+//! Every fuzz target, in the order `rslam-fuzz` runs them.
+
+use super::{dataset, mesh, suite, text, trajectory};
+use crate::target::{nothing, Target};
+
+pub static TARGETS: &[Target] = &[
+    Target {
+        name: "spec",
+        file: None,
+        prepare: nothing,
+        check: text::spec,
+    },
+    Target {
+        name: "camera",
+        file: None,
+        prepare: nothing,
+        check: text::camera,
+    },
+    Target {
+        name: "shard",
+        file: None,
+        prepare: nothing,
+        check: text::shard,
+    },
+    Target {
+        name: "trajectory",
+        file: Some(trajectory::FILE),
+        prepare: nothing,
+        check: trajectory::check,
+    },
+    Target {
+        name: "ply",
+        file: Some(mesh::PLY),
+        prepare: nothing,
+        check: mesh::ply,
+    },
+    Target {
+        name: "obj",
+        file: Some(mesh::OBJ),
+        prepare: mesh::prepare_obj,
+        check: mesh::obj,
+    },
+    Target {
+        name: "mtl",
+        file: Some(mesh::MTL),
+        prepare: mesh::prepare_mtl,
+        check: mesh::mtl,
+    },
+    Target {
+        name: "gltf",
+        file: Some(mesh::GLTF),
+        prepare: nothing,
+        check: mesh::gltf,
+    },
+    Target {
+        name: "glb",
+        file: Some(mesh::GLB),
+        prepare: nothing,
+        check: mesh::glb,
+    },
+    Target {
+        name: "associations",
+        file: Some(dataset::ASSOCIATIONS),
+        prepare: dataset::prepare_tum,
+        check: dataset::associations,
+    },
+    Target {
+        name: "rgb_list",
+        file: Some(dataset::RGB_LIST),
+        prepare: dataset::prepare_tum,
+        check: dataset::rgb_list,
+    },
+    Target {
+        name: "cam_params",
+        file: Some(dataset::CAM_PARAMS),
+        prepare: dataset::prepare_replica,
+        check: dataset::cam_params,
+    },
+    Target {
+        name: "manifest",
+        file: Some(dataset::MANIFEST),
+        prepare: dataset::prepare_replica,
+        check: dataset::manifest,
+    },
+    Target {
+        name: "checksums",
+        file: Some(dataset::CHECKSUMS),
+        prepare: nothing,
+        check: dataset::checksums,
+    },
+    Target {
+        name: "image",
+        file: Some(dataset::IMAGE),
+        prepare: nothing,
+        check: dataset::image,
+    },
+    Target {
+        name: "depth_png",
+        file: Some(dataset::DEPTH_PNG),
+        prepare: nothing,
+        check: dataset::depth_png,
+    },
+    Target {
+        name: "suite",
+        file: Some(suite::SUITE),
+        prepare: suite::prepare_suite,
+        check: suite::suite,
+    },
+    Target {
+        name: "method",
+        file: Some(suite::METHOD),
+        prepare: nothing,
+        check: suite::method,
+    },
+];

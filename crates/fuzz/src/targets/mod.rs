@@ -1,0 +1,10 @@
+//! The parsers under test, grouped by what they read; [`TARGETS`] lists them all.
+
+mod all;
+mod dataset;
+mod mesh;
+mod suite;
+mod text;
+mod trajectory;
+
+pub use all::TARGETS;
