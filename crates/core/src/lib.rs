@@ -15,6 +15,7 @@ mod intrinsics;
 pub mod mesh_io;
 mod nearest_time;
 mod pose;
+pub mod se3;
 mod surface_bvh;
 mod trajectory;
 pub mod trajectory_io;
