@@ -34,7 +34,10 @@ fn left_jacobian(omega: DVec3) -> DMat3 {
         (0.5, 1.0 / 6.0)
     } else {
         let t2 = theta * theta;
-        ((1.0 - theta.cos()) / t2, (theta - theta.sin()) / (t2 * theta))
+        (
+            (1.0 - theta.cos()) / t2,
+            (theta - theta.sin()) / (t2 * theta),
+        )
     };
     DMat3::IDENTITY + k * a + k * k * b
 }

@@ -161,7 +161,9 @@ impl PerturbSpec {
                 };
                 self.misalign = Some(Misalign { frames, dynamic });
             }
-            sensor::exposure::NAME => self.exposure = Some(Exposure::parse(value, mode).map_err(err)?),
+            sensor::exposure::NAME => {
+                self.exposure = Some(Exposure::parse(value, mode).map_err(err)?)
+            }
             sensor::rolling_shutter::NAME => {
                 self.rolling_shutter = Some(RollingShutter::parse(value, mode).map_err(err)?)
             }

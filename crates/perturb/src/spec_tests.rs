@@ -147,7 +147,13 @@ fn sensor_items_parse_need_a_scene_and_print_in_pipeline_order() {
     assert_eq!(spec.to_string(), "exposure:20@8,rolling_shutter:30,fog:2");
     assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
     let e = err("exposure:20@0");
-    assert!(e.contains("exposure:20@0") && e.contains("sub-frame count"), "{e}");
+    assert!(
+        e.contains("exposure:20@0") && e.contains("sub-frame count"),
+        "{e}"
+    );
     assert!(err("rolling_shutter:fast").contains("milliseconds"));
-    assert!(err("nope:1").contains("rolling_shutter"), "sensor names are listed");
+    assert!(
+        err("nope:1").contains("rolling_shutter"),
+        "sensor names are listed"
+    );
 }

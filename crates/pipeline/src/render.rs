@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_gpu::GpuContext;
+use rslam_perturb::sensor::Shutter;
 
 use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
 use crate::manifest::ManifestParts;
@@ -46,7 +47,8 @@ pub fn render_dataset(
         extra: serde_json::json!({ "adapter": ctx.describe() }),
     }
     .build()?;
-    let source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
+    let mut source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
+    source.set_shutter(ctx, Shutter::of(&job.scene.spec), job.scene.rate_hz)?;
     let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, job.scene.seed)?;
     let output = DatasetOutput {
         out: &job.out,

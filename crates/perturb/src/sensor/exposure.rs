@@ -32,7 +32,9 @@ impl Exposure {
             .ok()
             .filter(|v| v.is_finite() && *v >= 0.0)
             .ok_or_else(|| {
-                format!("'{value}': expected an exposure time in milliseconds ≥ 0, e.g. exposure:20")
+                format!(
+                    "'{value}': expected an exposure time in milliseconds ≥ 0, e.g. exposure:20"
+                )
             })?;
         let subframes = match mode {
             None => None,
@@ -100,7 +102,12 @@ mod tests {
             Exposure::parse("7.5", Some("12")).unwrap().subframes,
             Some(12)
         );
-        for (value, mode) in [("-1", None), ("x", None), ("20", Some("0")), ("20", Some("65"))] {
+        for (value, mode) in [
+            ("-1", None),
+            ("x", None),
+            ("20", Some("0")),
+            ("20", Some("65")),
+        ] {
             assert!(Exposure::parse(value, mode).is_err(), "{value} @{mode:?}");
         }
     }
@@ -112,7 +119,10 @@ mod tests {
         assert_eq!(auto.subframes_for(7.2), 8);
         assert_eq!(auto.subframes_for(1e6), MAX_SUBFRAMES);
         assert_eq!(Exposure::parse("0", None).unwrap().subframes_for(50.0), 1);
-        assert_eq!(Exposure::parse("20", Some("5")).unwrap().subframes_for(0.0), 5);
+        assert_eq!(
+            Exposure::parse("20", Some("5")).unwrap().subframes_for(0.0),
+            5
+        );
         let offsets = auto.offsets(4);
         assert_eq!(offsets, vec![-0.0075, -0.0025, 0.0025, 0.0075]);
         assert_eq!(auto.offsets(1), vec![0.0]);

@@ -62,7 +62,11 @@ impl Shutter {
     pub fn schedule(&self, path: &CameraPath, index: usize) -> Vec<SubRender> {
         let pose_at = |t: f64| pose_along(path.poses, index as f64 + t * path.rate_hz);
         let motion_over = |seconds: f64| {
-            max_pixel_motion(&path.camera, &pose_at(-seconds / 2.0), &pose_at(seconds / 2.0))
+            max_pixel_motion(
+                &path.camera,
+                &pose_at(-seconds / 2.0),
+                &pose_at(seconds / 2.0),
+            )
         };
         let height = path.camera.height;
         let bands = match self.rolling {
@@ -171,7 +175,9 @@ mod tests {
     fn nothing_to_do_without_time_or_motion() {
         let poses = sideways();
         assert!(shutter("exposure:0").schedule(&path(&poses), 1).is_empty());
-        assert!(shutter("rolling_shutter:0").schedule(&path(&poses), 1).is_empty());
+        assert!(shutter("rolling_shutter:0")
+            .schedule(&path(&poses), 1)
+            .is_empty());
         let still = vec![Pose::IDENTITY; 3];
         assert!(shutter("exposure:30,rolling_shutter:30")
             .schedule(&path(&still), 1)
@@ -184,7 +190,9 @@ mod tests {
         // 100 ms read-out: 0.1 m of travel, 8 px at 0.5 m → 16 bands of 3 rows.
         let renders = shutter("rolling_shutter:100").schedule(&path(&poses), 2);
         assert_eq!(renders.len(), 16);
-        assert!(renders.iter().all(|r| r.depth && r.weight == 1.0 && r.starts_sum));
+        assert!(renders
+            .iter()
+            .all(|r| r.depth && r.weight == 1.0 && r.starts_sum));
         let first = &renders[0];
         assert_eq!(first.rows, 0..3);
         // Row 1 (the band's middle) is read (1.5/48 − 0.5)·0.1 s before the timestamp.

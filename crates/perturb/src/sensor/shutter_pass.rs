@@ -224,7 +224,14 @@ mod tests {
             for (i, image) in images.iter().enumerate() {
                 subframe.upload(ctx, image, None);
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
-                pass.add(ctx, &mut encoder, &subframe, rows.clone(), weights[i], i == 0);
+                pass.add(
+                    ctx,
+                    &mut encoder,
+                    &subframe,
+                    rows.clone(),
+                    weights[i],
+                    i == 0,
+                );
                 ctx.queue.submit([encoder.finish()]);
                 parts.push(WeightedRows {
                     image,
