@@ -7,7 +7,6 @@ use std::ops::Range;
 use rslam_core::dataset::SourceDataset;
 use rslam_core::{Pose, Trajectory};
 use rslam_gpu::GpuContext;
-use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
 
 use crate::depth_colormap::DepthRange;
@@ -61,7 +60,7 @@ impl FramesInMemory<SceneSource> {
         resolved: crate::scene_job::ResolvedScene,
     ) -> Result<Self, PipelineError> {
         let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
-        source.set_shutter(ctx, Shutter::of(&job.spec), job.rate_hz)?;
+        source.set_shutter(ctx, &job.spec, job.rate_hz)?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, &job.spec, job.seed)?,
             plan: resolved.plan,
@@ -94,10 +93,10 @@ impl FramesInMemory<SceneSource> {
         };
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
-        let shutter_changed =
-            self.pipeline
-                .source_mut()
-                .set_shutter(ctx, Shutter::of(spec), *rate_hz)?;
+        let shutter_changed = self
+            .pipeline
+            .source_mut()
+            .set_shutter(ctx, spec, *rate_hz)?;
         if deviated.poses != self.pipeline.source().poses() || shutter_changed {
             self.pipeline.source_mut().set_poses(deviated.poses);
             self.generation += 1;

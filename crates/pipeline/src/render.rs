@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_gpu::GpuContext;
-use rslam_perturb::sensor::Shutter;
 
 use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
 use crate::manifest::ManifestParts;
@@ -48,7 +47,7 @@ pub fn render_dataset(
     }
     .build()?;
     let mut source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
-    source.set_shutter(ctx, Shutter::of(&job.scene.spec), job.scene.rate_hz)?;
+    source.set_shutter(ctx, &job.scene.spec, job.scene.rate_hz)?;
     let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, job.scene.seed)?;
     let output = DatasetOutput {
         out: &job.out,

@@ -8,6 +8,7 @@ use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFrame, SourceDatase
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 use rslam_perturb::sensor::Shutter;
+use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
 use crate::decode_ahead::DecodeAhead;
@@ -54,14 +55,17 @@ impl SceneSource {
         })
     }
 
-    /// Captures frames under `shutter` (the spec's `exposure`, `rolling_shutter`), the path
-    /// sampled at `rate_hz`; says whether that changes the frames.
+    /// Captures frames under the shutter of `spec` (`exposure`, `rolling_shutter`), the path
+    /// sampled at `rate_hz`; says whether that changes the frames. Under `fast:K` the camera
+    /// covers K samples of the path per frame interval, during capture too.
     pub fn set_shutter(
         &mut self,
         ctx: &GpuContext,
-        shutter: Shutter,
+        spec: &PerturbSpec,
         rate_hz: f64,
     ) -> Result<bool, PipelineError> {
+        let shutter = Shutter::of(spec);
+        let rate_hz = rate_hz * spec.fast.unwrap_or(1) as f64;
         let same = match &self.shutter {
             Some(current) => current.is(&shutter, rate_hz),
             None => shutter.is_none(),

@@ -8,7 +8,6 @@ use glam::{DQuat, DVec3};
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::image_f32::srgb_to_linear;
-use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::sink::FrameSink;
 use rslam_pipeline::source::SceneSource;
@@ -101,9 +100,7 @@ fn render(scene: &Scene, poses: &[Pose], spec: &str, index: usize) -> (RgbImage,
         text => PerturbSpec::parse(text).unwrap(),
     };
     let mut source = SceneSource::new(ctx, scene, CAMERA, poses.to_vec()).unwrap();
-    source
-        .set_shutter(ctx, Shutter::of(&spec), RATE_HZ)
-        .unwrap();
+    source.set_shutter(ctx, &spec, RATE_HZ).unwrap();
     let mut pipeline = Pipeline::new(ctx, source, &spec, 0).unwrap();
     let mut sink = Collect(Vec::new());
     pipeline.run(ctx, &[index], &Silent, &mut sink).unwrap();
@@ -162,6 +159,21 @@ fn blur_length_is_speed_times_exposure_times_focal_over_depth() {
     assert!(
         (z as f64 - PLANE_Z).abs() < 1e-4,
         "depth at mid-exposure: {z}"
+    );
+}
+
+/// Under `fast:2` the camera covers two path samples per frame interval, during the exposure
+/// too: twice the blur.
+#[test]
+fn fast_motion_blurs_in_proportion() {
+    let poses = sideways(2.0);
+    let (color, _) = render(&edge_scene(), &poses, "exposure:100,fast:2", 2);
+    let row = linear_row(&color, 60);
+    let length = (crossing(&row, 0.9) - crossing(&row, 0.1)) / 0.8;
+    let expected = 2.0 * 2.0 * 0.1 * CAMERA.fx / PLANE_Z;
+    assert!(
+        (length - expected).abs() < 0.1 * expected,
+        "blur of {length:.2} px, expected {expected:.2}"
     );
 }
 
