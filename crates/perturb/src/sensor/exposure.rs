@@ -7,6 +7,8 @@ use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
+use super::parse_milliseconds;
+
 pub const NAME: &str = "exposure";
 
 /// The most sub-frames per exposure, automatic or written as `@K`.
@@ -27,15 +29,7 @@ pub struct Exposure {
 impl Exposure {
     /// Parses `MS` and the optional `@K` of `exposure:MS@K`; the error says what was expected.
     pub fn parse(value: &str, mode: Option<&str>) -> Result<Self, String> {
-        let ms = value
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite() && *v >= 0.0)
-            .ok_or_else(|| {
-                format!(
-                    "'{value}': expected an exposure time in milliseconds ≥ 0, e.g. exposure:20"
-                )
-            })?;
+        let ms = parse_milliseconds(value, "an exposure time", "exposure:20")?;
         let subframes = match mode {
             None => None,
             Some(k) => Some(

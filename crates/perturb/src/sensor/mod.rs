@@ -15,6 +15,15 @@ pub use rolling_shutter::RollingShutter;
 pub use schedule::{CameraPath, Shutter, SubRender, MAX_RENDERS};
 pub use shutter_pass::{twin, ShutterPass, WeightedRows, UNIFORMS};
 
+/// A time in milliseconds ≥ 0; the error names `what` and shows `example`.
+fn parse_milliseconds(value: &str, what: &str, example: &str) -> Result<f64, String> {
+    value
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v >= 0.0)
+        .ok_or_else(|| format!("'{value}': expected {what} in milliseconds ≥ 0, e.g. {example}"))
+}
+
 /// One sensor item for `rslam list` and the spec parser's list of names.
 pub struct SensorEntry {
     pub name: &'static str,

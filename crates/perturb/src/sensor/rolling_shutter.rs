@@ -8,6 +8,8 @@ use std::ops::Range;
 
 use serde::{Deserialize, Serialize};
 
+use super::parse_milliseconds;
+
 pub const NAME: &str = "rolling_shutter";
 
 /// The most bands of rows rendered from one pose each.
@@ -36,13 +38,7 @@ impl RollingShutter {
         if let Some(m) = mode {
             return Err(format!("rolling_shutter takes no mode, got '@{m}'"));
         }
-        let ms = value
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite() && *v >= 0.0)
-            .ok_or_else(|| {
-                format!("'{value}': expected a read-out time in milliseconds ≥ 0, e.g. rolling_shutter:30")
-            })?;
+        let ms = parse_milliseconds(value, "a read-out time", "rolling_shutter:30")?;
         Ok(Self { ms })
     }
 

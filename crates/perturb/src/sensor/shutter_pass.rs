@@ -9,7 +9,7 @@ use rslam_core::RgbImage;
 use rslam_gpu::{FrameTextures, GpuContext};
 
 use crate::image_f32::{linear_to_srgb, srgb_to_linear};
-use crate::perturbation::{view, WORKGROUP};
+use crate::perturbation::{bind_group_at, dispatch_workgroups, view, WORKGROUP};
 use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
 use crate::PerturbError;
 
@@ -87,9 +87,10 @@ impl ShutterPass {
         };
         ctx.queue
             .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-        let bind_group = bind_group(
+        let bind_group = bind_group_at(
             ctx,
             &self.accumulate,
+            SHADER,
             &[
                 (0, wgpu::BindingResource::TextureView(subframe.color_view())),
                 (1, self.sum.as_entire_binding()),
@@ -112,9 +113,10 @@ impl ShutterPass {
         frame: &FrameTextures,
     ) {
         let output = view(&frame.color);
-        let bind_group = bind_group(
+        let bind_group = bind_group_at(
             ctx,
             &self.resolve,
+            SHADER,
             &[
                 (1, self.sum.as_entire_binding()),
                 (3, wgpu::BindingResource::TextureView(&output)),
@@ -129,38 +131,15 @@ impl ShutterPass {
     }
 }
 
-fn bind_group(
-    ctx: &GpuContext,
-    pipeline: &wgpu::ComputePipeline,
-    resources: &[(u32, wgpu::BindingResource)],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = resources
-        .iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: *binding,
-            resource: resource.clone(),
-        })
-        .collect();
-    ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(SHADER),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
-}
-
+/// One pass over a `width`×`height` grid of 8×8 workgroups.
 fn dispatch(
     encoder: &mut wgpu::CommandEncoder,
     pipeline: &wgpu::ComputePipeline,
     bind_group: &wgpu::BindGroup,
     [width, height]: [u32; 2],
 ) {
-    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-        label: Some(SHADER),
-        timestamp_writes: None,
-    });
-    pass.set_pipeline(pipeline);
-    pass.set_bind_group(0, bind_group, &[]);
-    pass.dispatch_workgroups(width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1);
+    let workgroups = [width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1];
+    dispatch_workgroups(encoder, pipeline, bind_group, SHADER, workgroups);
 }
 
 /// One weighted sub-frame for [`twin`].
