@@ -157,9 +157,8 @@ pub fn twin(width: u32, height: u32, parts: &[WeightedRows]) -> RgbImage {
         for y in part.rows.clone() {
             for x in 0..width {
                 let i = (y * width + x) as usize;
-                for c in 0..3 {
-                    let v = part.image.data[i * 3 + c] as f32 / 255.0;
-                    sum[i][c] += srgb_to_linear(v) * part.weight;
+                for (total, &v) in sum[i].iter_mut().zip(&part.image.data[i * 3..i * 3 + 3]) {
+                    *total += srgb_to_linear(v as f32 / 255.0) * part.weight;
                 }
             }
         }
