@@ -48,3 +48,18 @@ fn hsv_to_rgb(hsv: vec3<f32>) -> vec3<f32> {
         default: { return vec3<f32>(v, p, q); }
     }
 }
+
+// sRGB transfer function (IEC 61966-2-1), mirrored by image_f32.rs `srgb_to_linear` /
+// `linear_to_srgb`: averaging light (exposure, vignetting) happens on linear values.
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    let low = c / 12.92;
+    let high = pow((c + 0.055) / 1.055, vec3<f32>(2.4));
+    return select(high, low, c <= vec3<f32>(0.04045));
+}
+
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let x = clamp(c, vec3<f32>(0.0), vec3<f32>(1.0));
+    let low = x * 12.92;
+    let high = 1.055 * pow(x, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(high, low, x <= vec3<f32>(0.0031308));
+}

@@ -1,5 +1,6 @@
 // Rasterizes the scene mesh: sRGB colour (through an sRGB render view, so shading is linear) and
 // metric z-depth along the optical axis into an R32Float target.
+#include "common/color.wgsl"
 
 struct Camera {
     // world → camera (OpenCV axes: x right, y down, z forward)
@@ -27,11 +28,6 @@ struct VertexOut {
     @location(3) @interpolate(flat) layer: u32,
 }
 
-fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
-    let low = c / 12.92;
-    let high = pow((c + 0.055) / 1.055, vec3<f32>(2.4));
-    return select(high, low, c <= vec3<f32>(0.04045));
-}
 
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {

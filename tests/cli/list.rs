@@ -14,6 +14,9 @@ fn list_shows_every_group_with_parameters_per_severity() {
         "[0.5, 3.8] m | [0.6, 3.6] m",
         "@smooth",
         "misalign:FRAMES[@dynamic]",
+        "Sensor effects",
+        "exposure:MS[@K]",
+        "rolling_shutter:MS",
     ] {
         assert!(out.contains(fragment), "list lacks '{fragment}':\n{out}");
     }
@@ -34,6 +37,8 @@ fn list_json_has_one_object_per_perturbation() {
         "trans",
         "fast",
         "misalign",
+        "exposure",
+        "rolling_shutter",
     ] {
         assert_eq!(
             names.iter().filter(|&&n| n == name).count(),

@@ -12,5 +12,6 @@ mod perturb;
 mod render;
 mod resume;
 mod scene;
+mod sensor;
 mod suite;
 mod view;

@@ -17,6 +17,7 @@ pub mod limits;
 pub mod mesh_io;
 mod nearest_time;
 mod pose;
+pub mod se3;
 mod surface_bvh;
 mod trajectory;
 pub mod trajectory_io;

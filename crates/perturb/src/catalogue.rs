@@ -24,6 +24,7 @@ pub static CATALOGUE: &[CatalogueEntry] = &[
     image::frost::ENTRY,
     image::snow::ENTRY,
     image::spatter::ENTRY,
+    image::vignetting::ENTRY,
     depth::depth_noise::ENTRY,
     depth::depth_edge_erosion::ENTRY,
     depth::depth_missing::ENTRY,

@@ -87,3 +87,22 @@ impl RgbF32 {
 pub fn truncate8(v: f32) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0).floor() as u8
 }
+
+/// sRGB-encoded value in [0, 1] → linear light (WGSL `srgb_to_linear`, IEC 61966-2-1).
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Linear light → sRGB-encoded value in [0, 1], clipped (WGSL `linear_to_srgb`).
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let x = c.clamp(0.0, 1.0);
+    if x <= 0.0031308 {
+        x * 12.92
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}

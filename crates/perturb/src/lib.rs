@@ -2,7 +2,9 @@
 //! trajectory and stream operations.
 //!
 //! Data flow: a `--perturb` string is parsed into a [`PerturbSpec`]. Trajectory items (`rot`,
-//! `trans`) deviate the poses before rendering ([`trajectory`]). The renderer leaves each frame
+//! `trans`) deviate the poses before rendering ([`trajectory`]); sensor items (`exposure`,
+//! `rolling_shutter`) tell the renderer which poses of the capture interval to draw and sum
+//! ([`sensor`]). The renderer leaves each frame
 //! in [`rslam_gpu::FrameTextures`]; a [`Perturber`] records the spec's image corruptions and then
 //! its depth corruptions into the frame's command encoder, each one a [`GpuPerturbation`] from the
 //! [`CATALOGUE`] transforming the textures in place, and reports the severity each got. Stream
@@ -25,6 +27,7 @@ mod perturbation;
 mod perturber;
 pub mod reduce;
 pub mod rng;
+pub mod sensor;
 mod spec;
 pub mod stream;
 #[cfg(test)]

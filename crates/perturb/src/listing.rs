@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::sensor::SENSOR_ITEMS;
 use crate::trajectory::{SMOOTH_BAND_HZ, SMOOTH_TONES};
 use crate::{Group, CATALOGUE};
 
@@ -10,7 +11,7 @@ use crate::{Group, CATALOGUE};
 #[derive(Clone, Debug, Serialize)]
 pub struct ListEntry {
     pub name: &'static str,
-    /// "image", "depth", "trajectory" or "stream".
+    /// "image", "depth", "trajectory", "stream" or "sensor".
     pub group: &'static str,
     /// How to write it in a spec.
     pub syntax: String,
@@ -20,7 +21,7 @@ pub struct ListEntry {
 }
 
 /// Every perturbation: image, then depth corruptions (catalogue order), then trajectory and
-/// stream items.
+/// stream items, then sensor effects.
 pub fn listing() -> Vec<ListEntry> {
     let mut entries: Vec<ListEntry> = CATALOGUE
         .iter()
@@ -84,6 +85,13 @@ pub fn listing() -> Vec<ListEntry> {
                 parameters: Vec::new(),
             }),
     );
+    entries.extend(SENSOR_ITEMS.iter().map(|e| ListEntry {
+        name: e.name,
+        group: "sensor",
+        syntax: e.syntax.to_string(),
+        description: e.description.to_string(),
+        parameters: Vec::new(),
+    }));
     entries
 }
 

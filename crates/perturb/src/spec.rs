@@ -6,11 +6,12 @@
 //!        | NAME ':' EXPLICIT                               e.g. depth_range:0.42-10
 //!        | 'rot:' DEGREES ['@smooth'] | 'trans:' METRES ['@smooth']
 //!        | 'fast:' K | 'misalign:' FRAMES ['@dynamic']
+//!        | 'exposure:' MS ['@' K] | 'rolling_shutter:' MS      sensor effects (need a scene)
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)
 //! ```
 //!
-//! Whatever the written order, the pipeline order is trajectory → render → image → depth →
-//! stream; inside the image and depth groups the written order is the order applied.
+//! Whatever the written order, the pipeline order is trajectory → render (with the sensor
+//! effects) → image → depth → stream; inside the image and depth groups the written order is the order applied.
 
 use std::fmt;
 use std::str::FromStr;
@@ -18,6 +19,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::catalogue::{self, CATALOGUE};
+use crate::sensor::{self, Exposure, RollingShutter, SENSOR_ITEMS};
 use crate::{Group, PerturbError};
 
 /// A parsed `--perturb` string; serialisable for the manifest, `Display` gives the canonical form.
@@ -35,6 +37,12 @@ pub struct PerturbSpec {
     pub fast: Option<u32>,
     /// `misalign:D`: depth lags colour by D frames.
     pub misalign: Option<Misalign>,
+    /// `exposure:MS[@K]`: motion blur of the camera's own motion.
+    #[serde(default)]
+    pub exposure: Option<Exposure>,
+    /// `rolling_shutter:MS`: rows read out over MS milliseconds.
+    #[serde(default)]
+    pub rolling_shutter: Option<RollingShutter>,
 }
 
 /// One image or depth corruption of a spec.
@@ -153,12 +161,17 @@ impl PerturbSpec {
                 };
                 self.misalign = Some(Misalign { frames, dynamic });
             }
+            sensor::exposure::NAME => {
+                self.exposure = Some(Exposure::parse(value, mode).map_err(err)?)
+            }
+            sensor::rolling_shutter::NAME => {
+                self.rolling_shutter = Some(RollingShutter::parse(value, mode).map_err(err)?)
+            }
             _ => {
                 let entry = catalogue::find(name).ok_or_else(|| {
                     err(format!(
-                        "unknown perturbation '{name}'; valid: {}, {}",
-                        catalogue::names(),
-                        TRAJECTORY_AND_STREAM.join(", ")
+                        "unknown perturbation '{name}'; valid: {}",
+                        all_names().join(", ")
                     ))
                 })?;
                 let level = parse_level(entry, value, mode).map_err(err)?;
@@ -180,9 +193,34 @@ impl PerturbSpec {
         *self == PerturbSpec::default()
     }
 
-    /// True when the spec deviates the trajectory, so frames must be rendered from a scene.
+    /// True when frames must be rendered from a scene: the trajectory is deviated, or a sensor
+    /// effect forms the image from the camera's motion.
     pub fn needs_scene(&self) -> bool {
-        self.rotation.is_some() || self.translation.is_some()
+        !self.scene_items().is_empty()
+    }
+
+    /// The items that need a scene, as written canonically (`rot:1`, `exposure:20`, …).
+    pub fn scene_items(&self) -> Vec<String> {
+        let mut items = self.deviation_items();
+        items.extend(self.sensor_items());
+        items
+    }
+
+    fn deviation_items(&self) -> Vec<String> {
+        [("rot", self.rotation), ("trans", self.translation)]
+            .into_iter()
+            .filter_map(|(name, deviation)| {
+                let d = deviation?;
+                let mode = if d.smooth { "@smooth" } else { "" };
+                Some(format!("{name}:{}{mode}", d.sigma))
+            })
+            .collect()
+    }
+
+    fn sensor_items(&self) -> Vec<String> {
+        let exposure = self.exposure.map(|e| e.to_string());
+        let rolling = self.rolling_shutter.map(|r| r.to_string());
+        exposure.into_iter().chain(rolling).collect()
     }
 
     /// Image then depth items, in the order they are applied.
@@ -268,15 +306,10 @@ impl fmt::Display for FrameItem {
 }
 
 impl fmt::Display for PerturbSpec {
-    /// Canonical pipeline order: rot, trans, image items, depth items, fast, misalign.
+    /// Canonical pipeline order: rot, trans, exposure, rolling_shutter, image items, depth
+    /// items, fast, misalign.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mut parts: Vec<String> = Vec::new();
-        for (name, deviation) in [("rot", self.rotation), ("trans", self.translation)] {
-            if let Some(d) = deviation {
-                let mode = if d.smooth { "@smooth" } else { "" };
-                parts.push(format!("{name}:{}{mode}", d.sigma));
-            }
-        }
+        let mut parts = self.scene_items();
         parts.extend(self.frame_items().map(|item| item.to_string()));
         if let Some(k) = self.fast {
             parts.push(format!("fast:{k}"));
@@ -289,12 +322,14 @@ impl fmt::Display for PerturbSpec {
     }
 }
 
-/// Every name a spec accepts (catalogue entries, then trajectory and stream items).
+/// Every name a spec accepts (catalogue entries, then trajectory and stream items, then sensor
+/// effects).
 pub fn all_names() -> Vec<&'static str> {
     CATALOGUE
         .iter()
         .map(|e| e.name)
         .chain(TRAJECTORY_AND_STREAM)
+        .chain(SENSOR_ITEMS.iter().map(|e| e.name))
         .collect()
 }
 

@@ -147,3 +147,30 @@ fn errors_quote_line_breaks_as_escapes() {
         "{err}"
     );
 }
+
+#[test]
+fn sensor_items_parse_need_a_scene_and_print_in_pipeline_order() {
+    let spec = PerturbSpec::parse("fog:2,rolling_shutter:30,exposure:20@8").unwrap();
+    assert_eq!(
+        spec.exposure,
+        Some(Exposure {
+            ms: 20.0,
+            subframes: Some(8)
+        })
+    );
+    assert_eq!(spec.rolling_shutter, Some(RollingShutter { ms: 30.0 }));
+    assert!(spec.needs_scene());
+    assert_eq!(spec.scene_items(), ["exposure:20@8", "rolling_shutter:30"]);
+    assert_eq!(spec.to_string(), "exposure:20@8,rolling_shutter:30,fog:2");
+    assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
+    let e = err("exposure:20@0");
+    assert!(
+        e.contains("exposure:20@0") && e.contains("sub-frame count"),
+        "{e}"
+    );
+    assert!(err("rolling_shutter:fast").contains("milliseconds"));
+    assert!(
+        err("nope:1").contains("rolling_shutter"),
+        "sensor names are listed"
+    );
+}

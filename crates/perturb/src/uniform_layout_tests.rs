@@ -9,6 +9,15 @@ use naga::{AddressSpace, TypeInner};
 use crate::uniform_layout::UniformLayout;
 use crate::CATALOGUE;
 
+/// The catalogue's uniform structs and the sensor effects' one.
+fn all_layouts() -> Vec<&'static UniformLayout> {
+    CATALOGUE
+        .iter()
+        .flat_map(|e| e.uniforms)
+        .chain([&crate::sensor::UNIFORMS])
+        .collect()
+}
+
 /// A shader with its includes resolved, parsed by naga.
 fn parse(shader: &str) -> Result<naga::Module, String> {
     let source = rslam_gpu::shader::source(shader).map_err(|e| e.to_string())?;
@@ -79,7 +88,7 @@ fn differences(layout: &UniformLayout) -> Vec<String> {
 
 #[test]
 fn every_uniform_struct_matches_its_wgsl_layout() {
-    let layouts: Vec<&UniformLayout> = CATALOGUE.iter().flat_map(|e| e.uniforms).collect();
+    let layouts = all_layouts();
     assert!(!layouts.is_empty(), "the catalogue lists no uniform struct");
     let failures: Vec<String> = layouts.iter().flat_map(|l| differences(l)).collect();
     assert!(
@@ -110,7 +119,7 @@ fn included() -> Vec<String> {
 /// array of structs) in a perturbation shader must be listed by some catalogue entry.
 #[test]
 fn every_struct_buffer_of_a_perturbation_shader_is_listed() {
-    let layouts: Vec<&UniformLayout> = CATALOGUE.iter().flat_map(|e| e.uniforms).collect();
+    let layouts = all_layouts();
     let included = included();
     let shaders: Vec<&str> = rslam_gpu::shader::paths()
         .filter(|path| path.starts_with("perturb/") && !included.iter().any(|i| i == path))

@@ -59,7 +59,8 @@ impl FramesInMemory<SceneSource> {
         job: &SceneJob,
         resolved: crate::scene_job::ResolvedScene,
     ) -> Result<Self, PipelineError> {
-        let source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
+        let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
+        source.set_shutter(ctx, &job.spec, job.rate_hz)?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, &job.spec, job.seed)?,
             plan: resolved.plan,
@@ -92,7 +93,11 @@ impl FramesInMemory<SceneSource> {
         };
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
-        if deviated.poses != self.pipeline.source().poses() {
+        let shutter_changed = self
+            .pipeline
+            .source_mut()
+            .set_shutter(ctx, spec, *rate_hz)?;
+        if deviated.poses != self.pipeline.source().poses() || shutter_changed {
             self.pipeline.source_mut().set_poses(deviated.poses);
             self.generation += 1;
         }

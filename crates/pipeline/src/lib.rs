@@ -3,7 +3,8 @@
 //! Data flow: a job (`RenderJob`, `PerturbDatasetJob`, `PerturbImagesJob`) or an in-memory caller
 //! ([`FramesInMemory`]) picks a [`source`] — a scene drawn along a (deviated) path, a dataset or
 //! image files decoded ahead, buffers in memory — and makes the [`FramePlan`] before any frame is
-//! drawn: which source frame each output frame's colour and depth come from, their capture times
+//! drawn (a scene under a shutter — `exposure`, `rolling_shutter` — draws each frame from the
+//! poses of its capture interval and sums them on the GPU): which source frame each output frame's colour and depth come from, their capture times
 //! and every frame's severities. The [`Pipeline`] records each needed source frame and its image
 //! then depth corruptions into one command encoder, keeps several frames in flight and reads each
 //! back once; a [`sink`] encodes it into a dataset on worker threads or assembles output frames
@@ -30,6 +31,7 @@ mod progress;
 mod render;
 mod scene_job;
 mod shown_frame;
+mod shutter_render;
 pub mod sink;
 pub mod source;
 

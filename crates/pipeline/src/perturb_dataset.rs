@@ -58,10 +58,10 @@ pub fn check_dataset_spec(
     dataset: &SourceDataset,
     spec: &PerturbSpec,
 ) -> Result<(), PipelineError> {
-    if spec.needs_scene() {
+    if let Some(item) = spec.scene_items().first() {
         return Err(PipelineError::option(
             "--perturb",
-            format!("'{spec}': trajectory deviations (rot, trans) re-render the frames along new poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
+            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
         ));
     }
     if !spec.depth.is_empty() {

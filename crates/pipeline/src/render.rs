@@ -46,7 +46,8 @@ pub fn render_dataset(
         extra: serde_json::json!({ "adapter": ctx.describe() }),
     }
     .build()?;
-    let source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
+    let mut source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
+    source.set_shutter(ctx, &job.scene.spec, job.scene.rate_hz)?;
     let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, job.scene.seed)?;
     let output = DatasetOutput {
         out: &job.out,

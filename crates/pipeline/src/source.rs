@@ -7,9 +7,12 @@ use std::collections::HashMap;
 use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFrame, SourceDataset};
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
+use rslam_perturb::sensor::Shutter;
+use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
 use crate::decode_ahead::DecodeAhead;
+use crate::shutter_render::ShutterRender;
 use crate::PipelineError;
 
 pub trait FrameSource {
@@ -30,10 +33,12 @@ pub trait FrameSource {
     ) -> Result<(), PipelineError>;
 }
 
-/// A mesh drawn along a path: source frame `i` is the view from `poses[i]`.
+/// A mesh drawn along a path: source frame `i` is the view from `poses[i]`, or under a shutter
+/// the views from the poses around it during capture.
 pub struct SceneSource {
     rasterizer: Rasterizer,
     poses: Vec<Pose>,
+    shutter: Option<ShutterRender>,
 }
 
 impl SceneSource {
@@ -46,7 +51,29 @@ impl SceneSource {
         Ok(Self {
             rasterizer: Rasterizer::new(ctx, scene, camera)?,
             poses,
+            shutter: None,
         })
+    }
+
+    /// Captures frames under the shutter of `spec` (`exposure`, `rolling_shutter`), the path
+    /// sampled at `rate_hz`; says whether that changes the frames. Under `fast:K` the camera
+    /// covers K samples of the path per frame interval, during capture too.
+    pub fn set_shutter(
+        &mut self,
+        ctx: &GpuContext,
+        spec: &PerturbSpec,
+        rate_hz: f64,
+    ) -> Result<bool, PipelineError> {
+        let shutter = Shutter::of(spec);
+        let rate_hz = rate_hz * spec.fast.unwrap_or(1) as f64;
+        let same = match &self.shutter {
+            Some(current) => current.is(&shutter, rate_hz),
+            None => shutter.is_none(),
+        };
+        if !same {
+            self.shutter = ShutterRender::new(ctx, shutter, rate_hz, self.size())?;
+        }
+        Ok(!same)
     }
 
     pub fn poses(&self) -> &[Pose] {
@@ -58,7 +85,8 @@ impl SceneSource {
         self.poses = poses;
     }
 
-    /// Records the view from `world_from_camera`, off the path (a free camera).
+    /// Records the view from `world_from_camera`, off the path (a free camera, at rest: no
+    /// shutter effect).
     pub fn record_from(
         &self,
         ctx: &GpuContext,
@@ -92,6 +120,13 @@ impl FrameSource for SceneSource {
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
+        if let Some(shutter) = &self.shutter {
+            let renders = shutter.schedule(&self.rasterizer, &self.poses, index);
+            if !renders.is_empty() {
+                shutter.record(ctx, &self.rasterizer, &renders, encoder, frame);
+                return Ok(());
+            }
+        }
         self.rasterizer
             .encode(ctx, encoder, frame, &self.poses[index]);
         Ok(())

@@ -25,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let render_state = render_state_for(&ctx)?;
     let spec = PerturbSpec::parse("fog:3,gaussian_noise:3")?;
     let options = ViewOptions {
-        source: ViewSource::Scene(SceneJob {
+        source: ViewSource::Scene(Box::new(SceneJob {
             scene: "room0".into(),
             trajectory: None,
             frames: Some(10),
@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             rate_hz: 20.0,
             spec: spec.clone(),
             seed: 0,
-        }),
+        })),
         spec,
         seed: 0,
         estimate: None,

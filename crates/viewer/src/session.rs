@@ -25,7 +25,7 @@ use crate::ViewerError;
 pub enum ViewSource {
     /// A built-in scene or mesh along a path; the job's spec and seed are replaced by the
     /// options'.
-    Scene(SceneJob),
+    Scene(Box<SceneJob>),
     /// A dataset folder (Replica or TUM layout).
     Dataset(PathBuf),
 }
@@ -104,7 +104,7 @@ impl Session {
                 let job = SceneJob {
                     spec: options.spec.clone(),
                     seed: options.seed,
-                    ..job.clone()
+                    ..(**job).clone()
                 };
                 Sequence::scene(&self.ctx, &job)?
             }

@@ -2,6 +2,7 @@
 //! parameters, static or dynamic) and the path and stream items, turned into a spec string that
 //! the spec parser of `rslam-perturb` reads, the same string `rslam render --perturb` takes.
 
+use rslam_perturb::sensor::{Exposure, RollingShutter};
 use rslam_perturb::{find, Level, PerturbSpec, CATALOGUE};
 
 /// How one catalogue item is set.
@@ -82,6 +83,10 @@ pub struct SpecEditor {
     pub fast: Option<u32>,
     /// `misalign:FRAMES`, and `@dynamic`.
     pub misalign: Option<(u32, bool)>,
+    /// `exposure:MS[@K]` (scenes only), kept as given: the panel has no control for it yet.
+    pub exposure: Option<Exposure>,
+    /// `rolling_shutter:MS` (scenes only), kept as given.
+    pub rolling_shutter: Option<RollingShutter>,
 }
 
 impl SpecEditor {
@@ -119,6 +124,8 @@ impl SpecEditor {
             translation: deviation(spec.translation),
             fast: spec.fast,
             misalign: spec.misalign.map(|m| (m.frames, m.dynamic)),
+            exposure: spec.exposure,
+            rolling_shutter: spec.rolling_shutter,
         }
     }
 
@@ -165,6 +172,8 @@ impl SpecEditor {
                 parts.push(format!("{name}:{}{mode}", d.sigma));
             }
         }
+        parts.extend(self.exposure.map(|e| e.to_string()));
+        parts.extend(self.rolling_shutter.map(|r| r.to_string()));
         parts.extend(self.items.iter().map(EditorItem::text));
         if let Some(k) = self.fast {
             parts.push(format!("fast:{k}"));
@@ -191,7 +200,7 @@ mod tests {
 
     #[test]
     fn a_spec_round_trips_through_the_editor() {
-        let text = "rot:0.5@smooth,fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
+        let text = "rot:0.5@smooth,exposure:20@8,rolling_shutter:30,fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
         let spec = PerturbSpec::parse(text).unwrap();
         let editor = SpecEditor::from_spec(&spec);
         assert_eq!(editor.spec().unwrap(), spec);

@@ -103,7 +103,7 @@ const VISIBLE_CHANGE: f64 = 0.5;
 #[test]
 fn fog_added_in_the_panel_and_its_slider_moved_changes_the_frame() {
     let options = ViewOptions {
-        source: ViewSource::Scene(scene_job(3)),
+        source: ViewSource::Scene(Box::new(scene_job(3))),
         spec: PerturbSpec::default(),
         seed: 0,
         estimate: None,
@@ -224,7 +224,7 @@ fn scrubbing_a_dataset_moves_the_frame_index_and_the_trajectory_marker() {
 #[test]
 fn main_window_matches_its_snapshot() {
     let options = ViewOptions {
-        source: ViewSource::Scene(scene_job(4)),
+        source: ViewSource::Scene(Box::new(scene_job(4))),
         spec: PerturbSpec::parse("fog:2,gaussian_noise:1@dynamic,depth_missing:3,misalign:1")
             .unwrap(),
         seed: 7,
@@ -259,7 +259,7 @@ fn an_unreadable_dataset_and_a_bad_spec_show_as_one_line_in_the_window() {
     harness.get_by_label("nothing to show (see the error above)");
 
     let options = ViewOptions {
-        source: ViewSource::Scene(scene_job(2)),
+        source: ViewSource::Scene(Box::new(scene_job(2))),
         spec: PerturbSpec::parse("fog:2").unwrap(),
         seed: 0,
         estimate: None,

@@ -60,7 +60,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
             }
             ViewSource::Dataset(dataset)
         }
-        (None, Some(scene)) => ViewSource::Scene(SceneJob {
+        (None, Some(scene)) => ViewSource::Scene(Box::new(SceneJob {
             scene,
             trajectory: args.traj,
             frames: args.frames,
@@ -70,7 +70,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
                 .unwrap_or(Intrinsics::preset_rate_hz(&args.camera)),
             spec: spec.clone(),
             seed: args.seed,
-        }),
+        })),
         _ => bail!("give a DATASET folder or --scene NAME|MESH"),
     };
     if let Some(estimate) = &args.estimate {

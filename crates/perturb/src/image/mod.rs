@@ -24,4 +24,5 @@ pub mod snow;
 pub mod spatter;
 pub mod speckle_noise;
 pub mod textures;
+pub mod vignetting;
 pub mod zoom_blur;

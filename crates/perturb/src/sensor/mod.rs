@@ -1,0 +1,45 @@
+//! Sensor effects formed from the camera's own motion during capture, not filters on a finished
+//! image: `exposure` (motion blur of the true motion) and `rolling_shutter` (rows read out at
+//! their own instants). They need the renderer, so they run where frames are drawn from a scene:
+//! the pipeline's scene source asks [`Shutter::schedule`] for the renders of each frame, draws
+//! them, and sums them on the GPU with [`ShutterPass`] before any image corruption runs.
+
+pub mod exposure;
+pub mod pixel_motion;
+pub mod rolling_shutter;
+mod schedule;
+mod shutter_pass;
+
+pub use exposure::Exposure;
+pub use rolling_shutter::RollingShutter;
+pub use schedule::{CameraPath, Shutter, SubRender, MAX_RENDERS};
+pub use shutter_pass::{twin, ShutterPass, WeightedRows, UNIFORMS};
+
+/// A time in milliseconds ≥ 0; the error names `what` and shows `example`.
+fn parse_milliseconds(value: &str, what: &str, example: &str) -> Result<f64, String> {
+    value
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v >= 0.0)
+        .ok_or_else(|| format!("'{value}': expected {what} in milliseconds ≥ 0, e.g. {example}"))
+}
+
+/// One sensor item for `rslam list` and the spec parser's list of names.
+pub struct SensorEntry {
+    pub name: &'static str,
+    pub syntax: &'static str,
+    pub description: &'static str,
+}
+
+pub static SENSOR_ITEMS: &[SensorEntry] = &[
+    SensorEntry {
+        name: exposure::NAME,
+        syntax: "exposure:MS[@K]",
+        description: "motion blur of the camera's own motion: K renders from poses spread over an exposure of MS ms (SE(3)-interpolated path), averaged in linear light; K from the predicted pixel motion (≤ 1 px per sub-frame, at most 64) unless @K; timestamp and ground truth at mid-exposure; needs a scene",
+    },
+    SensorEntry {
+        name: rolling_shutter::NAME,
+        syntax: "rolling_shutter:MS",
+        description: "rows read out top to bottom over MS ms, each from the pose at its read-out time (colour and depth; bands of ≤ 0.5 px motion); timestamp and ground truth at the middle row; needs a scene",
+    },
+];
