@@ -93,7 +93,7 @@ fn bad_scenes_and_paths_are_one_line_errors() {
         .fails_with(2, &["missing.obj"]);
     ws.write("cut.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n\x01");
     ws.rslam(&["scene", "export", "cut.ply", "--out", "gt.ply"])
-        .fails_with(2, &["cut.ply", "file ends early"]);
+        .fails_with(2, &["cut.ply", "declares 2 records"]);
     ws.rslam(&["scene", "export", "room1", "--out", "no/such/dir/gt.ply"])
         .fails_with(2, &["no/such/dir/gt.ply"]);
 }

@@ -242,7 +242,7 @@ fn a_suite_that_cannot_fit_is_refused_before_anything_is_written() {
     let ws = Workspace::new();
     suite_in(
         &ws,
-        "[[sequence]]\nname = \"room0__huge\"\nscene = \"room0\"\ncamera = \"40000,40000,20000,20000,19999.5,19999.5\"\n",
+        "[[sequence]]\nname = \"room0__huge\"\nscene = \"room0\"\ncamera = \"16000,16000,8000,8000,7999.5,7999.5\"\nframes = 1000000\n",
     );
     let plan = ws.rslam(&["suite", "status", "suite", "--plan"]);
     assert!(

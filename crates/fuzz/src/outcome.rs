@@ -1,6 +1,6 @@
 //! One input through one target: what came back, and whether it is a finding.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Once;
 
@@ -27,14 +27,21 @@ pub struct Finding {
 thread_local! {
     /// The message and place of the last panic on this thread, set by the hook.
     static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// Whether this thread is inside [`run_one`]'s `catch_unwind`.
+    static IN_RUN: Cell<bool> = const { Cell::new(false) };
 }
 
-/// Replaces the default panic printout (one per input would flood the output) with a record
-/// that [`run_one`] reads back.
+/// Inside [`run_one`], replaces the panic printout (one per input would flood the output) with a
+/// record that [`run_one`] reads back; elsewhere (a failing test's own panic) the previous hook
+/// prints as usual.
 fn install_panic_hook() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
-        std::panic::set_hook(Box::new(|info| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !IN_RUN.with(Cell::get) {
+                return previous(info);
+            }
             let place = info
                 .location()
                 .map_or(String::new(), |l| format!(" at {}:{}", l.file(), l.line()));
@@ -53,7 +60,10 @@ fn install_panic_hook() {
 /// the input's file are findings.
 pub fn run_one(target: &Target, scratch: &Scratch, input: &[u8]) -> Outcome {
     install_panic_hook();
-    match catch_unwind(AssertUnwindSafe(|| (target.check)(scratch, input))) {
+    IN_RUN.with(|r| r.set(true));
+    let result = catch_unwind(AssertUnwindSafe(|| (target.check)(scratch, input)));
+    IN_RUN.with(|r| r.set(false));
+    match result {
         Ok(Ok(())) => Outcome::Accepted,
         Ok(Err(message)) if message.contains(['\n', '\r']) => Outcome::Found(Finding {
             kind: "multi-line error",

@@ -18,9 +18,21 @@ use crate::RenderError;
 
 /// Reads the meshes and base-colour textures of a .gltf or .glb file.
 pub fn read_gltf(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
+    let bytes = read_mesh_bytes(path)?;
+    check_attribute_accessors(path, &bytes)?;
+    // The gltf crate (1.4) still panics on some inconsistent files, e.g. a buffer view whose
+    // offset + length overflows (found by fuzzing); such a file is refused like any other.
+    std::panic::catch_unwind(|| read_document(path, &bytes)).unwrap_or_else(|_| {
+        Err(RenderError::bad_mesh(
+            path,
+            "inconsistent offsets, lengths or indices (the glTF reader failed on them)",
+        ))
+    })
+}
+
+fn read_document(path: &Path, bytes: &[u8]) -> Result<(Mesh, Vec<Texture>), RenderError> {
     let bad = |e: ::gltf::Error| RenderError::bad_mesh(path, e.to_string());
-    let ::gltf::Gltf { document, blob } =
-        ::gltf::Gltf::from_slice(&read_mesh_bytes(path)?).map_err(bad)?;
+    let ::gltf::Gltf { document, blob } = ::gltf::Gltf::from_slice(bytes).map_err(bad)?;
     let base = path.parent().unwrap_or(Path::new("."));
     // gltf panics on a relative URI whose %-escapes do not decode to UTF-8.
     for buffer in document.buffers() {
@@ -42,12 +54,54 @@ pub fn read_gltf(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
         .or_else(|| document.scenes().next())
     {
         Some(scene) => scene.nodes().collect(),
-        None => document.nodes().collect(),
+        // No scene: every node that is nobody's child.
+        None => {
+            let mut is_child = vec![false; document.nodes().len()];
+            for child in document.nodes().flat_map(|n| n.children()) {
+                is_child[child.index()] = true;
+            }
+            document.nodes().filter(|n| !is_child[n.index()]).collect()
+        }
     };
+    let mut visited = vec![false; document.nodes().len()];
     for node in roots {
-        out.node(&node, Mat4::IDENTITY)?;
+        out.node(&node, Mat4::IDENTITY, &mut visited)?;
     }
     Ok((out.mesh, out.textures))
+}
+
+/// gltf-json 1.4's validation indexes the accessor list with a primitive's POSITION accessor
+/// unchecked and panics when it is out of range (found by fuzzing), so attribute accessors are
+/// checked first on the unvalidated JSON.
+fn check_attribute_accessors(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
+    let json = if bytes.starts_with(b"glTF") {
+        match ::gltf::Glb::from_slice(bytes) {
+            Ok(glb) => glb.json.into_owned(),
+            Err(_) => return Ok(()), // the full parse reports it
+        }
+    } else {
+        bytes.to_vec()
+    };
+    let Ok(root) = ::gltf::json::Root::from_slice(&json) else {
+        return Ok(()); // the full parse reports it
+    };
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for index in primitive.attributes.values() {
+                if index.value() >= root.accessors.len() {
+                    return Err(RenderError::bad_mesh(
+                        path,
+                        format!(
+                            "mesh {m} primitive {p}: accessor {} out of range ({} accessors)",
+                            index.value(),
+                            root.accessors.len()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 struct Collector<'a> {
@@ -61,7 +115,23 @@ struct Collector<'a> {
 }
 
 impl Collector<'_> {
-    fn node(&mut self, node: &::gltf::Node, parent: Mat4) -> Result<(), RenderError> {
+    /// Walks the node tree; a node met twice (a cycle, or a node with two parents, which glTF
+    /// forbids) is an error rather than endless or exponential recursion.
+    fn node(
+        &mut self,
+        node: &::gltf::Node,
+        parent: Mat4,
+        visited: &mut [bool],
+    ) -> Result<(), RenderError> {
+        if std::mem::replace(&mut visited[node.index()], true) {
+            return Err(RenderError::bad_mesh(
+                self.path,
+                format!(
+                    "node {} is reached twice (the node hierarchy must be a tree)",
+                    node.index()
+                ),
+            ));
+        }
         let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
@@ -69,7 +139,7 @@ impl Collector<'_> {
             }
         }
         for child in node.children() {
-            self.node(&child, world)?;
+            self.node(&child, world, visited)?;
         }
         Ok(())
     }

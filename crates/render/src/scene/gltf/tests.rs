@@ -269,3 +269,48 @@ fn undecodable_uri_is_an_error_not_a_panic() {
     let err = read_gltf(&bad_buffer).unwrap_err().to_string();
     assert!(err.contains("tri%C3.bin"), "{err}");
 }
+
+/// The triangle document with an external buffer, edited by `edit`; read back.
+fn read_edited(edit: impl Fn(String) -> String) -> Result<(Mesh, Vec<Texture>), RenderError> {
+    let dir = tempfile::tempdir().unwrap();
+    let buffer = triangle_buffer();
+    std::fs::write(dir.path().join("tri.bin"), &buffer).unwrap();
+    std::fs::write(dir.path().join("tex.png"), png_2x1()).unwrap();
+    let buffer_json = format!(r#"{{"uri": "tri.bin", "byteLength": {}}}"#, buffer.len());
+    let path = dir.path().join("edited.gltf");
+    std::fs::write(&path, edit(document(&buffer_json, r#"{"uri": "tex.png"}"#))).unwrap();
+    read_gltf(&path)
+}
+
+/// Found by fuzzing: gltf-json's validation indexed the accessors with POSITION unchecked.
+#[test]
+fn a_position_accessor_out_of_range_is_an_error_not_a_panic() {
+    let err = read_edited(|d| d.replace(r#""POSITION": 0"#, r#""POSITION": 7"#)).unwrap_err();
+    assert!(err.to_string().contains("accessor 7 out of range"), "{err}");
+}
+
+/// Found by fuzzing: a node that is its own descendant recursed until the stack overflowed.
+#[test]
+fn a_cycle_in_the_node_tree_is_an_error_not_a_stack_overflow() {
+    let err = read_edited(|d| {
+        d.replace(
+            r#"{"mesh": 0, "scale""#,
+            r#"{"mesh": 0, "children": [0], "scale""#,
+        )
+    })
+    .unwrap_err();
+    assert!(err.to_string().contains("reached twice"), "{err}");
+}
+
+/// Found by fuzzing: the gltf crate added a buffer view's offset and length unchecked.
+#[test]
+fn an_overflowing_buffer_view_is_an_error_not_a_panic() {
+    let err = read_edited(|d| {
+        d.replace(
+            r#""byteOffset": 36, "byteLength": 24"#,
+            r#""byteOffset": 18446744073709551615, "byteLength": 24"#,
+        )
+    })
+    .unwrap_err();
+    assert!(err.to_string().contains("edited.gltf"), "{err}");
+}
