@@ -75,6 +75,21 @@ impl DepthImage {
         self.data[y as usize * self.width as usize + x as usize]
     }
 
+    /// From native-endian f32 rows `row_stride` bytes apart (a padded GPU readback), one row copy
+    /// at a time: an element-wise unpack of mapped GPU memory cost 5 ms a 1200×680 frame.
+    pub fn from_f32_rows(width: u32, height: u32, bytes: &[u8], row_stride: usize) -> Self {
+        let mut image = Self::new(width, height);
+        let row = width as usize * 4;
+        for (to, from) in image
+            .data
+            .chunks_exact_mut(width as usize)
+            .zip(bytes.chunks(row_stride))
+        {
+            bytemuck::cast_slice_mut::<f32, u8>(to).copy_from_slice(&from[..row]);
+        }
+        image
+    }
+
     /// Quantise to 16-bit with `scale` units per metre (rounded, saturating), as depth PNGs store it.
     pub fn to_u16(&self, scale: f64) -> Vec<u16> {
         self.data
@@ -101,7 +116,21 @@ impl DepthImage {
 
 #[cfg(test)]
 mod tests {
-    use super::RgbImage;
+    use super::{DepthImage, RgbImage};
+
+    #[test]
+    fn f32_rows_drop_row_padding() {
+        let rows: Vec<u8> = [[1.5f32, 2.0, -7.0], [0.0, 3.25, 9.5]]
+            .iter()
+            .flat_map(|row| {
+                let mut bytes: Vec<u8> = row.iter().flat_map(|z| z.to_ne_bytes()).collect();
+                bytes.extend([0xAB; 4]);
+                bytes
+            })
+            .collect();
+        let image = DepthImage::from_f32_rows(3, 2, &rows, 16);
+        assert_eq!(image.data, vec![1.5, 2.0, -7.0, 0.0, 3.25, 9.5]);
+    }
 
     #[test]
     fn rgba_round_trip_drops_row_padding() {

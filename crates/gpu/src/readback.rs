@@ -82,20 +82,11 @@ impl FrameReadback {
         self.color.unmap();
         let depth = match &self.depth {
             Some(buffer) => {
-                let row = self.width as usize * 4;
                 let view = buffer.get_mapped_range(..).map_err(readback_failed)?;
-                let data = view
-                    .chunks(padded)
-                    .flat_map(|r| r[..row].chunks_exact(4))
-                    .map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]))
-                    .collect();
+                let depth = DepthImage::from_f32_rows(self.width, self.height, &view, padded);
                 drop(view);
                 buffer.unmap();
-                Some(DepthImage {
-                    width: self.width,
-                    height: self.height,
-                    data,
-                })
+                Some(depth)
             }
             None => None,
         };

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Speed figures on a machine with a real GPU and no Rust toolchain, from release binaries built
+# elsewhere (the README's "Performance" section holds what it printed on an H100):
+#
+#   scripts/bench-gpu.sh BIN_DIR [WORK_DIR [bench_corruptions.py options]]
+#
+# BIN_DIR holds `rslam`, `png_roundtrip` (cargo build --release -p rslam-core --example
+# png_roundtrip) and the bench binaries `render` and `corruptions` (cargo bench --no-run -p
+# rslam-render -p rslam-perturb; copied out of target/release/deps without their hash suffix).
+# Prints, in order: GPU time per corruption at severity 3 and the readbacks; render only and
+# render + readback of room0; whole `rslam render` of room0's 2000 frames in the Replica and TUM
+# layouts (frames/s and bytes per frame, encoding on all cores); then, where this python has
+# imagecorruptions and albumentations, scripts/bench_corruptions.py over 20 of those frames.
+set -euo pipefail
+bin=$(realpath "$1")
+work=${2:-$(mktemp -d)}
+root=$(cd "$(dirname "$0")/.." && pwd)
+mkdir -p "$work"
+export CRITERION_HOME=$work/criterion
+
+# criterion's report, one line per benchmark: its name and the middle of its time estimate.
+summary() {
+    awk '/^[A-Za-z_0-9]+\// { name = $1 }
+         /time:/ { for (i = 1; i <= NF; i++) if ($i == "time:") print name, $(i + 3), $(i + 4) }'
+}
+
+echo "== cores: $(nproc); GPU: $(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null || echo '?')"
+echo "== GPU work per corruption (record, submit, wait), severity 3; readbacks"
+"$bin/corruptions" --bench 'gpu_1200x680/.*/3$|readback' 2>&1 | tee "$work/corruptions.log" | summary
+echo "== room0 render (render bench)"
+"$bin/render" --bench 2>&1 | tee "$work/render.log" | summary
+
+for layout in replica tum; do
+    out=$work/room0-$layout
+    rm -rf "$out"
+    camera=replica
+    echo "== rslam render --scene room0 --format $layout --camera $camera (2000 frames)"
+    "$bin/rslam" render --scene room0 --format "$layout" --camera "$camera" --out "$out" 2>&1 | tail -1
+done
+
+if python3 -c 'import imagecorruptions, albumentations' 2>/dev/null; then
+    frames=$work/frames
+    mkdir -p "$frames"
+    find "$work/room0-tum/rgb" -name '*.png' | sort | awk 'NR % 100 == 1' | head -20 \
+        | xargs -I{} cp {} "$frames/"
+    echo "== file in -> file out per corruption (scripts/bench_corruptions.py)"
+    python3 "$root/scripts/bench_corruptions.py" "$bin/rslam" "$bin/png_roundtrip" "$frames" "${@:3}"
+fi
