@@ -10,7 +10,8 @@
 # Prints, in order: GPU time per corruption at severity 3 and the readbacks; render only and
 # render + readback of room0; whole `rslam render` of room0's 2000 frames in the Replica and TUM
 # layouts (frames/s and bytes per frame, encoding on all cores); then, where this python has
-# imagecorruptions and albumentations, scripts/bench_corruptions.py over 20 of those frames.
+# imagecorruptions and albumentations, scripts/bench_corruptions.py over 20 of those frames, 600
+# frames per rslam run (with 40, a GPU's few ms a frame drown in the start-up's noise).
 set -euo pipefail
 bin=$(realpath "$1")
 work=${2:-$(mktemp -d)}
@@ -44,5 +45,5 @@ if python3 -c 'import imagecorruptions, albumentations' 2>/dev/null; then
     find "$work/room0-tum/rgb" -name '*.png' | sort | awk 'NR % 100 == 1' | head -20 \
         | xargs -I{} cp {} "$frames/"
     echo "== file in -> file out per corruption (scripts/bench_corruptions.py)"
-    python3 "$root/scripts/bench_corruptions.py" "$bin/rslam" "$bin/png_roundtrip" "$frames" "${@:3}"
+    python3 "$root/scripts/bench_corruptions.py" "$bin/rslam" "$bin/png_roundtrip" "$frames" --frames 600 "${@:3}"
 fi

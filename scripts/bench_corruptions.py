@@ -76,6 +76,11 @@ class Folders:
         for folder in (self.one, self.many):
             shutil.rmtree(self.out, ignore_errors=True)
             times.append(seconds(command(folder, self.out)))
+        if times[1] <= times[0]:
+            sys.exit(f"bench_corruptions.py: {' '.join(command(self.many, self.out))}: "
+                     f"{self.frames} frames took {times[1]:.3f} s, 1 frame {times[0]:.3f} s; the "
+                     f"start-up's noise hides the per-frame time: raise --frames (a fast GPU "
+                     f"needs several hundred)")
         return 1000 * (times[1] - times[0]) / (self.frames - 1), 1000 * times[0]
 
 
