@@ -23,6 +23,20 @@ pub enum CoreError {
     BadRate { hz: f64 },
     #[error("encoding {message}")]
     Encode { message: String },
+    #[error("trajectory has {timestamps} timestamps for {poses} poses: expected one per pose")]
+    TrajectoryLengths { timestamps: usize, poses: usize },
+    #[error("a cubic B-spline needs at least 4 poses: got {poses}")]
+    SplineTooShort { poses: usize },
+    #[error("timestamp {time} of pose {index}: expected finite times in increasing order")]
+    BadTimestamp { index: usize, time: f64 },
+    #[error("spline control spacing {spacing} s: expected a positive finite number")]
+    BadSplineSpacing { spacing: f64 },
+    #[error("time {time} s is outside the spline's valid range [{start}, {end}] s")]
+    TimeOutOfRange { time: f64, start: f64, end: f64 },
+    #[error("IMU noise {name} = {value}: expected a finite number, 0 or more")]
+    BadImuNoise { name: &'static str, value: f64 },
+    #[error("{samples} IMU samples asked for: at most {max}")]
+    TooManyImuSamples { samples: f64, max: usize },
 }
 
 /// `text` as it may be quoted in a one-line error: control characters (line breaks, tabs, NUL)

@@ -6,11 +6,16 @@
 //! file formats that SLAM systems and `rslam eval` use; `mesh_io` reads meshes and point clouds,
 //! and [`SurfaceBvh`] answers nearest-surface queries on them (ray casting, reconstruction
 //! metrics).
+//!
+//! For inertial sensors, a [`SplineSe3`] (a C² cubic B-spline on SE(3) through a trajectory's
+//! poses) gives the body's pose, velocity and acceleration at any instant, and [`imu`] turns it
+//! into ideal and noisy IMU readings (Kalibr's noise model) at a rig's IMU extrinsic.
 
 pub mod dataset;
 mod error;
 pub mod hash;
 mod image_buffer;
+pub mod imu;
 mod intrinsics;
 mod limited_read;
 pub mod limits;
@@ -18,7 +23,10 @@ pub mod mesh_io;
 mod nearest_time;
 mod pose;
 pub mod se3;
+mod spline_se3;
 mod surface_bvh;
+#[cfg(test)]
+mod test_motion;
 mod trajectory;
 pub mod trajectory_io;
 
@@ -28,5 +36,6 @@ pub use intrinsics::{Intrinsics, REPLICA_RATE_HZ, TUM_RATE_HZ};
 pub use limited_read::{read_limited, read_text_file};
 pub use nearest_time::nearest_time;
 pub use pose::Pose;
+pub use spline_se3::{SplineSe3, SplineState, TimeRange};
 pub use surface_bvh::{SurfaceBvh, SurfacePoint};
 pub use trajectory::Trajectory;

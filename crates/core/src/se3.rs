@@ -42,7 +42,8 @@ fn left_jacobian(omega: DVec3) -> DMat3 {
     DMat3::IDENTITY + k * a + k * k * b
 }
 
-fn skew(v: DVec3) -> DMat3 {
+/// The cross-product matrix `[v]×`: `skew(v) * w == v.cross(w)`.
+pub(crate) fn skew(v: DVec3) -> DMat3 {
     DMat3::from_cols(
         DVec3::new(0.0, v.z, -v.y),
         DVec3::new(-v.z, 0.0, v.x),
