@@ -4,7 +4,7 @@ use crate::harness::Workspace;
 
 /// A 30 Hz TUM trajectory on a wavy loop, every position mapped by `map` (the orientation is
 /// kept: ATE and the alignment only look at positions).
-fn tum(n: usize, t0: f64, map: impl Fn([f64; 3]) -> [f64; 3]) -> String {
+pub(crate) fn tum(n: usize, t0: f64, map: impl Fn([f64; 3]) -> [f64; 3]) -> String {
     let mut text = String::from("# timestamp tx ty tz qx qy qz qw\n");
     for i in 0..n {
         let s = i as f64 / 30.0;
@@ -24,16 +24,16 @@ fn tum(n: usize, t0: f64, map: impl Fn([f64; 3]) -> [f64; 3]) -> String {
     text
 }
 
-fn identity(p: [f64; 3]) -> [f64; 3] {
+pub(crate) fn identity(p: [f64; 3]) -> [f64; 3] {
     p
 }
 
 /// Rotation by 90° about z, then a shift: an exact rigid motion.
-fn rigid(p: [f64; 3]) -> [f64; 3] {
+pub(crate) fn rigid(p: [f64; 3]) -> [f64; 3] {
     [-p[1] + 5.0, p[0] - 2.0, p[2] + 1.0]
 }
 
-fn json_of(stdout: &str) -> serde_json::Value {
+pub(crate) fn json_of(stdout: &str) -> serde_json::Value {
     serde_json::from_str(stdout).unwrap_or_else(|e| panic!("not JSON ({e}):\n{stdout}"))
 }
 

@@ -4,6 +4,7 @@ mod bench;
 mod dataset_check;
 mod depth_png;
 mod eval;
+mod eval_agents;
 mod eval_recon;
 mod harness;
 mod list;

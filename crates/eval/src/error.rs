@@ -58,6 +58,22 @@ pub enum EvalError {
     Plot { path: PathBuf, message: String },
     #[error("{path}: {message}")]
     BadRuns { path: PathBuf, message: String },
+    #[error("{path}: {message}")]
+    BadAgents { path: PathBuf, message: String },
+    /// An error of one agent of a multi-agent evaluation.
+    #[error("agent {agent}: {error}")]
+    Agent {
+        agent: String,
+        error: Box<EvalError>,
+    },
+    /// An error of one agent of a multi-agent evaluation read from files.
+    #[error("agent {agent} ({estimate} against {ground_truth}): {error}")]
+    AgentFiles {
+        agent: String,
+        estimate: PathBuf,
+        ground_truth: PathBuf,
+        error: Box<EvalError>,
+    },
 }
 
 impl EvalError {

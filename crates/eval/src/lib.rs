@@ -12,6 +12,10 @@
 //! as Markdown, CSV, JSON and one self-contained HTML page, with the CSR curves and per-category
 //! bar plots.
 //!
+//! For several agents in one world frame (a multi-agent system), [`multi_agent`] gives each
+//! agent's ATE and SSE under its own alignment and under ONE joint alignment of all agents'
+//! pairs, and the joint ATE and SSE.
+//!
 //! For frames, [`image_stats`] gives the statistics behind `rslam scene stats` (FAST corners,
 //! gradients, saturation, low-texture cells) to set rendered frames beside real ones.
 //!
@@ -23,6 +27,7 @@ mod association;
 mod error;
 mod evaluate;
 pub mod image_stats;
+pub mod multi_agent;
 mod plot;
 pub mod recon;
 mod rpe;

@@ -3,18 +3,14 @@
 
 use std::fmt::Write as _;
 
-use crate::alignment::AlignMode;
+use crate::alignment::{AlignMode, Similarity};
 use crate::association::Matching;
 use crate::statistics::ErrorStatistics;
 use crate::Evaluation;
 
 pub fn text_report(e: &Evaluation) -> String {
     let mut out = String::new();
-    let alignment_line = match e.options.align {
-        AlignMode::Se3 => "(with SE(3) Umeyama alignment)",
-        AlignMode::Sim3 => "(with Sim(3) Umeyama alignment)",
-        AlignMode::None => "(not aligned)",
-    };
+    let alignment_line = alignment_line(e.options.align);
     let matching = match e.options.matching {
         Matching::Time { max_diff, t_offset } => {
             format!("nearest timestamp within {max_diff} s, t-offset {t_offset} s")
@@ -84,8 +80,22 @@ pub fn text_report(e: &Evaluation) -> String {
         },
         lengths.ground_truth
     );
-    let a = &e.alignment;
     let _ = writeln!(out, "alignment (p_gt = scale * R * p_est + t)");
+    write_alignment(&mut out, &e.alignment);
+    out
+}
+
+/// evo's line under a title saying how the estimate was aligned.
+pub(crate) fn alignment_line(mode: AlignMode) -> &'static str {
+    match mode {
+        AlignMode::Se3 => "(with SE(3) Umeyama alignment)",
+        AlignMode::Sim3 => "(with Sim(3) Umeyama alignment)",
+        AlignMode::None => "(not aligned)",
+    }
+}
+
+/// The rows of R, t and the scale, values right-aligned after a tab.
+pub(crate) fn write_alignment(out: &mut String, a: &Similarity) {
     for (i, row) in a.rotation.transpose().to_cols_array_2d().iter().enumerate() {
         let label = if i == 0 { "R" } else { "" };
         let _ = writeln!(
@@ -101,7 +111,6 @@ pub fn text_report(e: &Evaluation) -> String {
         "t", t.x, t.y, t.z
     );
     let _ = writeln!(out, "{:>11}\t{:.9}", "scale", a.scale);
-    out
 }
 
 fn section(out: &mut String, title: &str, s: &ErrorStatistics) {

@@ -3,6 +3,9 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use rslam_core::trajectory_io::{ReadOptions, TrajectoryFormat};
+use rslam_eval::multi_agent::{
+    agents_from_pairs, agents_in_folder, multi_agent_report, read_and_evaluate_agents, AgentFiles,
+};
 use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
 use rslam_eval::{
     plot_evaluation, read_and_evaluate, text_report, AlignMode, DeltaUnit, EvalOptions, Matching,
@@ -52,7 +55,16 @@ method x setting with mean/max (mean/min for the last three), the survival upper
 method per setting, and its mean per category), CSR at 0.02/0.1/1.0 m and as curves (failures
 stay in the denominator and never count as successes), mean ATE and SR per setting as bars, one
 figure per category (fog, depth_missing, rot, ...), and Welch's t-test of ln ATE of each setting
-against clean per method, over scenes and repeats.";
+against clean per method, over scenes and repeats.
+
+--agent EST GT (repeated, one per agent) or --agents DIR (DIR/<agent>/estimate.txt with
+DIR/<agent>/traj.txt or groundtruth.txt): several agents of one multi-agent system, all in one world
+frame. Each agent is associated as above, then aligned twice: on its own (--align), and by ONE
+joint alignment of the same mode fitted over every agent's pairs together and applied to every
+agent, as a multi-agent system is judged. Prints per agent the ATE (RMSE, m) and SSE under its own
+alignment and under the joint one, and the joint ATE and SSE over all pairs. SSE = the sum of
+squared position errors |p_est - p_gt|^2 (m^2) over the associated pairs after alignment (= n *
+RMSE^2). RPE and SR are not computed for agents.";
 
 #[derive(clap::Args)]
 #[command(
@@ -64,11 +76,30 @@ pub struct EvalArgs {
     #[command(subcommand)]
     command: Option<EvalCommand>,
     /// Estimated trajectory.
-    #[arg(required_unless_present = "runs", conflicts_with = "runs")]
+    #[arg(
+        required_unless_present_any = ["runs", "agent", "agents"],
+        conflicts_with_all = ["runs", "agent", "agents"]
+    )]
     est: Option<PathBuf>,
     /// Ground-truth trajectory.
-    #[arg(required_unless_present = "runs", conflicts_with = "runs")]
+    #[arg(
+        required_unless_present_any = ["runs", "agent", "agents"],
+        conflicts_with_all = ["runs", "agent", "agents"]
+    )]
     gt: Option<PathBuf>,
+    /// One agent of a multi-agent system (its estimate and ground truth, all agents in one world
+    /// frame); repeat for each agent. Per-agent and joint ATE and SSE.
+    #[arg(
+        long,
+        num_args = 2,
+        value_names = ["EST", "GT"],
+        action = clap::ArgAction::Append,
+        conflicts_with_all = ["runs", "agents", "plot"]
+    )]
+    agent: Vec<PathBuf>,
+    /// A folder of agents: DIR/<agent>/estimate.txt with DIR/<agent>/traj.txt or groundtruth.txt.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["runs", "plot"])]
+    agents: Option<PathBuf>,
     /// Force the file format instead of detecting it: tum, replica, kitti or euroc.
     #[arg(long)]
     format: Option<TrajectoryFormat>,
@@ -150,6 +181,14 @@ pub fn run(args: EvalArgs) -> anyhow::Result<ExitCode> {
             all_pairs: args.all_pairs,
         },
     };
+    if let Some(dir) = &args.agents {
+        let files = agents_in_folder(dir)?;
+        return run_agents(&args, &files, &read, options.matching);
+    }
+    if !args.agent.is_empty() {
+        let files = agents_from_pairs(&args.agent)?;
+        return run_agents(&args, &files, &read, options.matching);
+    }
     match (&args.runs, &args.datasets, &args.est, &args.gt) {
         (Some(runs), Some(datasets), _, _) => run_many(&args, runs, datasets, read, options),
         (_, _, Some(est), Some(gt)) => run_one(&args, est, gt, &read, &options),
@@ -174,6 +213,21 @@ fn run_one(
     if let Some(plot) = &args.plot {
         plot_evaluation(plot, &evaluation)?;
         eprintln!("plot written to {}", plot.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_agents(
+    args: &EvalArgs,
+    files: &[AgentFiles],
+    read: &ReadOptions,
+    matching: Matching,
+) -> anyhow::Result<ExitCode> {
+    let evaluation = read_and_evaluate_agents(files, read, matching, args.align)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&evaluation)?);
+    } else {
+        print!("{}", multi_agent_report(&evaluation));
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -13,7 +13,7 @@ use super::naming::scene_and_setting;
 use crate::EvalError;
 
 /// Ground-truth files looked for in a dataset folder, in this order (Replica, TUM layout).
-const GROUND_TRUTH_FILES: [&str; 2] = ["traj.txt", "groundtruth.txt"];
+pub(crate) const GROUND_TRUTH_FILES: [&str; 2] = ["traj.txt", "groundtruth.txt"];
 const ESTIMATE_EXTENSION: &str = "txt";
 const FAILED_EXTENSION: &str = "failed";
 /// The reason of a failed run whose `.failed` file gives none.

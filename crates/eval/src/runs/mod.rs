@@ -30,6 +30,7 @@ use rslam_core::trajectory_io::ReadOptions;
 use serde::Serialize;
 
 pub use collect::{collect_runs, CollectedRuns, RunRecord};
+pub(crate) use layout::GROUND_TRUTH_FILES;
 pub use layout::{find_estimates, find_methods, find_sequences, Estimate, Sequence, NO_REASON};
 pub use naming::{category, scene_and_setting, CLEAN};
 pub use summary::{
