@@ -20,7 +20,8 @@ pub const MAX_POLYGON_CORNERS: usize = 1_000;
 /// Pixels a side of an image read or a camera given (also the common GPU texture limit).
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
 
-/// Poses of one trajectory file, and frames of one dataset, sequence or frame list.
+/// Poses of one trajectory file, frames of one dataset, sequence or frame list, and rows of one
+/// EuRoC data.csv (IMU samples, ground-truth states).
 pub const MAX_POSES: usize = 10_000_000;
 
 /// Bytes of one text input read whole (trajectory, frame list, associations, manifest, suite or

@@ -72,6 +72,37 @@ pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
     Ok(out)
 }
 
+/// 8-bit grey PNG of `image`'s luma, `round(0.299 R + 0.587 G + 0.114 B)` (ITU-R BT.601, as
+/// OpenCV's `COLOR_RGB2GRAY`; EuRoC's cameras are grey).
+pub fn encode_grey_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
+    let grey: Vec<u8> = image
+        .data
+        .chunks_exact(3)
+        .map(|p| (0.299 * p[0] as f64 + 0.587 * p[1] as f64 + 0.114 * p[2] as f64).round() as u8)
+        .collect();
+    let mut out = Vec::new();
+    png_encoder(&mut out)
+        .write_image(&grey, image.width, image.height, ExtendedColorType::L8)
+        .map_err(|e| encode_failed("grey PNG", e))?;
+    Ok(out)
+}
+
+/// Whether the PNG or JPEG at `path` holds colour (not grey), from its header alone.
+pub fn read_image_has_colour(path: &Path) -> Result<bool, CoreError> {
+    let decoder = image::ImageReader::open(path)
+        .map_err(|e| CoreError::io(path, e))?
+        .with_guessed_format()
+        .map_err(|e| CoreError::io(path, e))?
+        .into_decoder()
+        .map_err(|e| {
+            CoreError::bad_file(
+                path,
+                format!("not a readable image: {}", printable(e.to_string().trim())),
+            )
+        })?;
+    Ok(image::ImageDecoder::color_type(&decoder).has_color())
+}
+
 /// 16-bit grayscale PNG of `round(z · scale)`, saturating; 0 stays 0 (invalid).
 pub fn encode_depth_png(
     depth: &DepthImage,
@@ -281,5 +312,22 @@ mod tests {
         assert_eq!(decode_rgb(&encode_png(&image).unwrap()).unwrap(), image);
         let jpeg = decode_rgb(&encode_jpeg(&image, 95).unwrap()).unwrap();
         assert_eq!((jpeg.width, jpeg.height), (16, 8));
+    }
+
+    #[test]
+    fn grey_png_holds_bt601_luma_and_reads_as_grey() {
+        let mut image = RgbImage::new(3, 1);
+        image.data = vec![255, 0, 0, 0, 255, 0, 10, 20, 30];
+        let png = encode_grey_png(&image).unwrap();
+        let decoded = image::load_from_memory(&png).unwrap();
+        assert_eq!(decoded.color(), image::ColorType::L8);
+        // 0.299·255 = 76.2, 0.587·255 = 149.7, 0.299·10 + 0.587·20 + 0.114·30 = 18.15.
+        assert_eq!(decoded.into_luma8().into_raw(), vec![76, 150, 18]);
+        let dir = tempfile::tempdir().unwrap();
+        let (grey, colour) = (dir.path().join("g.png"), dir.path().join("c.png"));
+        std::fs::write(&grey, png).unwrap();
+        std::fs::write(&colour, encode_png(&image).unwrap()).unwrap();
+        assert!(!read_image_has_colour(&grey).unwrap());
+        assert!(read_image_has_colour(&colour).unwrap());
     }
 }

@@ -1,11 +1,13 @@
 //! Dataset layouts that SLAM systems read unchanged: Replica (NICE-SLAM, SplaTAM, Co-SLAM,
-//! GO-SLAM) and TUM RGB-D (ORB-SLAM3). [`DatasetWriter`] writes frames from many threads and
+//! GO-SLAM) and TUM RGB-D (ORB-SLAM3); [`euroc`] writes and reads the EuRoC MAV (ASL) layout
+//! of stereo cameras, an IMU and ground truth. [`DatasetWriter`] writes frames from many threads and
 //! the manifest last; [`read_dataset`] reads either layout back.
 
 mod atomic_write;
 mod checksums;
 mod codec;
 mod depth_png;
+pub mod euroc;
 mod layout;
 mod manifest;
 mod no_symlinks;
@@ -20,8 +22,8 @@ pub use checksums::{
     ContentWriter, CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,
 };
 pub use codec::{
-    decode_depth_png, decode_rgb, encode_depth_png, encode_jpeg, encode_png, encode_rgb_like,
-    read_image_size, read_rgb, write_rgb_like,
+    decode_depth_png, decode_rgb, encode_depth_png, encode_grey_png, encode_jpeg, encode_png,
+    encode_rgb_like, read_image_has_colour, read_image_size, read_rgb, write_rgb_like,
 };
 pub use depth_png::DepthPng;
 pub use layout::DatasetFormat;

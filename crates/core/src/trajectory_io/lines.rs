@@ -5,7 +5,7 @@ use std::path::Path;
 use glam::{DMat3, DQuat, DVec3};
 
 use crate::limits::MAX_POSES;
-use crate::{CoreError, Pose};
+use crate::{printable, CoreError, Pose};
 
 /// Largest |RᵀR − I| entry accepted for a rotation block read from a matrix: files printed with
 /// 6 significant digits (KITTI) or from float32 stay far below it, a scaled (Sim(3)) or sheared
@@ -16,7 +16,7 @@ const LAST_ROW_TOLERANCE: f64 = 1e-6;
 
 /// The data lines of a text file, as (1-based line number, trimmed text): a UTF-8 byte order
 /// mark, blank lines and lines starting with `#` are skipped.
-pub(super) fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+pub(crate) fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     text.lines()
         .enumerate()
@@ -36,7 +36,7 @@ pub(super) fn check_line_count(path: &Path, text: &str) -> Result<(), CoreError>
 
 /// Where a line came from, to name it in errors.
 #[derive(Clone, Copy)]
-pub(super) struct LineRef<'a> {
+pub(crate) struct LineRef<'a> {
     pub path: &'a Path,
     pub line: usize,
 }
@@ -88,6 +88,23 @@ impl LineRef<'_> {
             *value = parsed;
         }
         Ok(values)
+    }
+
+    /// Field `field` (1-based) as a timestamp in integer nanoseconds, digits only, as EuRoC files
+    /// store them. `layout` says what a line holds.
+    pub fn nanoseconds(&self, field: usize, text: &str, layout: &str) -> Result<u64, CoreError> {
+        if text.is_empty() || !text.bytes().all(|b| b.is_ascii_digit()) {
+            return Err(self.error(format!(
+                "field {field} '{}' is not a timestamp in integer nanoseconds (expected {layout})",
+                printable(text)
+            )));
+        }
+        text.parse().map_err(|_| {
+            self.error(format!(
+                "field {field} '{text}' is past the largest timestamp, {} ns",
+                u64::MAX
+            ))
+        })
     }
 
     /// A unit quaternion from possibly unnormalised components; all zero is an error, and so

@@ -6,10 +6,10 @@
 //! Non-unit quaternions are normalised.
 
 mod detect;
-mod euroc;
+pub(crate) mod euroc;
 mod format;
 mod kitti;
-mod lines;
+pub(crate) mod lines;
 mod read;
 mod replica;
 mod tum;

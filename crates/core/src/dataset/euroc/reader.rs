@@ -1,0 +1,128 @@
+//! Reads a EuRoC dataset back: rslam's own or a published one (MH_01_easy and the rest), which
+//! has no rslam manifest and more folders (`leica0`, `body.yaml`) that are not read.
+
+use std::path::{Path, PathBuf};
+
+use super::csv::{read_camera_csv, read_ground_truth_csv, read_imu_csv};
+use super::sensor_yaml::{read_camera_yaml, read_imu_yaml};
+use super::writer::{GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR};
+use super::{CameraColour, EurocCamera, EurocFrame, EurocImu, GroundTruthState, ImuSample};
+use crate::dataset::read_image_has_colour;
+use crate::CoreError;
+
+/// Most camera folders (`cam0` … `cam63`) a dataset may have.
+const MAX_CAMERAS: usize = 64;
+
+/// One camera and its frames, in time order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EurocCameraFrames {
+    pub camera: EurocCamera,
+    pub frames: Vec<EurocFrame>,
+}
+
+/// The IMU and its samples, in time order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EurocImuSamples {
+    pub imu: EurocImu,
+    pub samples: Vec<ImuSample>,
+}
+
+/// A EuRoC dataset as read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EurocDataset {
+    /// The `mav0` folder.
+    pub mav_dir: PathBuf,
+    /// `cam0`, `cam1`, … in the order of their number.
+    pub cameras: Vec<EurocCameraFrames>,
+    /// `imu0`, when there is one.
+    pub imu: Option<EurocImuSamples>,
+    /// `state_groundtruth_estimate0/data.csv`, when there is one (EuRoC's test sequences have
+    /// none).
+    pub ground_truth: Option<Vec<GroundTruthState>>,
+}
+
+/// The number of a camera folder `cam<N>`.
+fn camera_number(name: &str) -> Option<usize> {
+    let digits = name.strip_prefix("cam")?;
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+/// Reads the EuRoC dataset at `root` (the folder holding `mav0/`, or `mav0/` itself): every
+/// `cam<N>` folder with its sensor.yaml and data.csv (each listed image must exist), `imu0` and
+/// the ground truth where present. A camera's colour is told from its first frame's header.
+pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
+    let mav_dir = if root.join(MAV_DIR).is_dir() {
+        root.join(MAV_DIR)
+    } else if root.file_name().is_some_and(|n| n == MAV_DIR) && root.is_dir() {
+        root.to_path_buf()
+    } else {
+        return Err(CoreError::bad_file(
+            root,
+            "not a EuRoC dataset: expected a mav0/ folder with cam0/, cam1/, imu0/ …",
+        ));
+    };
+    let mut numbered: Vec<(usize, String)> = Vec::new();
+    for entry in std::fs::read_dir(&mav_dir).map_err(|e| CoreError::io(&mav_dir, e))? {
+        let entry = entry.map_err(|e| CoreError::io(&mav_dir, e))?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if let Some(number) = camera_number(&name).filter(|_| entry.path().is_dir()) {
+            numbered.push((number, name));
+        }
+    }
+    if numbered.len() > MAX_CAMERAS {
+        return Err(CoreError::bad_file(
+            &mav_dir,
+            format!(
+                "{} camera folders, over the limit of {MAX_CAMERAS}",
+                numbered.len()
+            ),
+        ));
+    }
+    numbered.sort();
+    let cameras = numbered
+        .iter()
+        .map(|(_, name)| read_camera(&mav_dir, name))
+        .collect::<Result<Vec<_>, _>>()?;
+    let imu_dir = mav_dir.join(IMU_DIR);
+    let imu = if imu_dir.is_dir() {
+        Some(EurocImuSamples {
+            imu: read_imu_yaml(&imu_dir.join("sensor.yaml"))?,
+            samples: read_imu_csv(&imu_dir.join("data.csv"))?,
+        })
+    } else {
+        None
+    };
+    let gt_csv = mav_dir.join(GROUND_TRUTH_DIR).join("data.csv");
+    let ground_truth = if gt_csv.is_file() {
+        Some(read_ground_truth_csv(&gt_csv)?)
+    } else {
+        None
+    };
+    if cameras.is_empty() && imu.is_none() {
+        return Err(CoreError::bad_file(
+            &mav_dir,
+            "no camera (cam0/ …) and no IMU (imu0/); expected at least one sensor folder",
+        ));
+    }
+    Ok(EurocDataset {
+        mav_dir,
+        cameras,
+        imu,
+        ground_truth,
+    })
+}
+
+fn read_camera(mav_dir: &Path, name: &str) -> Result<EurocCameraFrames, CoreError> {
+    let dir = mav_dir.join(name);
+    let mut camera = read_camera_yaml(&dir.join("sensor.yaml"), name)?;
+    let frames = read_camera_csv(&dir.join("data.csv"), &dir.join("data"))?;
+    if let Some(first) = frames.first() {
+        if read_image_has_colour(&first.path)? {
+            camera.colour = CameraColour::Rgb;
+        }
+    }
+    Ok(EurocCameraFrames { camera, frames })
+}

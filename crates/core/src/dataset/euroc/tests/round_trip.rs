@@ -1,0 +1,114 @@
+use super::fixture::{self, START_NS};
+use crate::dataset::euroc::{nanoseconds_from_seconds, read_euroc, CameraColour};
+use crate::dataset::{decode_rgb, MANIFEST_FILE};
+use crate::Pose;
+
+/// Largest difference of a pose entry after writing and reading (shortest round-trip digits;
+/// the rotation goes through a 3×3 matrix in sensor.yaml).
+const POSE_TOLERANCE: f64 = 1e-9;
+
+fn assert_poses_close(a: &Pose, b: &Pose, what: &str) {
+    let (a, b) = (a.to_row_major(), b.to_row_major());
+    let worst = a
+        .iter()
+        .zip(&b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(worst < POSE_TOLERANCE, "{what}: {worst:e}\n{a:?}\n{b:?}");
+}
+
+#[test]
+fn a_written_dataset_reads_back_equal() {
+    let dir = tempfile::tempdir().unwrap();
+    let times = fixture::write(dir.path());
+    assert!(dir.path().join(MANIFEST_FILE).is_file(), "manifest last");
+    let read = read_euroc(dir.path()).unwrap();
+    assert_eq!(read.mav_dir, dir.path().join("mav0"));
+
+    // Near 1.4e9 s an f64 resolves about 240 ns: the stamps are the nearest nanosecond of the
+    // f64 times, and those come back exactly.
+    for (j, t) in times.iter().enumerate() {
+        let t_s = fixture::START_S + j as f64 / fixture::CAMERA_RATE_HZ;
+        assert_eq!(Some(*t), nanoseconds_from_seconds(t_s));
+        assert!(t.abs_diff(START_NS + j as u64 * 50_000_000) < 240, "{t}");
+    }
+    let written = fixture::cameras();
+    assert_eq!(read.cameras.len(), 2);
+    for (c, (got, want)) in read.cameras.iter().zip(&written).enumerate() {
+        let camera = &got.camera;
+        assert_eq!(camera.name, want.name);
+        assert_eq!(camera.comment, want.comment);
+        assert_eq!(camera.rate_hz, want.rate_hz);
+        assert_eq!(camera.intrinsics, want.intrinsics);
+        assert_eq!(camera.distortion, want.distortion);
+        assert_eq!(camera.colour, want.colour);
+        assert_poses_close(&camera.body_from_camera, &want.body_from_camera, &want.name);
+        let frame_times: Vec<u64> = got.frames.iter().map(|f| f.t_ns).collect();
+        assert_eq!(frame_times, times);
+        for (j, frame) in got.frames.iter().enumerate() {
+            let dir = dir.path().join(format!("mav0/{}/data", want.name));
+            assert_eq!(frame.path, dir.join(format!("{}.png", times[j])));
+            let bytes = std::fs::read(&frame.path).unwrap();
+            let decoded = image::load_from_memory(&bytes).unwrap();
+            let sent = fixture::image(2 * j + c);
+            match want.colour {
+                CameraColour::Rgb => assert_eq!(decode_rgb(&bytes).unwrap(), sent, "lossless"),
+                CameraColour::Grey => {
+                    assert_eq!(decoded.color(), image::ColorType::L8);
+                    let luma = decoded.into_luma8().into_raw();
+                    let first = sent.pixel(0, 0).map(f64::from);
+                    let expected = (0.299 * first[0] + 0.587 * first[1] + 0.114 * first[2]).round();
+                    assert_eq!(luma[0] as f64, expected);
+                }
+            }
+        }
+    }
+
+    let imu = read.imu.expect("imu0");
+    assert_eq!(
+        imu.imu,
+        fixture::imu(),
+        "the identity T_BS reads back exactly"
+    );
+    assert_eq!(
+        imu.samples,
+        fixture::imu_samples(),
+        "shortest round-trip digits are exact"
+    );
+
+    let truth = read.ground_truth.expect("ground truth");
+    let want = fixture::ground_truth();
+    assert_eq!(truth.len(), want.len());
+    for (got, want) in truth.iter().zip(&want) {
+        assert_eq!(got.t_ns, want.t_ns);
+        assert_poses_close(&got.world_from_body, &want.world_from_body, "ground truth");
+        let dq = got.world_from_body.rotation - want.world_from_body.rotation;
+        assert!(
+            dq.length() < POSE_TOLERANCE,
+            "same quaternion, same sign: {dq:?}"
+        );
+        assert_eq!(
+            (got.velocity, got.gyro_bias, got.accel_bias),
+            (want.velocity, want.gyro_bias, want.accel_bias)
+        );
+    }
+}
+
+#[test]
+fn a_dataset_without_ground_truth_or_imu_reads_as_such() {
+    let dir = tempfile::tempdir().unwrap();
+    let writer =
+        crate::dataset::euroc::EurocWriter::open(dir.path(), fixture::cameras(), None).unwrap();
+    writer.write_frame(0, 0.5, &fixture::image(0)).unwrap();
+    writer.finish(fixture::manifest()).unwrap();
+    let read = read_euroc(&dir.path().join("mav0")).unwrap();
+    assert_eq!(read.imu, None);
+    assert_eq!(read.ground_truth, None);
+    assert_eq!(read.cameras[0].frames.len(), 1);
+    assert_eq!(read.cameras[0].frames[0].t_ns, 500_000_000);
+    assert!(read.cameras[1].frames.is_empty());
+    assert_eq!(
+        read.cameras[1].camera.colour,
+        CameraColour::Grey,
+        "no frame to tell from"
+    );
+}

@@ -1,0 +1,314 @@
+//! Writes the EuRoC layout under `<root>/mav0/`: camera frames as they arrive, then at
+//! [`EurocWriter::finish`] the data.csv files, sensor.yaml files, checksum list and manifest.
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use super::csv::{camera_csv, ground_truth_csv, imu_csv};
+use super::sensor_yaml::{camera_yaml, imu_yaml};
+use super::{
+    nanoseconds_from_seconds, CameraColour, EurocCamera, EurocImu, GroundTruthState, ImuSample,
+};
+use crate::dataset::{encode_grey_png, encode_png, refuse_symlinks, ContentWriter, Manifest};
+use crate::{CoreError, Pose, RgbImage};
+
+/// The folder under the dataset root that holds every sensor, as in the published dataset.
+pub const MAV_DIR: &str = "mav0";
+/// The IMU's folder under `mav0/`.
+pub const IMU_DIR: &str = "imu0";
+/// The ground truth's folder under `mav0/`.
+pub const GROUND_TRUTH_DIR: &str = "state_groundtruth_estimate0";
+
+struct CameraStream {
+    camera: EurocCamera,
+    /// Timestamps of the frames written so far, increasing.
+    times_ns: Mutex<Vec<u64>>,
+}
+
+/// Rows of one stream as they arrive, each after the last.
+struct Rows<T> {
+    name: &'static str,
+    rows: Mutex<Vec<T>>,
+}
+
+/// Writes one EuRoC dataset. Frames of different cameras may be written from different threads
+/// (`&self`); each camera's frames must arrive in time order. Every file is written through a
+/// temporary name and a rename, so no reader sees half a file, and hashed on the way.
+pub struct EurocWriter {
+    content: ContentWriter,
+    cameras: Vec<CameraStream>,
+    imu: Option<EurocImu>,
+    imu_rows: Rows<ImuSample>,
+    ground_truth: Rows<GroundTruthState>,
+}
+
+/// A folder name made of letters, digits and `_` (as `cam0`): nothing that leaves `mav0/`.
+fn plain_name(name: &str) -> bool {
+    !name.is_empty() && name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')
+}
+
+fn finite_pose(pose: &Pose) -> bool {
+    pose.rotation.is_finite() && pose.translation.is_finite()
+}
+
+fn check_camera(camera: &EurocCamera, root: &Path) -> Result<(), CoreError> {
+    let bad = |message: String| CoreError::bad_file(root.join(MAV_DIR).join(&camera.name), message);
+    if !plain_name(&camera.name) || camera.name == IMU_DIR || camera.name == GROUND_TRUTH_DIR {
+        return Err(bad(format!(
+            "camera name '{}': expected a folder name of letters, digits and '_', such as cam0",
+            crate::printable(&camera.name)
+        )));
+    }
+    camera
+        .intrinsics
+        .check()
+        .map_err(|message| bad(format!("{}: {message}", camera.name)))?;
+    if !(camera.rate_hz.is_finite() && camera.rate_hz > 0.0) {
+        return Err(bad(format!(
+            "{}: rate {} Hz: expected a positive rate",
+            camera.name, camera.rate_hz
+        )));
+    }
+    if !finite_pose(&camera.body_from_camera)
+        || !camera.distortion.to_array().iter().all(|v| v.is_finite())
+    {
+        return Err(bad(format!(
+            "{}: T_BS and distortion must be finite numbers",
+            camera.name
+        )));
+    }
+    Ok(())
+}
+
+fn check_imu(imu: &EurocImu, root: &Path) -> Result<(), CoreError> {
+    let noise = [
+        imu.gyroscope_noise_density,
+        imu.gyroscope_random_walk,
+        imu.accelerometer_noise_density,
+        imu.accelerometer_random_walk,
+    ];
+    let ok = imu.rate_hz.is_finite()
+        && imu.rate_hz > 0.0
+        && finite_pose(&imu.body_from_imu)
+        && noise.iter().all(|v| v.is_finite() && *v >= 0.0);
+    if ok {
+        Ok(())
+    } else {
+        Err(CoreError::bad_file(
+            root.join(MAV_DIR).join(IMU_DIR),
+            "imu0: expected a positive rate, a finite T_BS and non-negative noise parameters",
+        ))
+    }
+}
+
+/// Refuses a row of `stream` at `t_ns` that does not come after `previous`.
+fn not_after(path: PathBuf, stream: &str, what: &str, t_ns: u64, previous: u64) -> CoreError {
+    CoreError::bad_file(
+        path,
+        format!(
+            "{stream}: {what} at {t_ns} ns does not come after the previous one at {previous} ns; expected increasing timestamps in each stream"
+        ),
+    )
+}
+
+impl EurocWriter {
+    /// Creates `root/mav0/` with a folder for each camera (and its `data/`) and the IMU when
+    /// there is one (the ground truth's is made when it has rows). Refuses a `root` with a symbolic link inside, a camera
+    /// without a plain, unique folder name or a usable camera, and IMU parameters that are not
+    /// finite. Files already there stay (a resumed run keeps its complete frames).
+    pub fn open(
+        root: &Path,
+        cameras: Vec<EurocCamera>,
+        imu: Option<EurocImu>,
+    ) -> Result<Self, CoreError> {
+        refuse_symlinks(root, root)?;
+        for (i, camera) in cameras.iter().enumerate() {
+            check_camera(camera, root)?;
+            if cameras[..i].iter().any(|c| c.name == camera.name) {
+                return Err(CoreError::bad_file(
+                    root.join(MAV_DIR).join(&camera.name),
+                    format!(
+                        "camera name '{}' is given twice; expected one folder per camera",
+                        camera.name
+                    ),
+                ));
+            }
+        }
+        if let Some(imu) = &imu {
+            check_imu(imu, root)?;
+        }
+        let mav = root.join(MAV_DIR);
+        let mut dirs: Vec<PathBuf> = cameras
+            .iter()
+            .map(|c| mav.join(&c.name).join("data"))
+            .collect();
+        if imu.is_some() {
+            dirs.push(mav.join(IMU_DIR));
+        }
+        for dir in &dirs {
+            std::fs::create_dir_all(dir).map_err(|e| CoreError::io(dir, e))?;
+        }
+        Ok(Self {
+            content: ContentWriter::new(root),
+            cameras: cameras
+                .into_iter()
+                .map(|camera| CameraStream {
+                    camera,
+                    times_ns: Mutex::new(Vec::new()),
+                })
+                .collect(),
+            imu,
+            imu_rows: Rows {
+                name: IMU_DIR,
+                rows: Mutex::new(Vec::new()),
+            },
+            ground_truth: Rows {
+                name: GROUND_TRUTH_DIR,
+                rows: Mutex::new(Vec::new()),
+            },
+        })
+    }
+
+    pub fn root(&self) -> &Path {
+        self.content.root()
+    }
+
+    pub fn cameras(&self) -> impl Iterator<Item = &EurocCamera> {
+        self.cameras.iter().map(|s| &s.camera)
+    }
+
+    /// Writes camera `camera`'s (index into the cameras given to [`EurocWriter::open`]) frame
+    /// captured at `time_s` seconds as `mav0/<cam>/data/<t_ns>.png`, grey or RGB as the camera
+    /// says, `t_ns` the time rounded to whole nanoseconds. Refuses a time that does not come
+    /// after the camera's previous frame, and an image not of the camera's size. Returns `t_ns`.
+    pub fn write_frame(
+        &self,
+        camera: usize,
+        time_s: f64,
+        image: &RgbImage,
+    ) -> Result<u64, CoreError> {
+        let Some(stream) = self.cameras.get(camera) else {
+            return Err(CoreError::bad_file(
+                self.root().join(MAV_DIR),
+                format!(
+                    "camera {camera}: there are only {} cameras",
+                    self.cameras.len()
+                ),
+            ));
+        };
+        let name = &stream.camera.name;
+        let dir = || self.root().join(MAV_DIR).join(name);
+        let Some(t_ns) = nanoseconds_from_seconds(time_s) else {
+            return Err(CoreError::bad_file(
+                dir(),
+                format!("{name}: frame time {time_s} s: expected a finite time from 0 to about 1.8e10 s"),
+            ));
+        };
+        let k = &stream.camera.intrinsics;
+        if (image.width, image.height) != (k.width, k.height) {
+            return Err(CoreError::bad_file(
+                dir(),
+                format!(
+                    "{name}: {}x{} image: expected the camera's {}x{}",
+                    image.width, image.height, k.width, k.height
+                ),
+            ));
+        }
+        {
+            let mut times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
+            if let Some(&previous) = times.last().filter(|&&previous| t_ns <= previous) {
+                return Err(not_after(dir(), name, "frame", t_ns, previous));
+            }
+            times.push(t_ns);
+        }
+        let bytes = match stream.camera.colour {
+            CameraColour::Grey => encode_grey_png(image)?,
+            CameraColour::Rgb => encode_png(image)?,
+        };
+        self.content
+            .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), &bytes)?;
+        Ok(t_ns)
+    }
+
+    /// Appends IMU samples, each after the last one. Requires an IMU given to `open`.
+    pub fn write_imu(&self, samples: &[ImuSample]) -> Result<(), CoreError> {
+        if self.imu.is_none() {
+            return Err(CoreError::bad_file(
+                self.root().join(MAV_DIR).join(IMU_DIR),
+                "imu0: IMU samples, but the writer was opened without an IMU",
+            ));
+        }
+        self.append(&self.imu_rows, samples, |s| s.t_ns, "IMU sample")
+    }
+
+    /// Appends ground-truth states, each after the last one.
+    pub fn write_ground_truth(&self, states: &[GroundTruthState]) -> Result<(), CoreError> {
+        self.append(&self.ground_truth, states, |s| s.t_ns, "ground-truth state")
+    }
+
+    fn append<T: Copy>(
+        &self,
+        stream: &Rows<T>,
+        new: &[T],
+        time: impl Fn(&T) -> u64,
+        what: &str,
+    ) -> Result<(), CoreError> {
+        let mut rows = stream.rows.lock().unwrap_or_else(|p| p.into_inner());
+        let mut previous = rows.last().map(&time);
+        for row in new {
+            let t_ns = time(row);
+            if let Some(before) = previous.filter(|&before| t_ns <= before) {
+                return Err(not_after(
+                    self.root().join(MAV_DIR).join(stream.name),
+                    stream.name,
+                    what,
+                    t_ns,
+                    before,
+                ));
+            }
+            previous = Some(t_ns);
+        }
+        rows.extend_from_slice(new);
+        Ok(())
+    }
+
+    /// Each camera's data.csv and sensor.yaml, the IMU's, the ground truth's data.csv (when any
+    /// state was written), the
+    /// checksum list (frames an earlier, interrupted run wrote are hashed now), then the
+    /// manifest with the content digest, last. Returns the manifest as written.
+    pub fn finish(self, manifest: Manifest) -> Result<Manifest, CoreError> {
+        for stream in &self.cameras {
+            let name = &stream.camera.name;
+            let times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
+            self.write_text(&format!("{MAV_DIR}/{name}/data.csv"), &camera_csv(&times))?;
+            self.write_text(
+                &format!("{MAV_DIR}/{name}/sensor.yaml"),
+                &camera_yaml(&stream.camera),
+            )?;
+        }
+        if let Some(imu) = &self.imu {
+            let rows = self.imu_rows.rows.lock().unwrap_or_else(|p| p.into_inner());
+            self.write_text(&format!("{MAV_DIR}/{IMU_DIR}/data.csv"), &imu_csv(&rows))?;
+            self.write_text(&format!("{MAV_DIR}/{IMU_DIR}/sensor.yaml"), &imu_yaml(imu))?;
+        }
+        let states = self
+            .ground_truth
+            .rows
+            .lock()
+            .unwrap_or_else(|p| p.into_inner());
+        if !states.is_empty() {
+            let dir = self.root().join(MAV_DIR).join(GROUND_TRUTH_DIR);
+            std::fs::create_dir_all(&dir).map_err(|e| CoreError::io(&dir, e))?;
+            self.write_text(
+                &format!("{MAV_DIR}/{GROUND_TRUTH_DIR}/data.csv"),
+                &ground_truth_csv(&states),
+            )?;
+        }
+        drop(states);
+        self.content.finish(manifest)
+    }
+
+    fn write_text(&self, relative: &str, text: &str) -> Result<(), CoreError> {
+        self.content.write(relative, text.as_bytes())
+    }
+}
