@@ -34,5 +34,8 @@ pub const MAX_SUITE_SEQUENCES: usize = 100_000;
 /// Runs of one method on one sequence (`repeats`).
 pub const MAX_REPEATS: usize = 1_000;
 
+/// Camera folders (`cam0` … `cam63`) of one EuRoC dataset.
+pub const MAX_EUROC_CAMERAS: usize = 64;
+
 /// Samples of one synthesised IMU sequence: 176 bytes each, 1.8 GB at the limit (14 h at 200 Hz).
 pub const MAX_IMU_SAMPLES: usize = 10_000_000;

@@ -8,10 +8,8 @@ use super::sensor_yaml::{read_camera_yaml, read_imu_yaml};
 use super::writer::{GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR};
 use super::{CameraColour, EurocCamera, EurocFrame, EurocImu, GroundTruthState, ImuSample};
 use crate::dataset::read_image_has_colour;
+use crate::limits::MAX_EUROC_CAMERAS;
 use crate::CoreError;
-
-/// Most camera folders (`cam0` … `cam63`) a dataset may have.
-const MAX_CAMERAS: usize = 64;
 
 /// One camera and its frames, in time order.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,11 +70,11 @@ pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
             numbered.push((number, name));
         }
     }
-    if numbered.len() > MAX_CAMERAS {
+    if numbered.len() > MAX_EUROC_CAMERAS {
         return Err(CoreError::bad_file(
             &mav_dir,
             format!(
-                "{} camera folders, over the limit of {MAX_CAMERAS}",
+                "{} camera folders, over the limit of {MAX_EUROC_CAMERAS}",
                 numbered.len()
             ),
         ));
