@@ -171,15 +171,7 @@ fn parse<'p>(path: &'p Path, text: &str) -> Result<Document<'p>, CoreError> {
             })
         } else if rest.is_empty() && !indented {
             // A nested map follows on the indented lines.
-            if let Some((name, line, map)) = open_map.take() {
-                keys.insert(
-                    name,
-                    Entry {
-                        line,
-                        value: Value::Map(map),
-                    },
-                );
-            }
+            close_map(&mut keys, open_map.take());
             open_map = Some((key, line, BTreeMap::new()));
             continue;
         } else {
@@ -196,14 +188,21 @@ fn parse<'p>(path: &'p Path, text: &str) -> Result<Document<'p>, CoreError> {
                 )))
             }
             (_, false) => {
-                if let Some((name, line, map)) = open_map.take() {
-                    keys.insert(name, Entry { line, value: Value::Map(map) });
-                }
+                close_map(&mut keys, open_map.take());
                 keys.insert(key, entry);
             }
         }
     }
-    if let Some((name, line, map)) = open_map.take() {
+    close_map(&mut keys, open_map);
+    Ok(Document { path, keys })
+}
+
+/// Stores a nested map whose indented lines have ended under its key.
+fn close_map(
+    keys: &mut BTreeMap<String, Entry>,
+    map: Option<(String, usize, BTreeMap<String, Entry>)>,
+) {
+    if let Some((name, line, map)) = map {
         keys.insert(
             name,
             Entry {
@@ -212,7 +211,6 @@ fn parse<'p>(path: &'p Path, text: &str) -> Result<Document<'p>, CoreError> {
             },
         );
     }
-    Ok(Document { path, keys })
 }
 
 impl Document<'_> {
