@@ -6,11 +6,17 @@
 //! <root>/mav0/cam0/data/<t_ns>.png, cam0/data.csv, cam0/sensor.yaml   (cam1, … the same)
 //!             imu0/data.csv, imu0/sensor.yaml
 //!             state_groundtruth_estimate0/data.csv
+//! <root>/orbslam3_stereo.yaml            (two cameras or more)
+//!        orbslam3_stereo_inertial.yaml   (two cameras or more and an IMU)
 //! ```
 //!
 //! [`EurocWriter`] writes it (frames as they arrive, the CSV and YAML files and the manifest at
-//! the end); [`read_euroc`] reads it back, rslam's or a published sequence. Timestamps are
-//! integer nanoseconds; quaternions in the ground truth are written **w** first. Plain data:
+//! the end). The two `orbslam3_*.yaml` files are ORB-SLAM3 v1.0 settings for cam0 (left,
+//! `Camera1`) and cam1 (right, `Camera2`) with their distortion, `Stereo.T_c1_c2` (cam1's pose
+//! in cam0's frame, from the two `T_BS`) and, for the inertial one, `IMU.T_b_c1` (cam0's `T_BS`)
+//! and imu0's noise densities, laid out as ORB-SLAM3's `Examples/Stereo(-Inertial)/EuRoC.yaml`.
+//! [`read_euroc`] reads the layout back, rslam's or a published sequence (it does not need the
+//! settings files). Timestamps are integer nanoseconds; quaternions in the ground truth are written **w** first. Plain data:
 //! [`EurocCamera`], [`EurocImu`] (sensor.yaml), [`EurocFrame`], [`ImuSample`],
 //! [`GroundTruthState`] (data.csv rows).
 
@@ -29,4 +35,7 @@ pub use reader::{read_euroc, EurocCameraFrames, EurocDataset, EurocImuSamples};
 pub use samples::{nanoseconds_from_seconds, EurocFrame, GroundTruthState, ImuSample};
 pub use sensor_yaml::{CAMERA_YAML_FIRST_LINE, IMU_YAML_FIRST_LINE};
 pub use sensors::{CameraColour, EurocCamera, EurocImu, RadialTangential};
-pub use writer::{EurocWriter, GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR};
+pub use writer::{
+    EurocWriter, GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR, ORBSLAM3_STEREO_FILE,
+    ORBSLAM3_STEREO_INERTIAL_FILE,
+};

@@ -1,5 +1,6 @@
 //! Writes the EuRoC layout under `<root>/mav0/`: camera frames as they arrive, then at
-//! [`EurocWriter::finish`] the data.csv files, sensor.yaml files, checksum list and manifest.
+//! [`EurocWriter::finish`] the data.csv files, sensor.yaml files, ORB-SLAM3's stereo(-inertial)
+//! settings in `<root>/`, checksum list and manifest.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -9,6 +10,7 @@ use super::sensor_yaml::{camera_yaml, imu_yaml};
 use super::{
     nanoseconds_from_seconds, CameraColour, EurocCamera, EurocImu, GroundTruthState, ImuSample,
 };
+use crate::dataset::orbslam3::{stereo_inertial_settings, stereo_pair_problem, stereo_settings};
 use crate::dataset::{encode_grey_png, encode_png, refuse_symlinks, ContentWriter, Manifest};
 use crate::{CoreError, Pose, RgbImage};
 
@@ -18,6 +20,12 @@ pub const MAV_DIR: &str = "mav0";
 pub const IMU_DIR: &str = "imu0";
 /// The ground truth's folder under `mav0/`.
 pub const GROUND_TRUTH_DIR: &str = "state_groundtruth_estimate0";
+/// ORB-SLAM3 v1.0 stereo settings for cam0 and cam1, in the dataset root (next to `mav0/`),
+/// written when the rig has two cameras or more.
+pub const ORBSLAM3_STEREO_FILE: &str = "orbslam3_stereo.yaml";
+/// ORB-SLAM3 v1.0 stereo-inertial settings for cam0, cam1 and imu0, in the dataset root, written
+/// when the rig has two cameras or more and an IMU.
+pub const ORBSLAM3_STEREO_INERTIAL_FILE: &str = "orbslam3_stereo_inertial.yaml";
 
 struct CameraStream {
     camera: EurocCamera,
@@ -113,9 +121,11 @@ fn not_after(path: PathBuf, stream: &str, what: &str, t_ns: u64, previous: u64) 
 
 impl EurocWriter {
     /// Creates `root/mav0/` with a folder for each camera (and its `data/`) and the IMU when
-    /// there is one (the ground truth's is made when it has rows). Refuses a `root` with a symbolic link inside, a camera
-    /// without a plain, unique folder name or a usable camera, and IMU parameters that are not
-    /// finite. Files already there stay (a resumed run keeps its complete frames).
+    /// there is one (the ground truth's is made when it has rows). Refuses a `root` with a
+    /// symbolic link inside, a camera without a plain, unique folder name or a usable camera,
+    /// IMU parameters that are not finite, and a first two cameras of different resolutions or
+    /// rates (ORB-SLAM3's stereo settings describe them as one pair). Files already there stay
+    /// (a resumed run keeps its complete frames).
     pub fn open(
         root: &Path,
         cameras: Vec<EurocCamera>,
@@ -131,6 +141,14 @@ impl EurocWriter {
                         "camera name '{}' is given twice; expected one folder per camera",
                         camera.name
                     ),
+                ));
+            }
+        }
+        if let [left, right, ..] = cameras.as_slice() {
+            if let Some(problem) = stereo_pair_problem(left, right) {
+                return Err(CoreError::bad_file(
+                    root.join(ORBSLAM3_STEREO_FILE),
+                    problem,
                 ));
             }
         }
@@ -273,8 +291,9 @@ impl EurocWriter {
     }
 
     /// Each camera's data.csv and sensor.yaml, the IMU's, the ground truth's data.csv (when any
-    /// state was written), the
-    /// checksum list (frames an earlier, interrupted run wrote are hashed now), then the
+    /// state was written), ORB-SLAM3's settings for cam0 and cam1 ([`ORBSLAM3_STEREO_FILE`]
+    /// with two cameras or more, and [`ORBSLAM3_STEREO_INERTIAL_FILE`] when there is an IMU as
+    /// well), the checksum list (frames an earlier, interrupted run wrote are hashed now), then the
     /// manifest with the content digest, last. Returns the manifest as written.
     pub fn finish(self, manifest: Manifest) -> Result<Manifest, CoreError> {
         for stream in &self.cameras {
@@ -305,6 +324,16 @@ impl EurocWriter {
             )?;
         }
         drop(states);
+        if let [left, right, ..] = self.cameras.as_slice() {
+            let (left, right) = (&left.camera, &right.camera);
+            self.write_text(ORBSLAM3_STEREO_FILE, &stereo_settings(left, right))?;
+            if let Some(imu) = &self.imu {
+                self.write_text(
+                    ORBSLAM3_STEREO_INERTIAL_FILE,
+                    &stereo_inertial_settings(left, right, imu),
+                )?;
+            }
+        }
         self.content.finish(manifest)
     }
 

@@ -234,6 +234,16 @@ fn the_writer_refuses_symlinks_bad_names_and_an_absent_imu() {
         error.contains("camera name 'cam0' is given twice"),
         "{error}"
     );
+    let mut cameras = fixture::cameras();
+    cameras[1].intrinsics.height = 8;
+    let error = EurocWriter::open(dir.path(), cameras, None)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        error.contains("orbslam3_stereo.yaml: cam0 is 6x4 and cam1 is 6x8: ORB-SLAM3's stereo settings need one resolution"),
+        "{error}"
+    );
 
     let writer = EurocWriter::open(dir.path(), fixture::cameras(), None).unwrap();
     let sample = ImuSample {

@@ -112,3 +112,60 @@ fn a_dataset_without_ground_truth_or_imu_reads_as_such() {
         "no frame to tell from"
     );
 }
+
+/// Which of the two ORB-SLAM3 settings files a dataset root holds, each checked to be in the
+/// checksum list (written through the hashed path).
+fn orbslam3_files(root: &std::path::Path) -> Vec<&'static str> {
+    use crate::dataset::euroc::{ORBSLAM3_STEREO_FILE, ORBSLAM3_STEREO_INERTIAL_FILE};
+    let listed = crate::dataset::Checksums::read(root).unwrap();
+    [ORBSLAM3_STEREO_FILE, ORBSLAM3_STEREO_INERTIAL_FILE]
+        .into_iter()
+        .filter(|name| {
+            let present = root.join(name).is_file();
+            assert_eq!(
+                present,
+                listed.paths().any(|p| p == *name),
+                "{name}: on disk exactly when hashed"
+            );
+            present
+        })
+        .collect()
+}
+
+#[test]
+fn orbslam3_stereo_settings_come_with_two_cameras_and_inertial_ones_with_an_imu_too() {
+    let dir = tempfile::tempdir().unwrap();
+    fixture::write(dir.path());
+    assert_eq!(
+        orbslam3_files(dir.path()),
+        ["orbslam3_stereo.yaml", "orbslam3_stereo_inertial.yaml"]
+    );
+    let inertial =
+        std::fs::read_to_string(dir.path().join("orbslam3_stereo_inertial.yaml")).unwrap();
+    assert!(
+        inertial.contains("\nIMU.T_b_c1: !!opencv-matrix\n"),
+        "{inertial}"
+    );
+    assert!(inertial.contains("\nCamera2.fx: 458.654\n"), "{inertial}");
+    assert!(
+        read_euroc(dir.path()).is_ok(),
+        "the reader takes the root with them"
+    );
+
+    let rigs = [
+        (fixture::cameras(), None, vec!["orbslam3_stereo.yaml"]),
+        (
+            fixture::cameras()[..1].to_vec(),
+            Some(fixture::imu()),
+            vec![],
+        ),
+        (fixture::cameras()[..1].to_vec(), None, vec![]),
+    ];
+    for (cameras, imu, want) in rigs {
+        let dir = tempfile::tempdir().unwrap();
+        let what = format!("{} cameras, imu {}", cameras.len(), imu.is_some());
+        let writer = crate::dataset::euroc::EurocWriter::open(dir.path(), cameras, imu).unwrap();
+        writer.finish(fixture::manifest()).unwrap();
+        assert_eq!(orbslam3_files(dir.path()), want, "{what}");
+    }
+}
