@@ -157,16 +157,15 @@ pub fn stereo_settings(left: &EurocCamera, right: &EurocCamera) -> String {
 /// in the IMU frame) and the noise model. ORB-SLAM3's `IMU.Noise*`/`*Walk` are continuous-time
 /// densities as Kalibr's and EuRoC's sensor.yaml give them (ORB-SLAM3 scales them by √rate
 /// itself); its EuRoC example rounds EuRoC's 1.6968e-4 rad/s/√Hz to `NoiseGyro: 1.7e-04` and
-/// keeps 2.0e-3, 1.9393e-5 and 3.0e-3. `IMU.InsertKFsWhenLost: 0`: no keyframes while tracking
-/// is recently lost (ORB-SLAM3's RealSense examples; its EuRoC example leaves the key out, which
-/// means 1).
+/// keeps 2.0e-3, 1.9393e-5 and 3.0e-3. `IMU.InsertKFsWhenLost` is left out, as in that
+/// example.
 pub fn stereo_inertial_settings(left: &EurocCamera, right: &EurocCamera, imu: &EurocImu) -> String {
     let imu_from_cam0 = imu.body_from_imu.inverse().compose(&left.body_from_camera);
     format!(
         "{cameras}\n\
          # {left_name}'s pose in the IMU (body) frame: inverse(T_BS imu0) * T_BS {left_name}.\n\
          {t_b_c1}\
-         IMU.InsertKFsWhenLost: 0\n\n\
+         \n\
          # {comment}: continuous-time densities, as in imu0/sensor.yaml.\n\
          IMU.NoiseGyro: {noise_gyro}\n\
          IMU.NoiseAcc: {noise_acc}\n\
