@@ -12,6 +12,7 @@ mod motion;
 mod perturb;
 mod render;
 mod resume;
+mod rig;
 mod scene;
 mod sensor;
 mod suite;

@@ -11,7 +11,9 @@
 //! in memory. For display, [`FramesInMemory::show`] leaves an output frame on the GPU in a
 //! [`ShownFrame`] instead (clean, perturbed, depth colour-mapped), with no readback. A dataset
 //! run first marks its folder with `rslam.run.json` ([`output_folder`]), so that the same job
-//! resumes where it stopped, and finishes with checksums and the manifest.
+//! resumes where it stopped, and finishes with checksums and the manifest. A [`rig`] of several
+//! cameras and an IMU is one scene source, pipeline and sink per camera along one motion spline,
+//! written in the EuRoC layout.
 
 mod dataset_run;
 mod decode_ahead;
@@ -29,6 +31,7 @@ mod pipeline;
 mod plan;
 mod progress;
 mod render;
+pub mod rig;
 mod scene_job;
 mod shown_frame;
 mod shutter_render;
@@ -47,6 +50,7 @@ pub use pipeline::Pipeline;
 pub use plan::{FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
 pub use render::{render_dataset, RenderJob};
+pub use rig::{render_euroc, Rig, RigRenderJob, RigReport};
 pub use scene_job::{ResolvedScene, SceneJob};
 pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;

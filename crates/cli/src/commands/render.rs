@@ -6,9 +6,9 @@ use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{render_dataset, RenderJob, SceneJob};
+use rslam_pipeline::{render_dataset, render_euroc, RenderJob, Rig, RigRenderJob, SceneJob};
 
-use super::run_summary::print_summary;
+use super::run_summary::{print_rig_summary, print_summary};
 use crate::progress_bar::ProgressBar;
 
 #[derive(clap::Args)]
@@ -26,14 +26,21 @@ pub struct RenderArgs {
     #[arg(long)]
     frames: Option<usize>,
     /// `replica` (1200x680, f=600, 20 Hz), `tum` (640x480, f=525, 30 Hz) or W,H,FX,FY,CX,CY.
-    #[arg(long, default_value = "replica")]
+    #[arg(long, default_value = "replica", conflicts_with = "rig")]
     camera: String,
-    /// Frame rate in Hz; default: 30 for the tum camera, else 20.
+    /// A multi-sensor rig instead of one RGB-D camera: `stereo` (two 752x480 grey cameras,
+    /// 0.11 m apart, 20 Hz) or `stereo-imu` (the same and a 200 Hz IMU); needs --format euroc.
+    /// The scene's path (or --traj) is cam0's.
+    #[arg(long)]
+    rig: Option<String>,
+    /// Frame rate in Hz (with --rig: the rate of the path's poses); default: 30 for the tum
+    /// camera, else 20.
     #[arg(long)]
     rate: Option<f64>,
-    /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM) or tum (ORB-SLAM3).
-    #[arg(long, default_value = "replica")]
-    format: DatasetFormat,
+    /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM), tum (ORB-SLAM3) or euroc
+    /// (stereo and IMU rigs; needs --rig).
+    #[arg(long, value_enum, default_value = "replica")]
+    format: OutputFormat,
     /// Depth PNG compression: `fast`, or `small` (about a third of the size for 2–3× the
     /// encoding time; lossless either way, see the README).
     #[arg(long, default_value = "fast")]
@@ -52,36 +59,82 @@ pub struct RenderArgs {
     adapter: Option<String>,
 }
 
+/// `--format`: the core layouts of one RGB-D camera, or EuRoC for a rig.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum OutputFormat {
+    Replica,
+    Tum,
+    Euroc,
+}
+
+/// What the arguments ask for: one camera in a core layout, or a rig in EuRoC's.
+enum Job {
+    Camera(RenderJob),
+    Rig(RigRenderJob),
+}
+
 pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
-    let spec = match &args.perturb {
-        Some(text) => PerturbSpec::parse(text).context("--perturb")?,
-        None => PerturbSpec::default(),
-    };
-    let camera = Intrinsics::parse(&args.camera).context("--camera")?;
-    let job = RenderJob {
-        scene: SceneJob {
-            scene: args.scene,
-            trajectory: args.traj,
-            frames: args.frames,
-            camera,
-            rate_hz: args
-                .rate
-                .unwrap_or(Intrinsics::preset_rate_hz(&args.camera)),
-            spec,
-            seed: args.seed,
-        },
-        out: args.out,
-        format: args.format,
-        depth_png: args.depth_png,
-        force: args.force,
-        command: super::typed_command(),
-    };
+    let job = job(&args)?;
     let ctx = GpuContext::new(&AdapterChoice {
         name_contains: args.adapter,
     })?;
     eprintln!("adapter: {}", ctx.describe());
     let progress = ProgressBar::new();
-    let report = render_dataset(&ctx, &job, &progress)?;
-    print_summary(&report, &job.out, &progress)?;
+    match job {
+        Job::Camera(job) => {
+            let report = render_dataset(&ctx, &job, &progress)?;
+            print_summary(&report, &job.out, &progress)?;
+        }
+        Job::Rig(job) => {
+            let report = render_euroc(&ctx, &job, &progress)?;
+            print_rig_summary(&report, &job.out, &progress)?;
+        }
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+fn job(args: &RenderArgs) -> anyhow::Result<Job> {
+    let spec = match &args.perturb {
+        Some(text) => PerturbSpec::parse(text).context("--perturb")?,
+        None => PerturbSpec::default(),
+    };
+    let camera = Intrinsics::parse(&args.camera).context("--camera")?;
+    let scene = SceneJob {
+        scene: args.scene.clone(),
+        trajectory: args.traj.clone(),
+        frames: args.frames,
+        camera,
+        rate_hz: args
+            .rate
+            .unwrap_or(Intrinsics::preset_rate_hz(&args.camera)),
+        spec,
+        seed: args.seed,
+    };
+    let format = match (args.format, &args.rig) {
+        (OutputFormat::Euroc, Some(name)) => {
+            return Ok(Job::Rig(RigRenderJob {
+                scene,
+                rig: Rig::preset(name)?,
+                out: args.out.clone(),
+                force: args.force,
+                command: super::typed_command(),
+            }))
+        }
+        (OutputFormat::Euroc, None) => anyhow::bail!(
+            "--format euroc: needs --rig stereo|stereo-imu (the EuRoC layout is for rigs)"
+        ),
+        (_, Some(_)) => {
+            anyhow::bail!("--rig: needs --format euroc (a rig is written in the EuRoC layout)")
+        }
+        (OutputFormat::Replica, None) => DatasetFormat::Replica,
+        (OutputFormat::Tum, None) => DatasetFormat::Tum,
+    };
+    Ok(Job::Camera(RenderJob {
+        scene,
+        out: args.out.clone(),
+        format,
+        depth_png: args.depth_png,
+        force: args.force,
+        command: super::typed_command(),
+    }))
 }

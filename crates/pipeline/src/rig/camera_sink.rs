@@ -1,0 +1,59 @@
+//! One rig camera's read-back frames into the EuRoC writer, encoded on a worker thread while the
+//! GPU renders on.
+
+use std::sync::Arc;
+
+use rslam_core::dataset::euroc::EurocWriter;
+use rslam_core::{DepthImage, RgbImage};
+
+use crate::encoder_pool::EncoderPool;
+use crate::sink::FrameSink;
+use crate::PipelineError;
+
+/// Hands source frame `i` of camera `camera` to [`EurocWriter::write_frame`] at `times_s[i]`.
+/// The writer wants each camera's frames in time order, so each camera has one encoder thread of
+/// its own (frames of different cameras are encoded side by side); depth is dropped.
+pub struct EurocCameraSink {
+    writer: Arc<EurocWriter>,
+    camera: usize,
+    times_s: Arc<Vec<f64>>,
+    pool: EncoderPool,
+}
+
+impl EurocCameraSink {
+    pub fn new(writer: Arc<EurocWriter>, camera: usize, times_s: Vec<f64>) -> Self {
+        Self {
+            writer,
+            camera,
+            times_s: Arc::new(times_s),
+            // One worker keeps the frames in order; a queue of four lets the GPU run ahead.
+            pool: EncoderPool::new(1, 4),
+        }
+    }
+
+    /// Waits for the camera's frames to be on disk; the first error of any of them.
+    pub fn finish(self) -> Result<(), PipelineError> {
+        self.pool.finish()
+    }
+}
+
+impl FrameSink for EurocCameraSink {
+    fn accept(
+        &mut self,
+        source: usize,
+        color: RgbImage,
+        _depth: Option<DepthImage>,
+    ) -> Result<(), PipelineError> {
+        let Some(&time_s) = self.times_s.get(source) else {
+            return Err(PipelineError::Worker(format!(
+                "camera {}: frame {source} has no timestamp",
+                self.camera
+            )));
+        };
+        let (writer, camera) = (self.writer.clone(), self.camera);
+        self.pool.submit(move || {
+            writer.write_frame(camera, time_s, &color)?;
+            Ok(())
+        })
+    }
+}

@@ -1,0 +1,282 @@
+//! `rslam render --rig NAME --format euroc`: a scene seen by every camera of a rig, with the
+//! rig's IMU, written in the EuRoC layout.
+//!
+//! The scene's path (or `--traj`) is cam0's path, so cam0 sees what the path was made to show;
+//! the body (= the IMU, as in EuRoC) follows it at `body_from_cam0⁻¹`. A cubic B-spline through
+//! the body's poses gives its motion at any time; each camera samples it at its own rate over
+//! the spline's valid range, the IMU at its rate. Each camera is its own source, pipeline and
+//! sink on the GPU; frames are read back once and encoded on a worker thread.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use rslam_core::dataset::euroc::{EurocWriter, MAV_DIR};
+use rslam_core::dataset::{DepthPng, Manifest};
+use rslam_core::hash::splitmix64;
+use rslam_core::{CoreError, SplineSe3};
+use rslam_gpu::GpuContext;
+use rslam_perturb::PerturbSpec;
+
+use super::camera_sink::EurocCameraSink;
+use super::motion::{
+    body_path, camera_poses, ground_truth_rows, imu_rows, imu_samples, sample_times,
+};
+use super::preset::Rig;
+use crate::manifest::ManifestParts;
+use crate::output_folder::{self, FolderState};
+use crate::pipeline::Pipeline;
+use crate::plan::FramePlan;
+use crate::progress::Progress;
+use crate::scene_job::SceneJob;
+use crate::source::SceneSource;
+use crate::PipelineError;
+
+/// One rig render.
+pub struct RigRenderJob {
+    /// Scene, path (cam0's), `--frames`, the path's rate, spec and seed. Its `camera` is not
+    /// used: the rig's cameras are.
+    pub scene: SceneJob,
+    pub rig: Rig,
+    pub out: PathBuf,
+    /// Replace whatever rslam output `out` holds.
+    pub force: bool,
+    /// The command as typed, for the manifest.
+    pub command: Vec<String>,
+}
+
+/// Frames one camera has in the output.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CameraFrames {
+    /// `cam0`, `cam1`, …
+    pub name: String,
+    pub frames: usize,
+}
+
+/// What a rig render did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigReport {
+    pub cameras: Vec<CameraFrames>,
+    /// IMU samples written (0 without an IMU).
+    pub imu_samples: usize,
+    /// What the output folder held when the run began. An unfinished run of the same job
+    /// (`Resume`) is started over: every frame is rendered again.
+    pub found: FolderState,
+    /// The manifest as written (as found, when the folder was complete already).
+    pub manifest: Manifest,
+}
+
+/// Camera `index`'s seed for its frame corruptions: the job's seed for cam0 (so cam0 is
+/// corrupted as a one-camera render with that seed would be), then the next states of a
+/// SplitMix64 stream from it, `seed + index · 0x9e3779b97f4a7c15` (wrapping), so that the noise
+/// differs between cameras.
+pub fn camera_seed(seed: u64, index: usize) -> u64 {
+    seed.wrapping_add((index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15))
+}
+
+/// The IMU noise's seed: `splitmix64(seed ^ 0x494d_5530)` ("IMU0"), unrelated to any camera's.
+pub fn imu_seed(seed: u64) -> u64 {
+    splitmix64(seed ^ 0x494d_5530)
+}
+
+/// Refuses what a rig cannot do yet: items that change the frame plan (`fast`, `misalign`) or
+/// the path (`rot`, `trans`). Image and depth corruptions and the shutter (`exposure`,
+/// `rolling_shutter`) apply to every camera; EuRoC cameras have no depth, so depth items change
+/// nothing written.
+pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
+    let refused = [
+        ("fast", spec.fast.is_some()),
+        ("misalign", spec.misalign.is_some()),
+        ("rot", spec.rotation.is_some()),
+        ("trans", spec.translation.is_some()),
+    ];
+    match refused.iter().find(|(_, given)| *given) {
+        Some((name, _)) => Err(PipelineError::option(
+            "--perturb",
+            format!("'{name}': rigs do not support it yet (it changes the frame plan or the path); image, depth and shutter items work"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// One camera's part of the run.
+struct CameraRun {
+    times_s: Vec<f64>,
+    seed: u64,
+}
+
+pub fn render_euroc(
+    ctx: &GpuContext,
+    job: &RigRenderJob,
+    progress: &dyn Progress,
+) -> Result<RigReport, PipelineError> {
+    check_rig_spec(&job.scene.spec)?;
+    let Some(cam0) = job.rig.cameras.first() else {
+        return Err(PipelineError::option("--rig", "the rig has no camera"));
+    };
+    let resolved = job.scene.resolve()?;
+    let body = body_path(&resolved.clean, &cam0.body_from_camera);
+    let spline = SplineSe3::from_trajectory(&body).map_err(|e| match e {
+        CoreError::SplineTooShort { poses } => PipelineError::option(
+            "--frames",
+            format!("{poses} poses: a rig's motion spline needs at least 4"),
+        ),
+        other => other.into(),
+    })?;
+    let runs: Vec<CameraRun> = job
+        .rig
+        .cameras
+        .iter()
+        .enumerate()
+        .map(|(i, camera)| CameraRun {
+            times_s: sample_times(&spline, camera.rate_hz),
+            seed: camera_seed(job.scene.seed, i),
+        })
+        .collect();
+    let cam0_plan = FramePlan::rendered(
+        runs[0].times_s.len(),
+        cam0.rate_hz,
+        &job.scene.spec,
+        runs[0].seed,
+    );
+    let imu_seed = imu_seed(job.scene.seed);
+    let manifest = ManifestParts {
+        command: &job.command,
+        source: resolved.scene.name.clone(),
+        source_hash: resolved.scene.content_hash(),
+        format: None,
+        camera: Some(cam0.intrinsics),
+        depth_png: DepthPng::default(),
+        rate_hz: cam0.rate_hz,
+        seed: job.scene.seed,
+        spec: &job.scene.spec,
+        plan: &cam0_plan,
+        extra: serde_json::json!({
+            "adapter": ctx.describe(),
+            "layout": "euroc",
+            "rig": job.rig.name,
+            "path_rate_hz": job.scene.rate_hz,
+            "cameras": job.rig.cameras.iter().zip(&runs).map(|(c, r)| serde_json::json!({
+                "name": c.name,
+                "frames": r.times_s.len(),
+                "rate_hz": c.rate_hz,
+                "seed": r.seed,
+            })).collect::<Vec<_>>(),
+            "imu": job.rig.imu.as_ref().map(|imu| serde_json::json!({
+                "rate_hz": imu.rate_hz,
+                "seed": imu_seed,
+            })),
+        }),
+    }
+    .build()?;
+    let cameras: Vec<CameraFrames> = job
+        .rig
+        .cameras
+        .iter()
+        .zip(&runs)
+        .map(|(c, r)| CameraFrames {
+            name: c.name.clone(),
+            frames: r.times_s.len(),
+        })
+        .collect();
+
+    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
+    if found == FolderState::Complete {
+        let imu_samples = job
+            .rig
+            .imu
+            .as_ref()
+            .map_or(0, |imu| sample_times(&spline, imu.rate_hz).len());
+        return Ok(RigReport {
+            cameras,
+            imu_samples,
+            found,
+            manifest: Manifest::read(&job.out)?,
+        });
+    }
+    if found == FolderState::Resume {
+        // A rig run does not resume frame by frame yet: it starts over.
+        let mav = job.out.join(MAV_DIR);
+        if mav.exists() {
+            std::fs::remove_dir_all(&mav).map_err(|e| CoreError::io(&mav, e))?;
+        }
+    }
+    let writer = Arc::new(EurocWriter::open(
+        &job.out,
+        job.rig.cameras.clone(),
+        job.rig.imu.clone(),
+    )?);
+
+    let total = runs.iter().map(|r| r.times_s.len()).sum();
+    progress.start(total, "rendering");
+    let mut sinks = Vec::new();
+    for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
+        let poses = camera_poses(&spline, camera, &run.times_s)?;
+        let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
+        source.set_shutter(ctx, &job.scene.spec, camera.rate_hz)?;
+        let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, run.seed)?;
+        let mut sink = EurocCameraSink::new(writer.clone(), i, run.times_s.clone());
+        let sources: Vec<usize> = (0..run.times_s.len()).collect();
+        pipeline.run(ctx, &sources, progress, &mut sink)?;
+        sinks.push(sink);
+    }
+    for sink in sinks {
+        sink.finish()?;
+    }
+    progress.finish();
+
+    let imu = match &job.rig.imu {
+        Some(imu) => imu_samples(&spline, imu, imu_seed)?,
+        None => Vec::new(),
+    };
+    if job.rig.imu.is_some() {
+        writer.write_imu(&imu_rows(&imu)?)?;
+    }
+    writer.write_ground_truth(&ground_truth_rows(&spline, &imu, &runs[0].times_s)?)?;
+    let writer = Arc::try_unwrap(writer)
+        .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
+    let manifest = writer.finish(manifest)?;
+    output_folder::finish(&job.out)?;
+    Ok(RigReport {
+        cameras,
+        imu_samples: imu.len(),
+        found,
+        manifest,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn camera_seeds_differ_and_cam0_keeps_the_job_seed() {
+        assert_eq!(camera_seed(7, 0), 7);
+        assert_ne!(camera_seed(7, 1), 7);
+        assert_ne!(camera_seed(7, 1), camera_seed(7, 2));
+        assert_ne!(imu_seed(7), camera_seed(7, 1));
+        assert_eq!(
+            camera_seed(u64::MAX, 1),
+            u64::MAX.wrapping_add(0x9e37_79b9_7f4a_7c15)
+        );
+    }
+
+    #[test]
+    fn items_that_change_the_plan_or_the_path_are_refused_by_name() {
+        for (text, name) in [
+            ("fast:2", "fast"),
+            ("misalign:1", "misalign"),
+            ("rot:1", "rot"),
+            ("trans:0.01", "trans"),
+        ] {
+            let spec = PerturbSpec::parse(&format!("fog:2,{text}")).unwrap();
+            let err = check_rig_spec(&spec).unwrap_err().to_string();
+            assert!(
+                err.starts_with(&format!("--perturb: '{name}': rigs do not support it yet")),
+                "{err}"
+            );
+            assert!(!err.contains('\n'), "{err}");
+        }
+        let fine = PerturbSpec::parse("fog:2,depth_missing:3,exposure:10").unwrap();
+        check_rig_spec(&fine).unwrap();
+    }
+}

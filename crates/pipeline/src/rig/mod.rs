@@ -1,0 +1,25 @@
+//! Multi-sensor rigs: several cameras and an IMU on one moving body, rendered into the EuRoC
+//! layout (formats.md, "EuRoC (ASL) layout").
+//!
+//! Conventions: the body frame is the IMU's (EuRoC's); each camera's `body_from_camera` is its
+//! sensor.yaml `T_BS`, camera axes OpenCV's (x right, y down, z forward). The scene's path is
+//! cam0's path; the body follows it at `body_from_cam0⁻¹` along a cubic B-spline on SE(3), which
+//! every sensor samples at its own rate over the spline's valid range. Camera `i` corrupts its
+//! frames with seed [`camera_seed`]`(seed, i)` (cam0: the job's seed), the IMU draws its noise
+//! with [`imu_seed`]`(seed)`.
+//!
+//! - [`preset`]: the `--rig` presets ([`Rig::stereo`], [`Rig::stereo_imu`]).
+//! - [`euroc_render`]: [`render_euroc`], the run.
+//!
+//! Not built yet: `rgbd` and `rgbd-imu` presets, per-sensor spec items, frame-by-frame resume
+//! (an unfinished rig output is started over).
+
+mod camera_sink;
+pub mod euroc_render;
+mod motion;
+pub mod preset;
+
+pub use euroc_render::{
+    camera_seed, check_rig_spec, imu_seed, render_euroc, CameraFrames, RigRenderJob, RigReport,
+};
+pub use preset::{Rig, EUROC_CAM0_INTRINSICS, RIG_NAMES, STEREO_BASELINE_M};

@@ -1,0 +1,109 @@
+//! `rslam render --rig NAME --format euroc`: a stereo-IMU rig written in the EuRoC layout, and
+//! the flags' one-line errors.
+
+use crate::harness::Workspace;
+
+const RIG_RENDER: [&str; 11] = [
+    "render",
+    "--scene",
+    "room0",
+    "--frames",
+    "4",
+    "--rig",
+    "stereo-imu",
+    "--format",
+    "euroc",
+    "--out",
+    "rig",
+];
+
+/// The one `error:` line of a failed run (clap adds usage lines after its own).
+fn error_line(stderr: &str) -> String {
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "{stderr}");
+    errors[0].to_string()
+}
+
+#[test]
+fn stereo_imu_rig_writes_the_euroc_layout() {
+    let ws = Workspace::new();
+    let run = ws.rslam(&RIG_RENDER);
+    run.success();
+    for file in [
+        "mav0/cam0/data.csv",
+        "mav0/cam1/data.csv",
+        "mav0/cam0/sensor.yaml",
+        "mav0/cam1/sensor.yaml",
+        "mav0/imu0/data.csv",
+        "mav0/imu0/sensor.yaml",
+        "mav0/state_groundtruth_estimate0/data.csv",
+        "rslam.json",
+    ] {
+        assert!(ws.path("rig").join(file).is_file(), "{file} missing");
+    }
+    // 4 path poses at 20 Hz: the spline is valid from the second to the third, 2 frames each.
+    let stderr = run.stderr();
+    assert!(
+        stderr.contains("wrote 2 frames from cam0, 2 frames from cam1, 11 IMU samples to rig"),
+        "{stderr}"
+    );
+    let frames = std::fs::read_dir(ws.path("rig/mav0/cam1/data"))
+        .unwrap()
+        .count();
+    assert_eq!(frames, 2);
+    let again = ws.rslam(&RIG_RENDER);
+    again.success();
+    assert!(
+        again.stderr().contains("already complete"),
+        "{}",
+        again.stderr()
+    );
+}
+
+#[test]
+fn rig_flags_fail_with_one_line_errors_naming_the_flag() {
+    let ws = Workspace::new();
+    let base = ["render", "--scene", "room0", "--frames", "4", "--out", "x"];
+    let run = |extra: &[&str]| ws.rslam(&[&base[..], extra].concat());
+
+    let err = run(&["--rig", "stereo-imu"]).fails_with(2, &["--rig", "--format euroc"]);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let err = run(&["--rig", "stereo-imu", "--format", "tum"]).fails_with(2, &["--rig"]);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let err = run(&["--rig", "bogus", "--format", "euroc"])
+        .fails_with(2, &["--rig: 'bogus': expected one of stereo, stereo-imu"]);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let err = run(&["--format", "euroc"]).fails_with(2, &["--format euroc", "--rig"]);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let err = run(&["--rig", "stereo", "--format", "euroc", "--camera", "tum"]).fails_with(2, &[]);
+    let line = error_line(&err);
+    assert!(line.contains("--camera") && line.contains("--rig"), "{err}");
+    let err = run(&[
+        "--rig",
+        "stereo",
+        "--format",
+        "euroc",
+        "--perturb",
+        "fog:2,fast:2",
+    ])
+    .fails_with(2, &[]);
+    assert!(
+        error_line(&err).contains("--perturb: 'fast': rigs do not support it yet"),
+        "{err}"
+    );
+    assert!(!ws.path("x").exists());
+}
+
+#[test]
+fn a_folder_of_other_files_is_refused() {
+    let ws = Workspace::new();
+    ws.write("rig/notes.txt", "mine");
+    let err = ws
+        .rslam(&RIG_RENDER)
+        .fails_with(2, &["holds no rslam output"]);
+    error_line(&err);
+    assert_eq!(
+        std::fs::read_to_string(ws.path("rig/notes.txt")).unwrap(),
+        "mine"
+    );
+}
