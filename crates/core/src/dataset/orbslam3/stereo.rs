@@ -35,12 +35,14 @@ fn real(v: f64) -> String {
 }
 
 /// `name: !!opencv-matrix` of a rigid transform, 4×4 row-major, single precision (`dt: f`), laid
-/// out as the examples lay out `Stereo.T_c1_c2`.
+/// out as the examples lay out `Stereo.T_c1_c2`. Entries under 1e-12, rounding left over from
+/// composing transforms and far below single precision, are written as 0.0.
 fn opencv_matrix(name: &str, pose: &Pose) -> String {
+    let entry = |v: f64| real(if v.abs() < 1e-12 { 0.0 } else { v });
     let rows: Vec<String> = pose
         .to_row_major()
         .chunks_exact(4)
-        .map(|row| row.iter().map(|v| real(*v)).collect::<Vec<_>>().join(", "))
+        .map(|row| row.iter().map(|v| entry(*v)).collect::<Vec<_>>().join(", "))
         .collect();
     format!(
         "{name}: !!opencv-matrix\n  rows: 4\n  cols: 4\n  dt: f\n  data: [{}]\n",
