@@ -89,6 +89,10 @@ hostile_input_properties!(
     checksums,
     image,
     depth_png,
+    euroc_camera_yaml,
+    euroc_camera_csv,
+    euroc_imu,
+    euroc_groundtruth,
     suite,
     method,
 );

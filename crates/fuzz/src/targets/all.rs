@@ -1,6 +1,6 @@
 //! Every fuzz target, in the order `rslam-fuzz` runs them.
 
-use super::{dataset, mesh, suite, text, trajectory};
+use super::{dataset, euroc, mesh, suite, text, trajectory};
 use crate::target::{nothing, Target};
 
 pub static TARGETS: &[Target] = &[
@@ -99,6 +99,30 @@ pub static TARGETS: &[Target] = &[
         file: Some(dataset::DEPTH_PNG),
         prepare: nothing,
         check: dataset::depth_png,
+    },
+    Target {
+        name: "euroc_camera_yaml",
+        file: Some(euroc::CAMERA_YAML),
+        prepare: euroc::prepare,
+        check: euroc::camera_yaml,
+    },
+    Target {
+        name: "euroc_camera_csv",
+        file: Some(euroc::CAMERA_CSV),
+        prepare: euroc::prepare,
+        check: euroc::camera_csv,
+    },
+    Target {
+        name: "euroc_imu",
+        file: Some(euroc::IMU_CSV),
+        prepare: euroc::prepare,
+        check: euroc::imu,
+    },
+    Target {
+        name: "euroc_groundtruth",
+        file: Some(euroc::GROUND_TRUTH_CSV),
+        prepare: euroc::prepare,
+        check: euroc::ground_truth,
     },
     Target {
         name: "suite",

@@ -2,6 +2,7 @@
 
 mod all;
 mod dataset;
+mod euroc;
 mod mesh;
 mod suite;
 mod text;

@@ -139,8 +139,11 @@ pub fn read_camera_csv(path: &Path, data_dir: &Path) -> Result<Vec<EurocFrame>, 
         };
         let t_ns = at.nanoseconds(1, t, CAMERA_LAYOUT)?;
         check_increasing(&at, frames.last().map(|f| f.t_ns), t_ns)?;
-        let plain =
-            !name.is_empty() && !name.contains(['/', '\\']) && *name != "." && *name != "..";
+        let plain = !name.is_empty()
+            && !name.contains(['/', '\\'])
+            && !name.chars().any(char::is_control)
+            && *name != "."
+            && *name != "..";
         if !plain {
             return Err(at.error(format!(
                 "file name '{}': expected a plain name inside {}",
@@ -152,7 +155,7 @@ pub fn read_camera_csv(path: &Path, data_dir: &Path) -> Result<Vec<EurocFrame>, 
         if !image.is_file() {
             return Err(at.error(format!(
                 "names {}, which is missing; expected an image there",
-                image.display()
+                printable(&image.display().to_string())
             )));
         }
         frames.push(EurocFrame { t_ns, path: image });

@@ -67,6 +67,13 @@ fn bad_files_are_named_with_the_line_and_what_was_expected() {
             "cam0/data.csv:2: file name '../../imu0/data.csv': expected a plain name",
         ),
         (
+            // Found by the fuzzer: a lone carriage return inside a name broke the error in two.
+            "mav0/cam0/data.csv",
+            "1403636579763555584.png",
+            "1403636579763555584.png\r-1",
+            "cam0/data.csv:2: file name '1403636579763555584.png\\r-1': expected a plain name",
+        ),
+        (
             "mav0/cam0/sensor.yaml",
             "rate_hz: 20\n",
             "",
