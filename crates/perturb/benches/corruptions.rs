@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use rslam_core::dataset::{encode_png, read_rgb};
-use rslam_core::{DepthImage, RgbImage};
+use rslam_core::{DepthImage, Intrinsics, RgbImage};
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
 use rslam_perturb::{FrameKey, Group, Kit, Scratch, CATALOGUE};
 
@@ -52,6 +52,7 @@ fn corruptions(c: &mut Criterion) {
         width: WIDTH,
         height: HEIGHT,
         scratch: &scratch,
+        camera: Some(Intrinsics::REPLICA),
     };
     let (color, depth) = clean_frame();
     let pristine = FrameTextures::new(&ctx, WIDTH, HEIGHT);
@@ -87,6 +88,7 @@ fn corruptions(c: &mut Criterion) {
                             frame: i as u32,
                             severity,
                             explicit: None,
+                            camera: Some(Intrinsics::REPLICA),
                         };
                         let start = Instant::now();
                         let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -161,6 +163,7 @@ fn corruptions(c: &mut Criterion) {
                     frame: index,
                     severity: 3,
                     explicit: None,
+                    camera: Some(Intrinsics::REPLICA),
                 };
                 index += 1;
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());

@@ -48,6 +48,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         width,
         height,
         scratch: &scratch,
+        // Image files carry no camera.
+        camera: None,
     };
     let frame = FrameTextures::new(&ctx, width, height);
     let readback = FrameReadback::new(&ctx, width, height, false);
@@ -65,6 +67,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     frame: index,
                     severity,
                     explicit: None,
+                    camera: None,
                 };
                 let start = Instant::now();
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());

@@ -30,6 +30,7 @@ pub static CATALOGUE: &[CatalogueEntry] = &[
     depth::depth_missing::ENTRY,
     depth::depth_range::ENTRY,
     depth::depth_noise_kinect::ENTRY,
+    depth::depth_sensor::ENTRY,
 ];
 
 /// The entry named `name`, if any.

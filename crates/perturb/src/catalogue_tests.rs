@@ -57,6 +57,7 @@ fn keys(explicit: Option<&[f64]>) -> Vec<FrameKey<'_>> {
                 frame,
                 severity,
                 explicit: None,
+                camera: Some(testing::camera(WIDTH, HEIGHT)),
             })
         })
         .collect();
@@ -68,6 +69,7 @@ fn keys(explicit: Option<&[f64]>) -> Vec<FrameKey<'_>> {
             frame,
             severity: 5,
             explicit: Some(values),
+            camera: Some(testing::camera(WIDTH, HEIGHT)),
         });
     }
     keys

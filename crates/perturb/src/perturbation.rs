@@ -1,6 +1,7 @@
 //! The contract every GPU perturbation implements, and the kit of shared GPU resources they use.
 
 use bytemuck::Pod;
+use rslam_core::Intrinsics;
 use rslam_gpu::{FrameTextures, GpuContext};
 use serde::Serialize;
 
@@ -68,6 +69,9 @@ pub struct FrameKey<'a> {
     /// parameter form it is 5 and [`FrameKey::explicit`] holds the values.
     pub severity: u8,
     pub explicit: Option<&'a [f64]>,
+    /// The camera the frame was taken with, where it is known (rendered scenes, datasets); image
+    /// files have none. Perturbations computed from the geometry (`depth_sensor`) need it.
+    pub camera: Option<Intrinsics>,
 }
 
 impl FrameKey<'_> {
@@ -144,6 +148,9 @@ pub struct Kit<'a> {
     pub width: u32,
     pub height: u32,
     pub scratch: &'a Scratch,
+    /// The camera of the frames, where it is known; `build` of a perturbation that needs it
+    /// fails without it.
+    pub camera: Option<Intrinsics>,
 }
 
 impl Kit<'_> {

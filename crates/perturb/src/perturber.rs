@@ -1,5 +1,6 @@
 //! Applies a spec's image and depth corruptions to frames on the GPU.
 
+use rslam_core::Intrinsics;
 use rslam_gpu::{FrameTextures, GpuContext};
 use serde::Serialize;
 
@@ -59,19 +60,23 @@ pub struct Perturber {
     width: u32,
     height: u32,
     seed: u64,
+    camera: Option<Intrinsics>,
     scratch: Scratch,
     items: Vec<Item>,
 }
 
 impl Perturber {
     /// Builds pipelines and buffers for every image and depth item of `spec` (trajectory and
-    /// stream items are not frame operations and are ignored here).
+    /// stream items are not frame operations and are ignored here). `camera` is the camera of
+    /// the frames where one is known (`None` for image files); items computed from the geometry
+    /// (`depth_sensor`) fail to build without it.
     pub fn new(
         ctx: &GpuContext,
         spec: &PerturbSpec,
         width: u32,
         height: u32,
         seed: u64,
+        camera: Option<Intrinsics>,
     ) -> Result<Self, PerturbError> {
         let scratch = Scratch::new(ctx, width, height);
         let kit = Kit {
@@ -79,6 +84,7 @@ impl Perturber {
             width,
             height,
             scratch: &scratch,
+            camera,
         };
         let mut items = Vec::new();
         for item in spec.frame_items() {
@@ -99,6 +105,7 @@ impl Perturber {
             width,
             height,
             seed,
+            camera,
             scratch,
             items,
         })
@@ -164,6 +171,7 @@ impl Perturber {
             width: self.width,
             height: self.height,
             scratch: &self.scratch,
+            camera: self.camera,
         };
         for (item, got) in self.items.iter_mut().zip(&severities.items) {
             if got.severity == 0 {
@@ -178,6 +186,7 @@ impl Perturber {
                 frame: frame_index,
                 severity: got.severity,
                 explicit,
+                camera: self.camera,
             };
             item.perturbation.encode(&kit, encoder, frame, &key)?;
         }
@@ -220,7 +229,7 @@ mod tests {
         let ctx = testing::context();
         let (w, h) = (64, 48);
         let spec = PerturbSpec::parse("brightness:5@dynamic,depth_range:0.42-3").unwrap();
-        let mut perturber = Perturber::new(ctx, &spec, w, h, 9).unwrap();
+        let mut perturber = Perturber::new(ctx, &spec, w, h, 9, None).unwrap();
         let clean = testing::test_image(w, h);
         let depth = testing::test_depth(w, h);
         let frame = FrameTextures::new(ctx, w, h);
@@ -285,9 +294,9 @@ mod tests {
         };
         let two = PerturbSpec::parse("brightness:2").unwrap();
         let five = PerturbSpec::parse("brightness:5").unwrap();
-        let mut relevelled = Perturber::new(ctx, &two, w, h, 1).unwrap();
+        let mut relevelled = Perturber::new(ctx, &two, w, h, 1, None).unwrap();
         assert!(relevelled.set_levels(&five, 1));
-        let mut built = Perturber::new(ctx, &five, w, h, 1).unwrap();
+        let mut built = Perturber::new(ctx, &five, w, h, 1, None).unwrap();
         assert_eq!(run(&mut relevelled), run(&mut built));
         let other = PerturbSpec::parse("contrast:5").unwrap();
         assert!(!relevelled.set_levels(&other, 1));
@@ -298,7 +307,7 @@ mod tests {
     fn wrong_frame_size_is_an_error() {
         let ctx = testing::context();
         let spec = PerturbSpec::parse("contrast:1").unwrap();
-        let mut perturber = Perturber::new(ctx, &spec, 32, 32, 0).unwrap();
+        let mut perturber = Perturber::new(ctx, &spec, 32, 32, 0, None).unwrap();
         let frame = FrameTextures::new(ctx, 40, 32);
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         let e = perturber

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-use rslam_core::{DepthImage, RgbImage};
+use rslam_core::{DepthImage, Intrinsics, RgbImage};
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
 
 use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Kit, Scratch};
@@ -46,6 +46,7 @@ impl EntryOnGpu {
             width,
             height,
             scratch: &scratch,
+            camera: Some(camera(width, height)),
         };
         let perturbation = (entry.build)(&kit).map_err(|e| format!("building: {e}"))?;
         Ok(Self {
@@ -71,6 +72,7 @@ impl EntryOnGpu {
             width: self.width,
             height: self.height,
             scratch: &self.scratch,
+            camera: Some(camera(self.width, self.height)),
         };
         self.frame.upload(ctx, color, depth);
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -109,6 +111,20 @@ pub fn key(seed: u64, severity: u8) -> FrameKey<'static> {
         frame: 0,
         severity,
         explicit: None,
+        camera: None,
+    }
+}
+
+/// The camera GPU tests build entries with: f = width pixels (a 53° horizontal field of view),
+/// principal point at the centre.
+pub fn camera(width: u32, height: u32) -> Intrinsics {
+    Intrinsics {
+        width,
+        height,
+        fx: width as f64,
+        fy: width as f64,
+        cx: (width as f64 - 1.0) / 2.0,
+        cy: (height as f64 - 1.0) / 2.0,
     }
 }
 
@@ -365,6 +381,7 @@ pub fn assert_seeded(entry: &CatalogueEntry, severity: u8) {
             frame,
             severity,
             explicit: None,
+            camera: Some(camera(64, 48)),
         };
         run_frame(entry, &key, &clean, Some(&test_depth(64, 48)))
     };

@@ -100,7 +100,7 @@ fn run(ctx: &GpuContext, name: &str, severity: u8, clean: &RgbImage) -> Result<R
     let (width, height) = (clean.width, clean.height);
     let spec = PerturbSpec::parse(&format!("{name}:{severity}")).map_err(|e| e.to_string())?;
     let mut perturber =
-        Perturber::new(ctx, &spec, width, height, SEED).map_err(|e| e.to_string())?;
+        Perturber::new(ctx, &spec, width, height, SEED, None).map_err(|e| e.to_string())?;
     let frame = FrameTextures::new(ctx, width, height);
     frame.upload(ctx, clean, None);
     let readback = FrameReadback::new(ctx, width, height, false);

@@ -205,7 +205,10 @@ fn run_images(
         let (width, height) = sizes[run.start];
         let perturber = match perturbers.entry((width, height)) {
             Entry::Occupied(e) => e.into_mut(),
-            Entry::Vacant(e) => e.insert(Perturber::new(ctx, &job.spec, width, height, job.seed)?),
+            // Image files carry no camera.
+            Entry::Vacant(e) => e.insert(Perturber::new(
+                ctx, &job.spec, width, height, job.seed, None,
+            )?),
         };
         let sources: Vec<usize> = indices[run].to_vec();
         let paths: Vec<PathBuf> = sources.iter().map(|&i| files[i].clone()).collect();

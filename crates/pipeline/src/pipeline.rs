@@ -26,7 +26,7 @@ impl<S: FrameSource> Pipeline<S> {
         seed: u64,
     ) -> Result<Self, PipelineError> {
         let (width, height) = source.size();
-        let perturber = Perturber::new(ctx, spec, width, height, seed)?;
+        let perturber = Perturber::new(ctx, spec, width, height, seed, source.camera())?;
         Ok(Self { source, perturber })
     }
 
@@ -53,7 +53,8 @@ impl<S: FrameSource> Pipeline<S> {
     ) -> Result<(), PipelineError> {
         if !self.perturber.set_levels(spec, seed) {
             let (width, height) = self.source.size();
-            self.perturber = Perturber::new(ctx, spec, width, height, seed)?;
+            let camera = self.source.camera();
+            self.perturber = Perturber::new(ctx, spec, width, height, seed, camera)?;
         }
         Ok(())
     }

@@ -20,6 +20,9 @@ pub trait FrameSource {
     fn size(&self) -> (u32, u32);
     /// Whether frames carry depth.
     fn has_depth(&self) -> bool;
+    /// The camera the frames were taken with, where it is known (perturbations computed from
+    /// the geometry, `depth_sensor`, need it).
+    fn camera(&self) -> Option<Intrinsics>;
     /// Called once per run with the source frames it will record, in that order (decoding
     /// starts here).
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError>;
@@ -109,6 +112,10 @@ impl FrameSource for SceneSource {
         true
     }
 
+    fn camera(&self) -> Option<Intrinsics> {
+        Some(*self.rasterizer.intrinsics())
+    }
+
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
         check_in_range(sources, self.poses.len(), "poses of the path")
     }
@@ -165,6 +172,10 @@ impl FrameSource for DatasetSource {
 
     fn has_depth(&self) -> bool {
         self.frames.iter().all(|f| f.depth.is_some())
+    }
+
+    fn camera(&self) -> Option<Intrinsics> {
+        Some(self.intrinsics)
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
@@ -353,6 +364,11 @@ impl FrameSource for BufferSource {
 
     fn has_depth(&self) -> bool {
         self.frames[0].1.is_some()
+    }
+
+    /// Frames handed over in memory come without a camera.
+    fn camera(&self) -> Option<Intrinsics> {
+        None
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {

@@ -31,6 +31,31 @@ impl DepthPass {
         params: &P,
         extra: &[wgpu::BindingResource],
     ) {
+        let bind_group = self.bind(kit, frame, params, extra);
+        kit.dispatch(encoder, &self.pipeline, &bind_group, self.label);
+    }
+
+    /// Like [`DepthPass::encode`] with no extra resources, for a shader whose workgroups are not
+    /// 8×8 tiles of the frame (e.g. one invocation per row).
+    pub fn encode_workgroups<P: Pod>(
+        &self,
+        kit: &Kit,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        params: &P,
+        workgroups: [u32; 3],
+    ) {
+        let bind_group = self.bind(kit, frame, params, &[]);
+        kit.dispatch_workgroups(encoder, &self.pipeline, &bind_group, self.label, workgroups);
+    }
+
+    fn bind<P: Pod>(
+        &self,
+        kit: &Kit,
+        frame: &FrameTextures,
+        params: &P,
+        extra: &[wgpu::BindingResource],
+    ) -> wgpu::BindGroup {
         kit.write_uniform(&self.params, params);
         let depth = frame.depth_view();
         let mut resources = vec![
@@ -38,8 +63,7 @@ impl DepthPass {
             self.params.as_entire_binding(),
         ];
         resources.extend_from_slice(extra);
-        let bind_group = kit.bind_group(&self.pipeline, self.label, &resources);
-        kit.dispatch(encoder, &self.pipeline, &bind_group, self.label);
+        kit.bind_group(&self.pipeline, self.label, &resources)
     }
 }
 

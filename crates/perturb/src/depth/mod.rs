@@ -7,3 +7,4 @@ pub mod depth_noise;
 pub mod depth_noise_kinect;
 pub mod depth_pass;
 pub mod depth_range;
+pub mod depth_sensor;
