@@ -10,6 +10,7 @@ mod harness;
 mod list;
 mod motion;
 mod perturb;
+mod perturb_euroc;
 mod render;
 mod resume;
 mod rig;

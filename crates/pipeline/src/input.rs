@@ -3,17 +3,21 @@
 use std::path::{Path, PathBuf};
 
 use crate::perturb_images::is_image;
+use crate::rig::is_euroc_input;
 use crate::PipelineError;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum PerturbInput {
     Dataset(PathBuf),
+    /// A EuRoC (ASL) dataset: the folder holding `mav0/`, or `mav0/` itself.
+    Euroc(PathBuf),
     ImageFolder(PathBuf),
     Image(PathBuf),
 }
 
 impl PerturbInput {
-    /// A dataset (Replica `results/` or TUM `rgb.txt`), a folder of PNG/JPEG images, or one image.
+    /// A dataset (Replica `results/`, TUM `rgb.txt` or EuRoC `mav0/`), a folder of PNG/JPEG
+    /// images, or one image.
     pub fn detect(path: &Path) -> Result<Self, PipelineError> {
         if path.is_file() {
             if !is_image(path) {
@@ -26,6 +30,9 @@ impl PerturbInput {
         }
         if !path.is_dir() {
             return Err(PipelineError::input(path, "no such file or folder"));
+        }
+        if is_euroc_input(path) {
+            return Ok(Self::Euroc(path.to_path_buf()));
         }
         if path.join("rgb.txt").is_file() || path.join("results").is_dir() {
             return Ok(Self::Dataset(path.to_path_buf()));

@@ -13,7 +13,7 @@
 //! run first marks its folder with `rslam.run.json` ([`output_folder`]), so that the same job
 //! resumes where it stopped, and finishes with checksums and the manifest. A [`rig`] of several
 //! cameras and an IMU is one scene source, pipeline and sink per camera along one motion spline,
-//! written in the EuRoC layout.
+//! written in the EuRoC layout; a recorded EuRoC dataset is one decoding source per camera.
 
 mod dataset_run;
 mod decode_ahead;
@@ -50,7 +50,7 @@ pub use pipeline::Pipeline;
 pub use plan::{FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
 pub use render::{render_dataset, RenderJob};
-pub use rig::{render_euroc, Rig, RigRenderJob, RigReport};
+pub use rig::{perturb_euroc, render_euroc, PerturbEurocJob, Rig, RigRenderJob, RigReport};
 pub use scene_job::{ResolvedScene, SceneJob};
 pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;

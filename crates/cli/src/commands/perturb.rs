@@ -7,15 +7,17 @@ use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::{
-    image_files, perturb_dataset, perturb_images, PerturbDatasetJob, PerturbImagesJob, PerturbInput,
+    image_files, perturb_dataset, perturb_euroc, perturb_images, PerturbDatasetJob,
+    PerturbEurocJob, PerturbImagesJob, PerturbInput,
 };
 
-use super::run_summary::print_summary;
+use super::run_summary::{print_rig_summary, print_summary};
 use crate::progress_bar::ProgressBar;
 
 #[derive(clap::Args)]
 pub struct PerturbArgs {
-    /// A dataset (Replica or TUM layout), a folder of PNG/JPEG images, or one image.
+    /// A dataset (Replica, TUM or EuRoC layout: a folder holding mav0/), a folder of PNG/JPEG
+    /// images, or one image.
     #[arg(long)]
     input: PathBuf,
     /// Output: a folder for datasets and image folders, a file for one image (same format).
@@ -56,6 +58,21 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
     let input = PerturbInput::detect(&args.input).context("--input")?;
     let what = match input {
         PerturbInput::Dataset(_) => None,
+        PerturbInput::Euroc(_) => {
+            let given = [
+                ("--camera", args.camera.is_some()),
+                ("--rate", args.rate.is_some()),
+                ("--depth-png", args.depth_png.is_some()),
+            ];
+            if let Some((flag, _)) = given.iter().find(|(_, given)| *given) {
+                anyhow::bail!(
+                    "{flag}: {} is a EuRoC dataset; its cameras and rates come from its sensor.yaml files and it has no depth",
+                    args.input.display()
+                );
+            }
+            rslam_pipeline::rig::check_euroc_spec(&spec)?;
+            None
+        }
         PerturbInput::ImageFolder(_) => Some("a folder of images"),
         PerturbInput::Image(_) => Some("one image"),
     };
@@ -88,6 +105,19 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
             };
             let report = perturb_dataset(&ctx, &job, &progress)?;
             print_summary(&report, &job.out, &progress)?;
+            return Ok(ExitCode::SUCCESS);
+        }
+        PerturbInput::Euroc(root) => {
+            let job = PerturbEurocJob {
+                input: root,
+                out: args.out,
+                spec,
+                seed: args.seed,
+                force: args.force,
+                command,
+            };
+            let report = perturb_euroc(&ctx, &job, &progress)?;
+            print_rig_summary(&report, &job.out, &progress)?;
             return Ok(ExitCode::SUCCESS);
         }
         PerturbInput::ImageFolder(dir) => (image_files(&dir)?, false),

@@ -61,7 +61,7 @@ pub fn print_rig_summary(
             "{out} is already complete ({streams}, same job); nothing to do (--force redoes it)"
         ),
         FolderState::Resume => eprintln!(
-            "started {out} over (a rig render does not resume yet): wrote {streams} in the EuRoC layout{rate}: {size}"
+            "started {out} over (a EuRoC output does not resume yet): wrote {streams} in the EuRoC layout{rate}: {size}"
         ),
         FolderState::Fresh => {
             eprintln!("wrote {streams} to {out} in the EuRoC layout{rate}: {size}")

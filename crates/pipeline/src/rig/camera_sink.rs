@@ -10,22 +10,23 @@ use crate::encoder_pool::EncoderPool;
 use crate::sink::FrameSink;
 use crate::PipelineError;
 
-/// Hands source frame `i` of camera `camera` to [`EurocWriter::write_frame`] at `times_s[i]`.
+/// Hands source frame `i` of camera `camera` to [`EurocWriter::write_frame_ns`] at
+/// `times_ns[i]`.
 /// The writer wants each camera's frames in time order, so each camera has one encoder thread of
 /// its own (frames of different cameras are encoded side by side); depth is dropped.
 pub struct EurocCameraSink {
     writer: Arc<EurocWriter>,
     camera: usize,
-    times_s: Arc<Vec<f64>>,
+    times_ns: Arc<Vec<u64>>,
     pool: EncoderPool,
 }
 
 impl EurocCameraSink {
-    pub fn new(writer: Arc<EurocWriter>, camera: usize, times_s: Vec<f64>) -> Self {
+    pub fn new(writer: Arc<EurocWriter>, camera: usize, times_ns: Vec<u64>) -> Self {
         Self {
             writer,
             camera,
-            times_s: Arc::new(times_s),
+            times_ns: Arc::new(times_ns),
             // One worker keeps the frames in order; a queue of four lets the GPU run ahead.
             pool: EncoderPool::new(1, 4),
         }
@@ -44,16 +45,14 @@ impl FrameSink for EurocCameraSink {
         color: RgbImage,
         _depth: Option<DepthImage>,
     ) -> Result<(), PipelineError> {
-        let Some(&time_s) = self.times_s.get(source) else {
+        let Some(&t_ns) = self.times_ns.get(source) else {
             return Err(PipelineError::Worker(format!(
                 "camera {}: frame {source} has no timestamp",
                 self.camera
             )));
         };
         let (writer, camera) = (self.writer.clone(), self.camera);
-        self.pool.submit(move || {
-            writer.write_frame(camera, time_s, &color)?;
-            Ok(())
-        })
+        self.pool
+            .submit(move || Ok(writer.write_frame_ns(camera, t_ns, &color)?))
     }
 }

@@ -19,7 +19,7 @@ use rslam_perturb::PerturbSpec;
 
 use super::camera_sink::EurocCameraSink;
 use super::motion::{
-    body_path, camera_poses, ground_truth_rows, imu_rows, imu_samples, sample_times,
+    body_path, camera_poses, ground_truth_rows, imu_rows, imu_samples, nanoseconds, sample_times,
 };
 use super::preset::Rig;
 use crate::manifest::ManifestParts;
@@ -214,7 +214,12 @@ pub fn render_euroc(
         let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
         source.set_shutter(ctx, &job.scene.spec, camera.rate_hz)?;
         let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, run.seed)?;
-        let mut sink = EurocCameraSink::new(writer.clone(), i, run.times_s.clone());
+        let times_ns = run
+            .times_s
+            .iter()
+            .map(|&t| nanoseconds(t))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
         let sources: Vec<usize> = (0..run.times_s.len()).collect();
         pipeline.run(ctx, &sources, progress, &mut sink)?;
         sinks.push(sink);

@@ -10,15 +10,20 @@
 //!
 //! - [`preset`]: the `--rig` presets ([`Rig::stereo`], [`Rig::stereo_imu`]).
 //! - [`euroc_render`]: [`render_euroc`], the run.
+//! - [`euroc_perturb`]: [`perturb_euroc`], a recorded EuRoC dataset (MH_01_easy, …) copied with
+//!   every camera's frames corrupted (image corruptions only), IMU and ground truth unchanged.
 //!
 //! Not built yet: `rgbd` and `rgbd-imu` presets, per-sensor spec items, frame-by-frame resume
 //! (an unfinished rig output is started over).
 
 mod camera_sink;
+pub mod euroc_perturb;
 pub mod euroc_render;
+mod euroc_source;
 mod motion;
 pub mod preset;
 
+pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
 pub use euroc_render::{
     camera_seed, check_rig_spec, imu_seed, render_euroc, CameraFrames, RigRenderJob, RigReport,
 };

@@ -71,7 +71,8 @@ pub fn imu_samples(
     Ok(synthesize_imu(spline, &options)?)
 }
 
-fn nanoseconds(t: f64) -> Result<u64, PipelineError> {
+/// `t` seconds as whole nanoseconds (rounded), or an error naming the time.
+pub fn nanoseconds(t: f64) -> Result<u64, PipelineError> {
     nanoseconds_from_seconds(t).ok_or_else(|| {
         PipelineError::option(
             "--traj",

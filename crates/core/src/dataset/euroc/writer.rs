@@ -2,6 +2,7 @@
 //! [`EurocWriter::finish`] the data.csv files, sensor.yaml files, ORB-SLAM3's stereo(-inertial)
 //! settings in `<root>/`, checksum list and manifest.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -48,6 +49,9 @@ pub struct EurocWriter {
     imu: Option<EurocImu>,
     imu_rows: Rows<ImuSample>,
     ground_truth: Rows<GroundTruthState>,
+    /// Files under `mav0/` copied as they are ([`EurocWriter::copy_sensor_file`]); `finish`
+    /// does not write its own in their place.
+    copied: Mutex<HashSet<String>>,
 }
 
 /// A folder name made of letters, digits and `_` (as `cam0`): nothing that leaves `mav0/`.
@@ -184,6 +188,7 @@ impl EurocWriter {
                 name: GROUND_TRUTH_DIR,
                 rows: Mutex::new(Vec::new()),
             },
+            copied: Mutex::new(HashSet::new()),
         })
     }
 
@@ -199,29 +204,36 @@ impl EurocWriter {
     /// captured at `time_s` seconds as `mav0/<cam>/data/<t_ns>.png`, grey or RGB as the camera
     /// says, `t_ns` the time rounded to whole nanoseconds. Refuses a time that does not come
     /// after the camera's previous frame, and an image not of the camera's size. Returns `t_ns`.
+    /// A recorded timestamp (19 digits of ns) does not survive f64 seconds: use
+    /// [`EurocWriter::write_frame_ns`] for it.
     pub fn write_frame(
         &self,
         camera: usize,
         time_s: f64,
         image: &RgbImage,
     ) -> Result<u64, CoreError> {
-        let Some(stream) = self.cameras.get(camera) else {
-            return Err(CoreError::bad_file(
-                self.root().join(MAV_DIR),
-                format!(
-                    "camera {camera}: there are only {} cameras",
-                    self.cameras.len()
-                ),
-            ));
-        };
-        let name = &stream.camera.name;
-        let dir = || self.root().join(MAV_DIR).join(name);
         let Some(t_ns) = nanoseconds_from_seconds(time_s) else {
+            let name = self.camera(camera)?.camera.name.as_str();
             return Err(CoreError::bad_file(
-                dir(),
+                self.root().join(MAV_DIR).join(name),
                 format!("{name}: frame time {time_s} s: expected a finite time from 0 to about 1.8e10 s"),
             ));
         };
+        self.write_frame_ns(camera, t_ns, image)?;
+        Ok(t_ns)
+    }
+
+    /// [`EurocWriter::write_frame`] at `t_ns` nanoseconds exactly (a recorded dataset's own
+    /// timestamps, kept to the nanosecond).
+    pub fn write_frame_ns(
+        &self,
+        camera: usize,
+        t_ns: u64,
+        image: &RgbImage,
+    ) -> Result<(), CoreError> {
+        let stream = self.camera(camera)?;
+        let name = &stream.camera.name;
+        let dir = || self.root().join(MAV_DIR).join(name);
         let k = &stream.camera.intrinsics;
         if (image.width, image.height) != (k.width, k.height) {
             return Err(CoreError::bad_file(
@@ -244,8 +256,57 @@ impl EurocWriter {
             CameraColour::Rgb => encode_png(image)?,
         };
         self.content
-            .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), &bytes)?;
-        Ok(t_ns)
+            .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), &bytes)
+    }
+
+    fn camera(&self, camera: usize) -> Result<&CameraStream, CoreError> {
+        self.cameras.get(camera).ok_or_else(|| {
+            CoreError::bad_file(
+                self.root().join(MAV_DIR),
+                format!(
+                    "camera {camera}: there are only {} cameras",
+                    self.cameras.len()
+                ),
+            )
+        })
+    }
+
+    /// Writes `bytes` as `mav0/<sensor>/<file>` as they are (a recorded dataset's own
+    /// sensor.yaml, IMU readings or ground truth, copied unchanged), in place of the file
+    /// [`EurocWriter::finish`] would make from the values given: `file` is `sensor.yaml` or
+    /// `data.csv` (a camera's data.csv always lists the frames written). Hashed like every
+    /// other file.
+    pub fn copy_sensor_file(
+        &self,
+        sensor: &str,
+        file: &str,
+        bytes: &[u8],
+    ) -> Result<(), CoreError> {
+        let is_camera = self.cameras.iter().any(|c| c.camera.name == sensor);
+        let allowed = match file {
+            "sensor.yaml" => is_camera || sensor == IMU_DIR,
+            "data.csv" => sensor == IMU_DIR || sensor == GROUND_TRUTH_DIR,
+            _ => false,
+        };
+        if !allowed || !plain_name(sensor) {
+            return Err(CoreError::bad_file(
+                self.root().join(MAV_DIR).join(crate::printable(sensor)),
+                format!(
+                    "{}/{}: expected a camera's or imu0's sensor.yaml, or imu0's or {GROUND_TRUTH_DIR}'s data.csv",
+                    crate::printable(sensor),
+                    crate::printable(file)
+                ),
+            ));
+        }
+        let dir = self.root().join(MAV_DIR).join(sensor);
+        std::fs::create_dir_all(&dir).map_err(|e| CoreError::io(&dir, e))?;
+        let relative = format!("{MAV_DIR}/{sensor}/{file}");
+        self.content.write(&relative, bytes)?;
+        self.copied
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .insert(relative);
+        Ok(())
     }
 
     /// Appends IMU samples, each after the last one. Requires an IMU given to `open`.
@@ -337,7 +398,13 @@ impl EurocWriter {
         self.content.finish(manifest)
     }
 
+    /// Writes a file `finish` makes, unless it was copied as it is.
     fn write_text(&self, relative: &str, text: &str) -> Result<(), CoreError> {
+        let copied = self.copied.lock().unwrap_or_else(|p| p.into_inner());
+        if copied.contains(relative) {
+            return Ok(());
+        }
+        drop(copied);
         self.content.write(relative, text.as_bytes())
     }
 }

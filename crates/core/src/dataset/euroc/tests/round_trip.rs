@@ -169,3 +169,69 @@ fn orbslam3_stereo_settings_come_with_two_cameras_and_inertial_ones_with_an_imu_
         assert_eq!(orbslam3_files(dir.path()), want, "{what}");
     }
 }
+
+#[test]
+fn recorded_nanosecond_stamps_and_copied_files_are_kept_exactly() {
+    // EuRoC's published stamps went through doubles (multiples of 256 ns) and happen to survive
+    // f64 seconds; a stamp of any nanosecond (TUM-VI's are) does not: f64 resolves ~240 ns at
+    // 1.4e9 s.
+    const PUBLISHED_NS: u64 = 1_403_636_579_763_555_584;
+    const ANY_NS: u64 = 1_403_636_579_863_555_555;
+    assert_eq!(
+        nanoseconds_from_seconds(PUBLISHED_NS as f64 / 1e9),
+        Some(PUBLISHED_NS)
+    );
+    assert_ne!(nanoseconds_from_seconds(ANY_NS as f64 / 1e9), Some(ANY_NS));
+    let dir = tempfile::tempdir().unwrap();
+    let writer = crate::dataset::euroc::EurocWriter::open(
+        dir.path(),
+        fixture::cameras(),
+        Some(fixture::imu()),
+    )
+    .unwrap();
+    for c in 0..2 {
+        for t_ns in [PUBLISHED_NS, ANY_NS] {
+            writer.write_frame_ns(c, t_ns, &fixture::image(c)).unwrap();
+        }
+    }
+    let imu_csv = "#timestamp [ns],w\r\n1403636579758555392,-0.099134701513277898\r\n";
+    let gt_csv = "#timestamp, p_RS_R_x [m]\n1403636580838555648,4.688319\n";
+    writer
+        .copy_sensor_file("imu0", "data.csv", imu_csv.as_bytes())
+        .unwrap();
+    writer
+        .copy_sensor_file("state_groundtruth_estimate0", "data.csv", gt_csv.as_bytes())
+        .unwrap();
+    writer
+        .copy_sensor_file("cam1", "sensor.yaml", b"# mine\n")
+        .unwrap();
+    for (sensor, file) in [
+        ("cam0", "data.csv"),
+        ("../x", "sensor.yaml"),
+        ("imu0", "x.txt"),
+    ] {
+        let err = writer
+            .copy_sensor_file(sensor, file, b"")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("expected a camera's or imu0's sensor.yaml"),
+            "{err}"
+        );
+    }
+    writer.finish(fixture::manifest()).unwrap();
+    let mav = dir.path().join("mav0");
+    let read = |rel: &str| std::fs::read_to_string(mav.join(rel)).unwrap();
+    assert_eq!(read("imu0/data.csv"), imu_csv);
+    assert_eq!(read("state_groundtruth_estimate0/data.csv"), gt_csv);
+    assert_eq!(read("cam1/sensor.yaml"), "# mine\n");
+    assert!(read("cam0/sensor.yaml").starts_with("# General sensor definitions."));
+    assert!(read("imu0/sensor.yaml").starts_with("#Default imu sensor yaml file"));
+    assert_eq!(
+        read("cam0/data.csv"),
+        format!(
+            "#timestamp [ns],filename\n{PUBLISHED_NS},{PUBLISHED_NS}.png\n{ANY_NS},{ANY_NS}.png\n"
+        )
+    );
+    assert!(mav.join(format!("cam1/data/{ANY_NS}.png")).is_file());
+}

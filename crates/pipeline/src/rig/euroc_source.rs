@@ -1,0 +1,102 @@
+//! One camera of a recorded EuRoC dataset as a frame source: its PNGs decoded ahead of the GPU,
+//! grey frames widened to the RGB the frame textures take (R = G = B, so a grey frame written
+//! back grey is the same bytes).
+
+use std::path::Path;
+
+use rslam_core::dataset::euroc::EurocFrame;
+use rslam_core::dataset::read_rgb;
+use rslam_core::{Intrinsics, RgbImage};
+use rslam_gpu::{wgpu, FrameTextures, GpuContext};
+
+use crate::decode_ahead::DecodeAhead;
+use crate::source::FrameSource;
+use crate::PipelineError;
+
+struct Decoded {
+    index: usize,
+    color: RgbImage,
+}
+
+/// The frames of one `mav0/camN/` folder, in time order; source frame `i` is `frames[i]`.
+pub struct EurocCameraSource {
+    frames: Vec<EurocFrame>,
+    intrinsics: Intrinsics,
+    decoder: Option<DecodeAhead<Decoded>>,
+}
+
+impl EurocCameraSource {
+    pub fn new(frames: Vec<EurocFrame>, intrinsics: Intrinsics) -> Self {
+        Self {
+            frames,
+            intrinsics,
+            decoder: None,
+        }
+    }
+}
+
+impl FrameSource for EurocCameraSource {
+    fn size(&self) -> (u32, u32) {
+        (self.intrinsics.width, self.intrinsics.height)
+    }
+
+    fn has_depth(&self) -> bool {
+        false
+    }
+
+    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+        if let Some(s) = sources.iter().find(|&&s| s >= self.frames.len()) {
+            return Err(PipelineError::option(
+                "frame",
+                format!("{s} is past the {} frames of the camera", self.frames.len()),
+            ));
+        }
+        let needed: Vec<(usize, EurocFrame)> = sources
+            .iter()
+            .map(|&s| (s, self.frames[s].clone()))
+            .collect();
+        self.decoder = Some(DecodeAhead::start(needed, |(index, frame)| {
+            Ok(Decoded {
+                index: *index,
+                color: read_rgb(&frame.path)?,
+            })
+        }));
+        Ok(())
+    }
+
+    fn record(
+        &mut self,
+        ctx: &GpuContext,
+        _encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        index: usize,
+    ) -> Result<(), PipelineError> {
+        let decoder = self
+            .decoder
+            .as_ref()
+            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
+        let decoded = decoder.next()?;
+        if decoded.index != index {
+            return Err(PipelineError::Worker(format!(
+                "decoder delivered frame {} where frame {index} was expected",
+                decoded.index
+            )));
+        }
+        check_size(&self.frames[index].path, &decoded.color, self.intrinsics)?;
+        frame.upload(ctx, &decoded.color, None);
+        Ok(())
+    }
+}
+
+fn check_size(path: &Path, image: &RgbImage, camera: Intrinsics) -> Result<(), PipelineError> {
+    if (image.width, image.height) == (camera.width, camera.height) {
+        return Ok(());
+    }
+    Err(PipelineError::input(
+        path,
+        format!(
+            "image is {}x{}, but the camera's sensor.yaml says {}x{}",
+            image.width, image.height, camera.width, camera.height
+        ),
+    ))
+}
