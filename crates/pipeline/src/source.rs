@@ -232,7 +232,11 @@ impl FrameSource for DatasetSource {
 }
 
 /// Every source frame asked for is one of the `count` there are.
-fn check_in_range(sources: &[usize], count: usize, what: &str) -> Result<(), PipelineError> {
+pub(crate) fn check_in_range(
+    sources: &[usize],
+    count: usize,
+    what: &str,
+) -> Result<(), PipelineError> {
     match sources.iter().find(|&&s| s >= count) {
         Some(s) => Err(PipelineError::option(
             "frame",

@@ -10,7 +10,7 @@ use rslam_core::{Intrinsics, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
 use crate::decode_ahead::DecodeAhead;
-use crate::source::FrameSource;
+use crate::source::{check_in_range, FrameSource};
 use crate::PipelineError;
 
 struct Decoded {
@@ -44,13 +44,12 @@ impl FrameSource for EurocCameraSource {
         false
     }
 
+    fn camera(&self) -> Option<Intrinsics> {
+        Some(self.intrinsics)
+    }
+
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
-        if let Some(s) = sources.iter().find(|&&s| s >= self.frames.len()) {
-            return Err(PipelineError::option(
-                "frame",
-                format!("{s} is past the {} frames of the camera", self.frames.len()),
-            ));
-        }
+        check_in_range(sources, self.frames.len(), "frames of the camera")?;
         let needed: Vec<(usize, EurocFrame)> = sources
             .iter()
             .map(|&s| (s, self.frames[s].clone()))
