@@ -51,6 +51,24 @@ impl<T: Send + 'static> DecodeAhead<T> {
     }
 }
 
+/// The next frame `decoder` (`None` before the source was prepared) hands over, which must be
+/// source frame `index`: frames are recorded in the order they were given to
+/// [`DecodeAhead::start`], each decoded with its source index.
+pub fn next_frame<T: Send + 'static>(
+    decoder: Option<&DecodeAhead<(usize, T)>>,
+    index: usize,
+) -> Result<T, PipelineError> {
+    let decoder =
+        decoder.ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
+    let (decoded, frame) = decoder.next()?;
+    if decoded != index {
+        return Err(PipelineError::Worker(format!(
+            "decoder delivered frame {decoded} where frame {index} was expected"
+        )));
+    }
+    Ok(frame)
+}
+
 impl<T> Drop for DecodeAhead<T> {
     fn drop(&mut self) {
         // Closing the channel first lets a decoder blocked on a full channel finish.

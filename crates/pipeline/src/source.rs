@@ -11,7 +11,7 @@ use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
-use crate::decode_ahead::DecodeAhead;
+use crate::decode_ahead::{next_frame, DecodeAhead};
 use crate::shutter_render::ShutterRender;
 use crate::PipelineError;
 
@@ -141,7 +141,6 @@ impl FrameSource for SceneSource {
 }
 
 struct Decoded {
-    index: usize,
     color: RgbImage,
     depth: Option<DepthImage>,
 }
@@ -151,7 +150,8 @@ pub struct DatasetSource {
     frames: Vec<DatasetFrame>,
     intrinsics: Intrinsics,
     depth_scale: f64,
-    decoder: Option<DecodeAhead<Decoded>>,
+    /// Each needed frame, decoded with its source index.
+    decoder: Option<DecodeAhead<(usize, Decoded)>>,
 }
 
 impl DatasetSource {
@@ -186,14 +186,14 @@ impl FrameSource for DatasetSource {
             .collect();
         let scale = self.depth_scale;
         self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
-            Ok(Decoded {
-                index: *index,
+            let decoded = Decoded {
                 color: read_rgb(&frame.rgb)?,
                 depth: match &frame.depth {
                     Some(path) => Some(decode_depth_png(path, scale)?),
                     None => None,
                 },
-            })
+            };
+            Ok((*index, decoded))
         }));
         Ok(())
     }
@@ -205,18 +205,8 @@ impl FrameSource for DatasetSource {
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        let decoder = self
-            .decoder
-            .as_ref()
-            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
-        let decoded = decoder.next()?;
+        let decoded = next_frame(self.decoder.as_ref(), index)?;
         let file = &self.frames[index];
-        if decoded.index != index {
-            return Err(PipelineError::Worker(format!(
-                "decoder delivered frame {} where frame {index} was expected",
-                decoded.index
-            )));
-        }
         check_size(
             &file.rgb,
             decoded.color.width,

@@ -22,6 +22,7 @@ use rslam_perturb::PerturbSpec;
 use super::camera_sink::EurocCameraSink;
 use super::euroc_render::{camera_seed, CameraFrames, RigReport};
 use super::euroc_source::EurocCameraSource;
+use super::output;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
 use crate::pipeline::Pipeline;
@@ -177,7 +178,7 @@ pub fn perturb_euroc(
         })
         .collect();
 
-    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
+    let found = output::prepare(&job.out, &manifest, job.force)?;
     if found == FolderState::Complete {
         return Ok(RigReport {
             cameras,
@@ -185,13 +186,6 @@ pub fn perturb_euroc(
             found,
             manifest: Manifest::read(&job.out)?,
         });
-    }
-    if found == FolderState::Resume {
-        // Not resumed frame by frame yet: started over.
-        let mav = job.out.join(MAV_DIR);
-        if mav.exists() {
-            std::fs::remove_dir_all(&mav).map_err(|e| CoreError::io(&mav, e))?;
-        }
     }
     let writer = Arc::new(EurocWriter::open(
         &job.out,

@@ -10,7 +10,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use rslam_core::dataset::euroc::{EurocWriter, MAV_DIR};
+use rslam_core::dataset::euroc::EurocWriter;
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::hash::splitmix64;
 use rslam_core::{CoreError, SplineSe3};
@@ -21,6 +21,7 @@ use super::camera_sink::EurocCameraSink;
 use super::motion::{
     body_path, camera_poses, ground_truth_rows, imu_rows, imu_samples, nanoseconds, sample_times,
 };
+use super::output;
 use super::preset::Rig;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
@@ -179,7 +180,7 @@ pub fn render_euroc(
         })
         .collect();
 
-    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
+    let found = output::prepare(&job.out, &manifest, job.force)?;
     if found == FolderState::Complete {
         let imu_samples = job
             .rig
@@ -192,13 +193,6 @@ pub fn render_euroc(
             found,
             manifest: Manifest::read(&job.out)?,
         });
-    }
-    if found == FolderState::Resume {
-        // A rig run does not resume frame by frame yet: it starts over.
-        let mav = job.out.join(MAV_DIR);
-        if mav.exists() {
-            std::fs::remove_dir_all(&mav).map_err(|e| CoreError::io(&mav, e))?;
-        }
     }
     let writer = Arc::new(EurocWriter::open(
         &job.out,

@@ -9,20 +9,16 @@ use rslam_core::dataset::read_rgb;
 use rslam_core::{Intrinsics, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
-use crate::decode_ahead::DecodeAhead;
+use crate::decode_ahead::{next_frame, DecodeAhead};
 use crate::source::{check_in_range, FrameSource};
 use crate::PipelineError;
-
-struct Decoded {
-    index: usize,
-    color: RgbImage,
-}
 
 /// The frames of one `mav0/camN/` folder, in time order; source frame `i` is `frames[i]`.
 pub struct EurocCameraSource {
     frames: Vec<EurocFrame>,
     intrinsics: Intrinsics,
-    decoder: Option<DecodeAhead<Decoded>>,
+    /// Each needed frame's colour, decoded with its source index.
+    decoder: Option<DecodeAhead<(usize, RgbImage)>>,
 }
 
 impl EurocCameraSource {
@@ -55,10 +51,7 @@ impl FrameSource for EurocCameraSource {
             .map(|&s| (s, self.frames[s].clone()))
             .collect();
         self.decoder = Some(DecodeAhead::start(needed, |(index, frame)| {
-            Ok(Decoded {
-                index: *index,
-                color: read_rgb(&frame.path)?,
-            })
+            Ok((*index, read_rgb(&frame.path)?))
         }));
         Ok(())
     }
@@ -70,19 +63,9 @@ impl FrameSource for EurocCameraSource {
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        let decoder = self
-            .decoder
-            .as_ref()
-            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
-        let decoded = decoder.next()?;
-        if decoded.index != index {
-            return Err(PipelineError::Worker(format!(
-                "decoder delivered frame {} where frame {index} was expected",
-                decoded.index
-            )));
-        }
-        check_size(&self.frames[index].path, &decoded.color, self.intrinsics)?;
-        frame.upload(ctx, &decoded.color, None);
+        let color = next_frame(self.decoder.as_ref(), index)?;
+        check_size(&self.frames[index].path, &color, self.intrinsics)?;
+        frame.upload(ctx, &color, None);
         Ok(())
     }
 }

@@ -21,6 +21,7 @@ pub mod euroc_perturb;
 pub mod euroc_render;
 mod euroc_source;
 mod motion;
+mod output;
 pub mod preset;
 
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
