@@ -91,6 +91,7 @@ hostile_input_properties!(
     depth_png,
     euroc_camera_yaml,
     euroc_camera_csv,
+    euroc_imu_yaml,
     euroc_imu,
     euroc_groundtruth,
     suite,

@@ -113,6 +113,12 @@ pub static TARGETS: &[Target] = &[
         check: euroc::camera_csv,
     },
     Target {
+        name: "euroc_imu_yaml",
+        file: Some(euroc::IMU_YAML),
+        prepare: euroc::prepare,
+        check: euroc::imu_yaml,
+    },
+    Target {
         name: "euroc_imu",
         file: Some(euroc::IMU_CSV),
         prepare: euroc::prepare,

@@ -1,6 +1,6 @@
 //! A EuRoC (ASL) folder as `rslam_core::dataset::euroc::read_euroc` reads it: a camera's
-//! sensor.yaml and data.csv, the IMU's and the ground truth's data.csv. Each target's file
-//! replaces one file of a small valid MH_01_easy-style sequence.
+//! sensor.yaml and data.csv, the IMU's sensor.yaml and data.csv, the ground truth's data.csv.
+//! Each target's file replaces one file of a small valid MH_01_easy-style sequence.
 
 use std::path::Path;
 
@@ -12,60 +12,32 @@ use crate::Scratch;
 
 pub const CAMERA_YAML: &str = "mav0/cam0/sensor.yaml";
 pub const CAMERA_CSV: &str = "mav0/cam0/data.csv";
+pub const IMU_YAML: &str = "mav0/imu0/sensor.yaml";
 pub const IMU_CSV: &str = "mav0/imu0/data.csv";
 pub const GROUND_TRUTH_CSV: &str = "mav0/state_groundtruth_estimate0/data.csv";
-
-/// imu0/sensor.yaml of MH_01_easy as published (not a fuzzed file).
-const IMU_YAML: &str = "#Default imu sensor yaml file
-sensor_type: imu
-comment: VI-Sensor IMU (ADIS16448)
-
-# Sensor extrinsics wrt. the body-frame.
-T_BS:
-  cols: 4
-  rows: 4
-  data: [1.0, 0.0, 0.0, 0.0,
-         0.0, 1.0, 0.0, 0.0,
-         0.0, 0.0, 1.0, 0.0,
-         0.0, 0.0, 0.0, 1.0]
-rate_hz: 200
-
-# inertial sensor noise model parameters (static)
-gyroscope_noise_density: 1.6968e-04     # [ rad / s / sqrt(Hz) ]   ( gyro \"white noise\" )
-gyroscope_random_walk: 1.9393e-05       # [ rad / s^2 / sqrt(Hz) ] ( gyro bias diffusion )
-accelerometer_noise_density: 2.0000e-3  # [ m / s^2 / sqrt(Hz) ]   ( accel \"white noise\" )
-accelerometer_random_walk: 3.0000e-3    # [ m / s^3 / sqrt(Hz) ].  ( accel bias diffusion )
-";
 
 /// The frame data.csv names: 752×480 grey, the resolution of the seeds' sensor.yaml.
 const FRAME: &str = "1403636579763555584.png";
 
-/// Every file the reader needs, valid, from the target's own seeds (one camera, the IMU, the
+/// Every file the reader needs, valid: each target's first seed (one camera, the IMU, the
 /// ground truth); the target's file then replaces one of them.
 pub fn prepare(dir: &Path) -> std::io::Result<()> {
-    let corpus = crate::corpus::root();
     for (target, file) in [
         ("euroc_camera_yaml", CAMERA_YAML),
         ("euroc_camera_csv", CAMERA_CSV),
+        ("euroc_imu_yaml", IMU_YAML),
         ("euroc_imu", IMU_CSV),
         ("euroc_groundtruth", GROUND_TRUTH_CSV),
     ] {
+        let seeds = crate::corpus::seeds(target).map_err(std::io::Error::other)?;
         let path = dir.join(file);
         std::fs::create_dir_all(path.parent().expect("a file inside mav0"))?;
-        std::fs::copy(corpus.join(target).join(seed_name(target)), path)?;
+        std::fs::write(path, &seeds[0])?;
     }
-    std::fs::write(dir.join("mav0/imu0/sensor.yaml"), IMU_YAML)?;
     let data = dir.join("mav0/cam0/data");
     std::fs::create_dir_all(&data)?;
     let png = encode_grey_png(&RgbImage::new(752, 480)).map_err(std::io::Error::other)?;
     std::fs::write(data.join(FRAME), png)
-}
-
-fn seed_name(target: &str) -> &'static str {
-    match target {
-        "euroc_camera_yaml" => "mh01.yaml",
-        _ => "mh01.csv",
-    }
 }
 
 pub fn camera_yaml(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
@@ -75,6 +47,11 @@ pub fn camera_yaml(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
 
 pub fn camera_csv(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
     scratch.write(CAMERA_CSV, input)?;
+    read(&scratch.dir)
+}
+
+pub fn imu_yaml(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
+    scratch.write(IMU_YAML, input)?;
     read(&scratch.dir)
 }
 
