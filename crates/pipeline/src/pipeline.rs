@@ -122,7 +122,7 @@ impl<S: FrameSource> Pipeline<S> {
             width,
             height,
             sources,
-            with_depth: source.has_depth(),
+            with_depth: source.has_depth() && sink.wants_depth(),
         }
         .run(
             progress,

@@ -13,7 +13,7 @@ use crate::PipelineError;
 /// Hands source frame `i` of camera `camera` to [`EurocWriter::write_frame_ns`] at
 /// `times_ns[i]`.
 /// The writer wants each camera's frames in time order, so each camera has one encoder thread of
-/// its own (frames of different cameras are encoded side by side); depth is dropped.
+/// its own (frames of different cameras are encoded side by side); depth is not read back.
 pub struct EurocCameraSink {
     writer: Arc<EurocWriter>,
     camera: usize,
@@ -39,6 +39,11 @@ impl EurocCameraSink {
 }
 
 impl FrameSink for EurocCameraSink {
+    /// EuRoC cameras have no depth.
+    fn wants_depth(&self) -> bool {
+        false
+    }
+
     fn accept(
         &mut self,
         source: usize,

@@ -12,6 +12,10 @@ use rslam_core::{DepthImage, RgbImage};
 use crate::PipelineError;
 
 pub trait FrameSink {
+    /// Whether it uses depth: a sink that drops it spares the frame loop its readback.
+    fn wants_depth(&self) -> bool {
+        true
+    }
     /// Source frame `source`, read back; `depth` is `None` for inputs without depth.
     fn accept(
         &mut self,
