@@ -141,6 +141,12 @@ fn parse<'p>(path: &'p Path, text: &str) -> Result<Document<'p>, CoreError> {
             )));
         };
         let (key, rest) = (key.trim().to_string(), rest.trim());
+        if key.chars().any(char::is_control) {
+            return Err(at.error(format!(
+                "key '{}': expected letters, digits and '_'",
+                printable(&key)
+            )));
+        }
         i += 1;
         let value = if let Some(list) = rest.strip_prefix('[') {
             // A flow list, possibly continued on the following lines up to its ']'.

@@ -80,6 +80,13 @@ fn bad_files_are_named_with_the_line_and_what_was_expected() {
             "cam0/sensor.yaml: missing key 'rate_hz'",
         ),
         (
+            // Found by the property tests: a carriage return inside a key broke the error in two.
+            "mav0/imu0/sensor.yaml",
+            "  data:",
+            "  dat\ra:",
+            "imu0/sensor.yaml:9: key 'dat\\ra': expected letters, digits and '_'",
+        ),
+        (
             "mav0/imu0/sensor.yaml",
             "gyroscope_random_walk: 1.9393e-05",
             "gyroscope_random_walk: fast",
