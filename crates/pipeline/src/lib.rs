@@ -15,6 +15,7 @@
 //! cameras and an IMU is one scene source, pipeline and sink per camera along one motion spline,
 //! written in the EuRoC layout; a recorded EuRoC dataset is one decoding source per camera.
 
+mod agents;
 mod dataset_run;
 mod decode_ahead;
 pub mod depth_colormap;
@@ -38,6 +39,7 @@ mod shutter_render;
 pub mod sink;
 pub mod source;
 
+pub use agents::{agent_folders, agent_scene_job};
 pub use dataset_run::RunReport;
 pub use depth_colormap::DepthRange;
 pub use error::PipelineError;

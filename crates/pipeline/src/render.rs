@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_gpu::GpuContext;
 
+use crate::agents::record_agent;
 use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
@@ -32,6 +33,8 @@ pub fn render_dataset(
     let resolved = job.scene.resolve()?;
     let camera = job.scene.camera;
     let ground_truth = resolved.plan.ground_truth(&resolved.poses);
+    let mut extra = serde_json::json!({ "adapter": ctx.describe() });
+    record_agent(&mut extra, &job.scene);
     let manifest = ManifestParts {
         command: &job.command,
         source: resolved.scene.name.clone(),
@@ -43,7 +46,7 @@ pub fn render_dataset(
         seed: job.scene.seed,
         spec: &job.scene.spec,
         plan: &resolved.plan,
-        extra: serde_json::json!({ "adapter": ctx.describe() }),
+        extra,
     }
     .build()?;
     let mut source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;

@@ -24,6 +24,9 @@ pub struct SceneJob {
     pub rate_hz: f64,
     pub spec: PerturbSpec,
     pub seed: u64,
+    /// One agent of a multi-agent render (`--agents`): the built-in scene's path for that agent
+    /// instead of its default one; `None` for a single camera.
+    pub agent: Option<usize>,
 }
 
 /// A [`SceneJob`] made concrete: the mesh, one (deviated) pose per source frame, the plan.
@@ -77,9 +80,26 @@ impl SceneJob {
     }
 
     fn camera_path(&self, scene: &Scene) -> Result<Vec<Pose>, PipelineError> {
-        let poses = match &self.trajectory {
-            Some(path) => read_trajectory(path, None)?.trajectory.poses,
-            None => match &scene.default_trajectory {
+        let poses = match (&self.trajectory, self.agent) {
+            (Some(_), Some(_)) => {
+                return Err(PipelineError::option(
+                    "--agents",
+                    "every agent would follow --traj: leave --traj out, each agent walks a path of its own in a built-in scene",
+                ))
+            }
+            (Some(path), None) => read_trajectory(path, None)?.trajectory.poses,
+            (None, Some(agent)) => rslam_render::agent_trajectory(&self.scene, agent)
+                .ok_or_else(|| {
+                    PipelineError::option(
+                        "--agents",
+                        format!(
+                            "scene '{}' is not a built-in one: only built-in scenes have paths for several agents",
+                            self.scene
+                        ),
+                    )
+                })?
+                .poses,
+            (None, None) => match &scene.default_trajectory {
                 Some(path) => path.poses.clone(),
                 None => {
                     return Err(PipelineError::option(

@@ -45,6 +45,7 @@ fn job(spec: &str) -> SceneJob {
             text => PerturbSpec::parse(text).unwrap(),
         },
         seed: 5,
+        agent: None,
     }
 }
 
@@ -107,6 +108,7 @@ fn a_new_spec_re_perturbs_the_held_frame_like_a_new_run() {
         let fresh_job = SceneJob {
             spec: spec.clone(),
             seed,
+            agent: None,
             ..job("")
         };
         let expected = FramesInMemory::scene(ctx, &fresh_job)

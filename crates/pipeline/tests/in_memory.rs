@@ -42,6 +42,7 @@ fn scene_job(spec: &str) -> SceneJob {
             text => PerturbSpec::parse(text).unwrap(),
         },
         seed: 3,
+        agent: None,
     }
 }
 

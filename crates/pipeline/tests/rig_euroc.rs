@@ -39,6 +39,7 @@ fn scene_job(frames: Option<usize>) -> SceneJob {
         rate_hz: 20.0,
         spec: PerturbSpec::default(),
         seed: 5,
+        agent: None,
     }
 }
 

@@ -76,6 +76,7 @@ pub fn render<'py>(
         rate_hz: rate,
         spec,
         seed,
+        agent: None,
     };
     let frames = py.detach(|| -> Result<_, RunError> {
         let ctx = gpu::context().map_err(RunError::NoGpu)?;

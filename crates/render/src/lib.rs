@@ -11,4 +11,6 @@ pub mod scene;
 
 pub use error::RenderError;
 pub use raster::Rasterizer;
-pub use scene::{builtin_path_length, load_scene, Mesh, Scene, Texture, Vertex, BUILTIN_SCENES};
+pub use scene::{
+    agent_trajectory, builtin_path_length, load_scene, Mesh, Scene, Texture, Vertex, BUILTIN_SCENES,
+};

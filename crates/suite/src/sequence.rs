@@ -113,6 +113,7 @@ impl Sequence {
                 rate_hz: self.rate_hz,
                 spec: self.spec.clone(),
                 seed: self.seed,
+                agent: None,
             },
             out: self.dir(suite_dir),
             format: self.format,

@@ -33,6 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             rate_hz: 20.0,
             spec: spec.clone(),
             seed: 0,
+            agent: None,
         })),
         spec,
         seed: 0,

@@ -104,6 +104,7 @@ impl Session {
                 let job = SceneJob {
                     spec: options.spec.clone(),
                     seed: options.seed,
+                    agent: None,
                     ..(**job).clone()
                 };
                 Sequence::scene(&self.ctx, &job)?

@@ -42,6 +42,7 @@ fn scene_job(frames: usize) -> SceneJob {
         rate_hz: 20.0,
         spec: PerturbSpec::default(),
         seed: 0,
+        agent: None,
     }
 }
 

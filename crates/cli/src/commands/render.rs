@@ -6,7 +6,10 @@ use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{render_dataset, render_euroc, RenderJob, Rig, RigRenderJob, SceneJob};
+use rslam_pipeline::{
+    agent_folders, agent_scene_job, render_dataset, render_euroc, RenderJob, Rig, RigRenderJob,
+    SceneJob,
+};
 
 use super::run_summary::{print_rig_summary, print_summary};
 use crate::progress_bar::ProgressBar;
@@ -54,6 +57,11 @@ pub struct RenderArgs {
     /// Replace what --out holds if it is another rslam output (never a folder of other files).
     #[arg(long)]
     force: bool,
+    /// N agents in one built-in scene, each on a path of its own, all in the scene's world frame:
+    /// OUT/agent0 … OUT/agentN-1, each a dataset (agent k draws with seed + k), the folder
+    /// `rslam eval --agents` reads.
+    #[arg(long, conflicts_with = "traj")]
+    agents: Option<usize>,
     /// Use the GPU whose name contains this text (default: a real GPU if any, else lavapipe).
     #[arg(long)]
     adapter: Option<String>,
@@ -74,32 +82,49 @@ enum Job {
 }
 
 pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
-    let job = job(&args)?;
+    let jobs = jobs(&args)?;
     let ctx = GpuContext::new(&AdapterChoice {
         name_contains: args.adapter,
     })?;
     eprintln!("adapter: {}", ctx.describe());
     let progress = ProgressBar::new();
-    match job {
-        Job::Camera(job) => {
-            let report = render_dataset(&ctx, &job, &progress)?;
-            print_summary(&report, &job.out, &progress)?;
-        }
-        Job::Rig(job) => {
-            let report = render_euroc(&ctx, &job, &progress)?;
-            print_rig_summary(&report, &job.out, &progress)?;
+    for job in jobs {
+        match job {
+            Job::Camera(job) => {
+                let report = render_dataset(&ctx, &job, &progress)?;
+                print_summary(&report, &job.out, &progress)?;
+            }
+            Job::Rig(job) => {
+                let report = render_euroc(&ctx, &job, &progress)?;
+                print_rig_summary(&report, &job.out, &progress)?;
+            }
         }
     }
     Ok(ExitCode::SUCCESS)
 }
 
-fn job(args: &RenderArgs) -> anyhow::Result<Job> {
+/// One job, or one per agent with `--agents`.
+fn jobs(args: &RenderArgs) -> anyhow::Result<Vec<Job>> {
+    let scene = scene_job(args)?;
+    // Built first so that bad flags are refused before any folder is looked at.
+    let single = job(args, scene.clone(), args.out.clone())?;
+    let Some(count) = args.agents else {
+        return Ok(vec![single]);
+    };
+    agent_folders(&args.out, count)?
+        .into_iter()
+        .enumerate()
+        .map(|(agent, out)| job(args, agent_scene_job(&scene, agent), out))
+        .collect()
+}
+
+fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
     let spec = match &args.perturb {
         Some(text) => PerturbSpec::parse(text).context("--perturb")?,
         None => PerturbSpec::default(),
     };
     let camera = Intrinsics::parse(&args.camera).context("--camera")?;
-    let scene = SceneJob {
+    Ok(SceneJob {
         scene: args.scene.clone(),
         trajectory: args.traj.clone(),
         frames: args.frames,
@@ -109,13 +134,17 @@ fn job(args: &RenderArgs) -> anyhow::Result<Job> {
             .unwrap_or(Intrinsics::preset_rate_hz(&args.camera)),
         spec,
         seed: args.seed,
-    };
+        agent: None,
+    })
+}
+
+fn job(args: &RenderArgs, scene: SceneJob, out: PathBuf) -> anyhow::Result<Job> {
     let format = match (args.format, &args.rig) {
         (OutputFormat::Euroc, Some(name)) => {
             return Ok(Job::Rig(RigRenderJob {
                 scene,
                 rig: Rig::preset(name)?,
-                out: args.out.clone(),
+                out,
                 force: args.force,
                 command: super::typed_command(),
             }))
@@ -131,7 +160,7 @@ fn job(args: &RenderArgs) -> anyhow::Result<Job> {
     };
     Ok(Job::Camera(RenderJob {
         scene,
-        out: args.out.clone(),
+        out,
         format,
         depth_png: args.depth_png,
         force: args.force,

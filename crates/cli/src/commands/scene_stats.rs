@@ -59,6 +59,7 @@ pub fn run(args: StatsArgs) -> anyhow::Result<()> {
             rate_hz: Intrinsics::preset_rate_hz(args.camera.as_deref().unwrap_or("replica")),
             spec: PerturbSpec::default(),
             seed: 0,
+            agent: None,
         };
         let mut source = FramesInMemory::scene(&ctx, &job)?;
         measure(&ctx, &mut source, args.every)?

@@ -70,6 +70,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
                 .unwrap_or(Intrinsics::preset_rate_hz(&args.camera)),
             spec: spec.clone(),
             seed: args.seed,
+            agent: None,
         })),
         _ => bail!("give a DATASET folder or --scene NAME|MESH"),
     };

@@ -23,6 +23,7 @@ use super::motion::{
 };
 use super::output;
 use super::preset::Rig;
+use crate::agents::record_agent;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
 use crate::pipeline::Pipeline;
@@ -140,6 +141,23 @@ pub fn render_euroc(
         runs[0].seed,
     );
     let imu_seed = imu_seed(job.scene.seed);
+    let mut extra = serde_json::json!({
+        "adapter": ctx.describe(),
+        "layout": "euroc",
+        "rig": job.rig.name,
+        "path_rate_hz": job.scene.rate_hz,
+        "cameras": job.rig.cameras.iter().zip(&runs).map(|(c, r)| serde_json::json!({
+            "name": c.name,
+            "frames": r.times_s.len(),
+            "rate_hz": c.rate_hz,
+            "seed": r.seed,
+        })).collect::<Vec<_>>(),
+        "imu": job.rig.imu.as_ref().map(|imu| serde_json::json!({
+            "rate_hz": imu.rate_hz,
+            "seed": imu_seed,
+        })),
+    });
+    record_agent(&mut extra, &job.scene);
     let manifest = ManifestParts {
         command: &job.command,
         source: resolved.scene.name.clone(),
@@ -151,22 +169,7 @@ pub fn render_euroc(
         seed: job.scene.seed,
         spec: &job.scene.spec,
         plan: &cam0_plan,
-        extra: serde_json::json!({
-            "adapter": ctx.describe(),
-            "layout": "euroc",
-            "rig": job.rig.name,
-            "path_rate_hz": job.scene.rate_hz,
-            "cameras": job.rig.cameras.iter().zip(&runs).map(|(c, r)| serde_json::json!({
-                "name": c.name,
-                "frames": r.times_s.len(),
-                "rate_hz": c.rate_hz,
-                "seed": r.seed,
-            })).collect::<Vec<_>>(),
-            "imu": job.rig.imu.as_ref().map(|imu| serde_json::json!({
-                "rate_hz": imu.rate_hz,
-                "seed": imu_seed,
-            })),
-        }),
+        extra,
     }
     .build()?;
     let cameras: Vec<CameraFrames> = job

@@ -12,7 +12,7 @@ mod obj;
 mod ply;
 pub(crate) mod srgb;
 
-pub use builtin::{builtin_path_length, BUILTIN_SCENES};
+pub use builtin::{agent_trajectory, builtin_path_length, BUILTIN_SCENES};
 pub use load::load_scene;
 
 use rslam_core::Trajectory;

@@ -1,7 +1,7 @@
 //! Checks of every built-in scene, by ray casting at 1/8 of the Replica resolution: the default
-//! trajectory stays in free space with smooth, real motion, and every view it sees has valid depth
-//! and corners a feature tracker can hold on to. Like real rooms, views may be mostly plain wall or
-//! ceiling; the sequence as a whole must still be mostly textured.
+//! trajectory and those of further agents stay in free space with smooth, real motion, and every
+//! view has valid depth and corners a feature tracker can hold on to. Like real rooms, views may be
+//! mostly plain wall or ceiling; the sequence as a whole must still be mostly textured.
 
 use std::f64::consts::PI;
 
@@ -9,7 +9,7 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use rslam_core::{Intrinsics, RgbImage};
 
-use super::{build, trajectory, BUILTIN_SCENES};
+use super::{agent_trajectory, build, trajectory, BUILTIN_SCENES};
 use crate::raycast::{RayCastFrame, RayCaster};
 use crate::Scene;
 
@@ -27,8 +27,12 @@ const MIN_MEDIAN_TEXTURED_CELLS: f64 = 0.5;
 const PLAIN_VIEW: f64 = 0.3;
 const MAX_PLAIN_VIEWS: f64 = 0.15;
 const CELL_GRADIENT: f32 = 4.0;
-/// Corners (Shi–Tomasi) every 150 × 85 view must have: never a blank wall.
-const MIN_CORNERS: usize = 12;
+/// Corners (Shi–Tomasi) every 150 × 85 view must have: never a blank wall. Fewer than
+/// [`FEW_CORNERS`] is allowed only for a moment facing a plain wall, as in real rooms: at most
+/// [`MAX_FEW_CORNER_VIEWS`] of the views.
+const MIN_CORNERS: usize = 6;
+const FEW_CORNERS: usize = 12;
+const MAX_FEW_CORNER_VIEWS: f64 = 0.02;
 /// A furnished room is not a handful of boxes.
 const MIN_TRIANGLES: usize = 10_000;
 /// Hand-held limits: m/s and deg/s between consecutive frames.
@@ -49,37 +53,51 @@ pub fn eighth_scale() -> Intrinsics {
     }
 }
 
+/// Agents whose paths are checked besides the default one (agent 0): those of a multi-agent
+/// sequence must be as good as the default path.
+const CHECKED_AGENTS: usize = 5;
+
 fn check_scene(name: &str) {
     let scene = build(name).expect("built-in scene");
     check_geometry(&scene);
     let caster = RayCaster::new(&scene);
-    let trajectory = scene
+    let default = scene
         .default_trajectory
         .as_ref()
         .expect("default trajectory");
+    assert_eq!(agent_trajectory(name, 0).as_ref(), Some(default));
+    for agent in 0..CHECKED_AGENTS {
+        let trajectory = agent_trajectory(name, agent).expect("built-in scene");
+        check_path(&format!("{name} agent {agent}"), &caster, &trajectory);
+    }
+}
+
+fn check_path(name: &str, caster: &RayCaster, trajectory: &rslam_core::Trajectory) {
     check_motion(name, trajectory);
-    check_free_space(name, &caster, trajectory);
+    check_free_space(name, caster, trajectory);
     let k = eighth_scale();
-    let views: Vec<(usize, f64, Option<String>)> = (0..trajectory.len())
+    let views: Vec<(f64, usize, Option<String>)> = (0..trajectory.len())
         .into_par_iter()
         .step_by(VIEW_STRIDE)
         .map(|i| {
             let frame = caster.render(&trajectory.poses[i], &k);
-            let (stats, textured, problem) = view_stats(&frame);
+            let (stats, textured, corners, problem) = view_stats(&frame);
             if i % 200 == 0 {
                 eprintln!("{name} frame {i}: {stats}");
             }
             let problem = problem.map(|problem| {
-                let path =
-                    std::env::temp_dir().join(format!("rslam-{name}-frame{i:04}-actual.png"));
+                let path = std::env::temp_dir().join(format!(
+                    "rslam-{}-frame{i:04}-actual.png",
+                    name.replace(' ', "-")
+                ));
                 save_png(&frame.rgb, &path);
                 format!("{name} frame {i}: {problem} (see {})", path.display())
             });
-            (i, textured, problem)
+            (textured, corners, problem)
         })
         .collect();
     let mut failures: Vec<String> = views.iter().filter_map(|v| v.2.clone()).collect();
-    let mut textured: Vec<f64> = views.iter().map(|v| v.1).collect();
+    let mut textured: Vec<f64> = views.iter().map(|v| v.0).collect();
     textured.sort_by(f64::total_cmp);
     let median = textured[textured.len() / 2];
     let plain = textured.iter().filter(|&&t| t < PLAIN_VIEW).count() as f64 / textured.len() as f64;
@@ -92,6 +110,14 @@ fn check_scene(name: &str) {
         failures.push(format!(
             "{name}: median textured cells only {:.0} %",
             100.0 * median
+        ));
+    }
+    let few_corners =
+        views.iter().filter(|v| v.1 < FEW_CORNERS).count() as f64 / views.len() as f64;
+    if few_corners > MAX_FEW_CORNER_VIEWS {
+        failures.push(format!(
+            "{name}: {:.0} % of the views have fewer than {FEW_CORNERS} corners",
+            100.0 * few_corners
         ));
     }
     if plain > MAX_PLAIN_VIEWS {
@@ -207,8 +233,9 @@ fn check_free_space(name: &str, caster: &RayCaster, t: &rslam_core::Trajectory) 
     }
 }
 
-/// A summary of a view, its share of textured cells, and what is wrong with it, if anything.
-fn view_stats(frame: &RayCastFrame) -> (String, f64, Option<String>) {
+/// A summary of a view, its share of textured cells, its corners, and what is wrong with it, if
+/// anything.
+fn view_stats(frame: &RayCastFrame) -> (String, f64, usize, Option<String>) {
     let gray = luma(&frame.rgb);
     let (w, h) = (frame.rgb.width as usize, frame.rgb.height as usize);
     let mut depths: Vec<f32> = frame
@@ -220,18 +247,19 @@ fn view_stats(frame: &RayCastFrame) -> (String, f64, Option<String>) {
         .collect();
     depths.sort_by(f32::total_cmp);
     let textured = textured_cells(&gray, w, h);
+    let corners = corner_count(&gray, w, h);
     let stats = format!(
         "depth min {:.2} median {:.2} m, textured cells {:.0} %, {} corners",
         depths.first().copied().unwrap_or(0.0),
         depths.get(depths.len() / 2).copied().unwrap_or(0.0),
         100.0 * textured,
-        corner_count(&gray, w, h)
+        corners
     );
-    (stats, textured, view_problem(frame, &gray))
+    (stats, textured, corners, view_problem(frame, corners))
 }
 
 /// What is wrong with a view, if anything.
-fn view_problem(frame: &RayCastFrame, gray: &[f32]) -> Option<String> {
+fn view_problem(frame: &RayCastFrame, corners: usize) -> Option<String> {
     let depth = &frame.depth.data;
     let valid: Vec<f32> = depth
         .iter()
@@ -246,8 +274,6 @@ fn view_problem(frame: &RayCastFrame, gray: &[f32]) -> Option<String> {
     if nearest < MIN_CLEARANCE {
         return Some(format!("a surface at {nearest:.2} m"));
     }
-    let (w, h) = (frame.rgb.width as usize, frame.rgb.height as usize);
-    let corners = corner_count(gray, w, h);
     if corners < MIN_CORNERS {
         return Some(format!("only {corners} corners"));
     }
@@ -376,6 +402,32 @@ fn scenes_are_deterministic_and_distinct() {
     let other = build("office1").unwrap();
     assert_ne!(a.content_hash(), other.content_hash());
     assert!(build("office9").is_none());
+}
+
+#[test]
+fn agents_walk_paths_of_their_own_in_one_world_frame() {
+    for name in ["room0", "office0"] {
+        let paths: Vec<_> = (0..CHECKED_AGENTS)
+            .map(|agent| agent_trajectory(name, agent).unwrap())
+            .collect();
+        assert_eq!(agent_trajectory(name, 1), Some(paths[1].clone()));
+        for (a, first) in paths.iter().enumerate() {
+            for second in &paths[a + 1..] {
+                let apart = first
+                    .poses
+                    .iter()
+                    .zip(&second.poses)
+                    .map(|(p, q)| (p.translation - q.translation).length())
+                    .sum::<f64>()
+                    / first.len() as f64;
+                assert!(
+                    apart > 0.5,
+                    "{name}: agents only {apart:.2} m apart on average"
+                );
+            }
+        }
+    }
+    assert!(agent_trajectory("office9", 1).is_none());
 }
 
 /// Writes preview images of every scene (a plan view and four frames of the default

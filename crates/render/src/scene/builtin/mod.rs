@@ -17,6 +17,7 @@ mod trajectory;
 mod checks;
 
 use glam::Vec2;
+use rslam_core::Trajectory;
 
 use crate::Scene;
 use furniture::Style;
@@ -32,6 +33,42 @@ pub const BUILTIN_SCENES: [&str; 8] = [
 /// Poses on the default path of the built-in scene `name` (without building the scene).
 pub fn builtin_path_length(name: &str) -> Option<usize> {
     layouts::blueprint(name).map(|_| trajectory::FRAMES)
+}
+
+/// The path of agent `agent` of a multi-agent sequence in the built-in scene `name` (without
+/// building the scene): a walk round the same free track as the default path, drawn with a seed of
+/// its own and started a golden-ratio share of a lap further round than the agent before, so
+/// agents spread round the track, go round in either direction and look at different things.
+/// Agent 0's path is the scene's default one. `None` for an unknown name.
+pub fn agent_trajectory(name: &str, agent: usize) -> Option<Trajectory> {
+    let plan = layouts::blueprint(name)?;
+    let golden_ratio_conjugate = 0.618_034_f32;
+    Some(trajectory::default_trajectory(
+        &track(&plan),
+        path_seed(rng::seed_from_name(name), agent),
+        (agent as f32 * golden_ratio_conjugate).fract(),
+    ))
+}
+
+/// Agent 0's seed is the default path's; every further agent steps by the golden-ratio
+/// increment before mixing, so agents' draws share nothing.
+fn path_seed(scene_seed: u64, agent: usize) -> u64 {
+    let base = scene_seed ^ 0x7472_616a;
+    rslam_core::hash::splitmix64(
+        base.wrapping_add((agent as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15)),
+    )
+}
+
+/// The free floor area of a blueprint's room that paths may roam.
+fn track(plan: &layouts::Blueprint) -> Track {
+    let room = plan.room;
+    let room_half = Vec2::new(room.width, room.depth) / 2.0;
+    Track {
+        centre: plan.track_centre,
+        half: room_half - Vec2::splat(plan.track_margin) - plan.track_centre.abs(),
+        room_half,
+        height: room.height,
+    }
 }
 
 /// The built-in scene of that name, or `None`.
@@ -56,14 +93,6 @@ pub fn build(name: &str) -> Option<Scene> {
         room.ceiling_light(&mut b, &fixture, x, y, plan.panel_lights);
     }
     (plan.furnish)(&mut b, &style, &room);
-    let room_half = Vec2::new(room.width, room.depth) / 2.0;
-    let track = Track {
-        centre: plan.track_centre,
-        half: room_half - Vec2::splat(plan.track_margin) - plan.track_centre.abs(),
-        room_half,
-        height: room.height,
-    };
-    let trajectory =
-        trajectory::default_trajectory(&track, rslam_core::hash::splitmix64(seed ^ 0x7472_616a));
+    let trajectory = trajectory::default_trajectory(&track(&plan), path_seed(seed, 0), 0.0);
     Some(b.finish(name, trajectory))
 }

@@ -39,10 +39,11 @@ pub struct Track {
     pub height: f32,
 }
 
-/// The default trajectory of a scene: `FRAMES` poses at `RATE_HZ`, deterministic in `seed`.
-pub fn default_trajectory(track: &Track, seed: u64) -> Trajectory {
+/// A walk round `track`: `FRAMES` poses at `RATE_HZ`, deterministic in `seed`; it starts
+/// `start_offset` laps (0..1) further round the track than the seed alone would put it.
+pub fn default_trajectory(track: &Track, seed: u64, start_offset: f32) -> Trajectory {
     let mut rng = Rng::new(seed);
-    let start = rng.f32() * TAU;
+    let start = (rng.f32() + start_offset) * TAU;
     let direction = if rng.chance(0.5) { 1.0 } else { -1.0 };
     let mut points = Vec::with_capacity(WAYPOINTS);
     let mut targets = Vec::with_capacity(WAYPOINTS);
@@ -345,9 +346,9 @@ mod tests {
 
     #[test]
     fn trajectory_is_deterministic_and_has_the_replica_shape() {
-        let a = default_trajectory(&track(), 42);
-        assert_eq!(a, default_trajectory(&track(), 42));
-        assert_ne!(a, default_trajectory(&track(), 43));
+        let a = default_trajectory(&track(), 42, 0.0);
+        assert_eq!(a, default_trajectory(&track(), 42, 0.0));
+        assert_ne!(a, default_trajectory(&track(), 43, 0.0));
         assert_eq!(a.len(), FRAMES);
         assert!((a.timestamps[1] - 0.05).abs() < 1e-12);
     }
