@@ -265,6 +265,7 @@ pub struct BufferSource {
     numbers: Vec<usize>,
     /// Buffer of each frame number.
     buffer_of: HashMap<usize, usize>,
+    camera: Option<Intrinsics>,
 }
 
 impl BufferSource {
@@ -302,7 +303,24 @@ impl BufferSource {
             frames,
             numbers,
             buffer_of,
+            camera: None,
         })
+    }
+
+    /// The same frames, taken with `camera` (what `depth_sensor` needs); fails unless the
+    /// camera has the frames' size.
+    pub fn with_camera(mut self, camera: Intrinsics) -> Result<Self, PipelineError> {
+        if (camera.width, camera.height) != (self.width, self.height) {
+            return Err(PipelineError::option(
+                "camera",
+                format!(
+                    "a {}x{} camera for {}x{} frames: expected the frames' size",
+                    camera.width, camera.height, self.width, self.height
+                ),
+            ));
+        }
+        self.camera = Some(camera);
+        Ok(self)
     }
 
     /// Like [`BufferSource::new`], with buffer i as frame `numbers[i]` of the sequence (a data
@@ -360,9 +378,9 @@ impl FrameSource for BufferSource {
         self.frames[0].1.is_some()
     }
 
-    /// Frames handed over in memory come without a camera.
+    /// Frames handed over in memory come without a camera unless one was given.
     fn camera(&self) -> Option<Intrinsics> {
-        None
+        self.camera
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {

@@ -158,3 +158,49 @@ fn buffers_pass_through_unchanged_and_are_perturbed_per_frame() {
         .unwrap();
     assert!(refused.to_string().contains("depth"), "{refused}");
 }
+
+#[test]
+fn buffers_with_their_camera_take_depth_sensor_as_the_render_does() {
+    let ctx = context();
+    let job = scene_job("depth_sensor:kinect");
+    let mut scene = FramesInMemory::scene(ctx, &job).unwrap();
+    let sensed = collect(&mut scene, 0..2);
+    let mut clean = FramesInMemory::scene(ctx, &scene_job("")).unwrap();
+    let rendered = collect(&mut clean, 0..2);
+    let buffers = || {
+        BufferSource::new(
+            rendered
+                .iter()
+                .map(|f| (f.color.clone(), f.depth.clone()))
+                .collect(),
+        )
+        .unwrap()
+    };
+    let spec = &job.spec;
+    let mut in_memory = FramesInMemory::buffers(
+        ctx,
+        buffers().with_camera(job.camera).unwrap(),
+        spec,
+        job.seed,
+    )
+    .unwrap();
+    let back = collect(&mut in_memory, 0..2);
+    for (i, (b, s)) in back.iter().zip(&sensed).enumerate() {
+        assert!(b.color == s.color, "colour of frame {i}");
+        let (b, s) = (b.depth.as_ref().unwrap(), s.depth.as_ref().unwrap());
+        let differ = b.data.iter().zip(&s.data).filter(|(x, y)| x != y).count();
+        assert_eq!(differ, 0, "frame {i}: {differ} depths differ");
+    }
+
+    let refused = FramesInMemory::buffers(ctx, buffers(), spec, job.seed)
+        .err()
+        .unwrap();
+    assert!(
+        refused.to_string().contains("without a camera"),
+        "{refused}"
+    );
+    let mut other = job.camera;
+    other.width += 2;
+    let wrong = buffers().with_camera(other).err().unwrap().to_string();
+    assert!(wrong.contains("expected the frames' size"), "{wrong}");
+}

@@ -189,7 +189,14 @@ pub fn corrupt<'py>(
             cache.clear();
         }
         let mut slot = cache.remove(&key);
-        let result = frames::run(&mut slot, &spec, seed, vec![(input.image, None)], vec![0]);
+        let result = frames::run(
+            &mut slot,
+            &spec,
+            seed,
+            vec![(input.image, None)],
+            vec![0],
+            None,
+        );
         if let Some(built) = slot {
             cache.insert(key, built);
         }

@@ -27,7 +27,8 @@ use crate::frames;
 ///     camera: optional; fixes the frame size up front ('replica', 'tum', "W,H,FX,FY,CX,CY" or
 ///         (w, h, fx, fy, cx, cy)) so the GPU work is built now and frames of another size are
 ///         refused. Without it, the corruptions are built for the first frame's size (and
-///         rebuilt if a later frame has another size).
+///         rebuilt if a later frame has another size). ``depth_sensor`` needs it: its noise,
+///         quantisation and projector shadow follow from the focal length.
 ///
 /// Frame ``i`` of a sequence gets exactly what ``rslam perturb --perturb SPEC --seed SEED``
 /// writes for frame ``i`` (image ``i`` of a folder in name order, or frame ``i`` of a dataset),
@@ -122,7 +123,14 @@ impl Perturber {
         }
         let out = py.detach(|| {
             let mut built = self.built.lock().unwrap_or_else(|p| p.into_inner());
-            frames::run(&mut built, &self.spec, self.seed, inputs, numbers)
+            frames::run(
+                &mut built,
+                &self.spec,
+                self.seed,
+                inputs,
+                numbers,
+                self.camera,
+            )
         })?;
         let mut colors_out = Vec::with_capacity(count);
         let mut depths_out = Vec::with_capacity(count);
@@ -168,7 +176,7 @@ impl Perturber {
             let frames = vec![(blank, depth)];
             built = Some(py.detach(|| -> Result<_, frames::RunError> {
                 let ctx = crate::gpu::context().map_err(frames::RunError::NoGpu)?;
-                let source = BufferSource::new(frames)?;
+                let source = BufferSource::new(frames)?.with_camera(k)?;
                 Ok(FramesInMemory::buffers(ctx, source, &spec, seed)?)
             })?);
         }

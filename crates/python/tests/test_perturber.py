@@ -114,6 +114,27 @@ def test_tum_dataset_with_depth(tmp_path, rslam_bin):
     assert np.abs(quantised - written_depth[1]).max() <= 1
 
 
+def test_depth_sensor_takes_the_camera_and_gives_what_the_cli_writes(tmp_path, rslam_bin):
+    spec, seed = "depth_sensor:kinect", 2
+    colors, depths = frames(2)
+    write_tum(tmp_path / "ds", colors, depths)
+    run_cli(rslam_bin, "perturb", "--input", tmp_path / "ds", "--out", tmp_path / "out",
+            "--perturb", spec, "--seed", seed, "--camera", CAMERA)
+    inputs_rgb, inputs_depth = read_tum_frames(tmp_path / "ds")
+    _, written_depth = read_tum_frames(tmp_path / "out")
+
+    perturber = rslam.Perturber(spec, seed=seed, camera=CAMERA)
+    for i in range(2):
+        _, depth = perturber.apply(inputs_rgb[i], inputs_depth[i], frame_index=i,
+                                   depth_scale=TUM_DEPTH_SCALE)
+        assert np.array_equal(depth, written_depth[i]), f"depth of frame {i}"
+        assert not np.array_equal(depth, inputs_depth[i]), "the sensor model changed nothing"
+
+    with pytest.raises(ValueError, match="without a camera"):
+        rslam.Perturber(spec, seed=seed).apply(inputs_rgb[0], inputs_depth[0],
+                                              depth_scale=TUM_DEPTH_SCALE)
+
+
 def test_dynamic_severities_follow_the_frame():
     p = rslam.Perturber("fog:5@dynamic", seed=4)
     drawn = [p.severities(i)["fog"] for i in range(60)]
