@@ -5,7 +5,8 @@ use crate::dataset_check::*;
 use crate::harness::Workspace;
 use crate::render::SMALL_CAMERA;
 
-fn render_agents(ws: &Workspace, extra: &[&str]) {
+/// `rslam render` of 4 noisy frames of room0 into `out`, with `extra` arguments.
+fn render_room0(ws: &Workspace, out: &str, extra: &[&str]) {
     let mut args = vec![
         "render",
         "--scene",
@@ -16,10 +17,8 @@ fn render_agents(ws: &Workspace, extra: &[&str]) {
         SMALL_CAMERA,
         "--perturb",
         "gaussian_noise:3",
-        "--agents",
-        "3",
         "--out",
-        "agents",
+        out,
     ];
     args.extend_from_slice(extra);
     ws.rslam(&args).success();
@@ -28,21 +27,8 @@ fn render_agents(ws: &Workspace, extra: &[&str]) {
 #[test]
 fn agents_are_datasets_on_their_own_paths_and_agent0_is_the_plain_render() {
     let ws = Workspace::new();
-    render_agents(&ws, &[]);
-    ws.rslam(&[
-        "render",
-        "--scene",
-        "room0",
-        "--frames",
-        "4",
-        "--camera",
-        SMALL_CAMERA,
-        "--perturb",
-        "gaussian_noise:3",
-        "--out",
-        "single",
-    ])
-    .success();
+    render_room0(&ws, "agents", &["--agents", "3"]);
+    render_room0(&ws, "single", &[]);
     let agent = |k: usize| ws.path(&format!("agents/agent{k}"));
     assert_same_tree(&agent(0).join("results"), &ws.path("single/results"));
     assert_eq!(
@@ -82,7 +68,7 @@ fn agents_are_datasets_on_their_own_paths_and_agent0_is_the_plain_render() {
     );
 
     // The same command again finds every agent complete.
-    render_agents(&ws, &[]);
+    render_room0(&ws, "agents", &["--agents", "3"]);
 }
 
 #[test]

@@ -60,6 +60,17 @@ fn collect(
     got
 }
 
+/// The frames as buffers handed over in memory.
+fn buffers_of(frames: &[RgbdFrame]) -> BufferSource {
+    BufferSource::new(
+        frames
+            .iter()
+            .map(|f| (f.color.clone(), f.depth.clone()))
+            .collect(),
+    )
+    .unwrap()
+}
+
 #[test]
 fn scene_frames_in_memory_are_the_frames_a_render_writes() {
     let ctx = context();
@@ -124,15 +135,7 @@ fn buffers_pass_through_unchanged_and_are_perturbed_per_frame() {
     let ctx = context();
     let mut scene = FramesInMemory::scene(ctx, &scene_job("")).unwrap();
     let rendered = collect(&mut scene, 0..3);
-    let buffers = || {
-        BufferSource::new(
-            rendered
-                .iter()
-                .map(|f| (f.color.clone(), f.depth.clone()))
-                .collect(),
-        )
-        .unwrap()
-    };
+    let buffers = || buffers_of(&rendered);
     let mut clean = FramesInMemory::buffers(ctx, buffers(), &PerturbSpec::default(), 0).unwrap();
     for (back, original) in collect(&mut clean, 0..3).iter().zip(&rendered) {
         assert_eq!(back.color, original.color);
@@ -167,15 +170,7 @@ fn buffers_with_their_camera_take_depth_sensor_as_the_render_does() {
     let sensed = collect(&mut scene, 0..2);
     let mut clean = FramesInMemory::scene(ctx, &scene_job("")).unwrap();
     let rendered = collect(&mut clean, 0..2);
-    let buffers = || {
-        BufferSource::new(
-            rendered
-                .iter()
-                .map(|f| (f.color.clone(), f.depth.clone()))
-                .collect(),
-        )
-        .unwrap()
-    };
+    let buffers = || buffers_of(&rendered);
     let spec = &job.spec;
     let mut in_memory = FramesInMemory::buffers(
         ctx,
