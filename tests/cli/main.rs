@@ -1,5 +1,6 @@
 //! End-to-end tests of the `rslam` binary: one integration binary, one module per subcommand.
 
+mod auto_exposure;
 mod bench;
 mod dataset_check;
 mod depth_png;

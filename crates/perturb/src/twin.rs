@@ -23,6 +23,9 @@ pub enum Twin {
     /// `state` as the GPU pass updates its buffer; `initial` is the state when it is built.
     ColorSequence {
         initial: TwinState,
+        /// The names of the state's four values, for the per-frame log of what each frame was
+        /// made with.
+        fields: [&'static str; 4],
         step: fn(&RgbF32, &FrameKey, &mut TwinState) -> RgbF32,
     },
 }

@@ -37,6 +37,7 @@ mod shown_frame;
 mod shutter_render;
 pub mod sink;
 pub mod source;
+mod state_log;
 
 pub use dataset_run::RunReport;
 pub use depth_colormap::DepthRange;
@@ -54,3 +55,4 @@ pub use rig::{perturb_euroc, render_euroc, PerturbEurocJob, Rig, RigRenderJob, R
 pub use scene_job::{ResolvedScene, SceneJob};
 pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;
+pub use state_log::StateTable;

@@ -102,6 +102,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     explicit: None,
     twin: Twin::ColorSequence {
         initial: ExposureState::INITIAL.as_twin_state(),
+        fields: ["exposure_ms", "gain", "steered_ms", "metered_mean"],
         step: twin,
     },
     // As shot_noise (PTRS accept/reject on last-bit differences). The metered mean is summed in
@@ -238,7 +239,8 @@ struct AutoExposure {
     control_params: wgpu::Buffer,
     /// The controller's state, read and written by the control pass.
     state: wgpu::Buffer,
-    /// The state the sensor pass of this frame reads (a uniform copy, see [`Kit::uniform_buffer`]).
+    /// The state the sensor pass of this frame reads (a uniform copy, see [`Kit::uniform_buffer`]),
+    /// and the per-frame log's source ([`GpuPerturbation::state`]).
     state_now: wgpu::Buffer,
 }
 
@@ -254,7 +256,14 @@ impl AutoExposure {
             control: kit.pipeline(CONTROL_SHADER)?,
             control_params: kit.uniform_buffer::<ControlParams>(CONTROL_SHADER),
             state,
-            state_now: kit.uniform_buffer::<ExposureState>(SHADER),
+            state_now: kit.ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(SHADER),
+                size: std::mem::size_of::<ExposureState>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
         })
     }
 }
@@ -294,6 +303,10 @@ impl GpuPerturbation for AutoExposure {
             [1, 1, 1],
         );
         Ok(())
+    }
+
+    fn state(&self) -> Option<&wgpu::Buffer> {
+        Some(&self.state_now)
     }
 }
 
