@@ -181,10 +181,7 @@ impl FramesInMemory<DatasetSource> {
 /// Buffers come in any order, any number of times; an item that carries a state from frame to
 /// frame (auto_exposure) needs its frames in capture order from the first, so it is refused.
 fn check_stateless(spec: &PerturbSpec) -> Result<(), PipelineError> {
-    let stateful = spec
-        .frame_items()
-        .find(|item| rslam_perturb::find(&item.name).is_some_and(|e| e.carries_state()));
-    match stateful {
+    match spec.stateful_item() {
         Some(item) => Err(PipelineError::option(
             "--perturb",
             format!(

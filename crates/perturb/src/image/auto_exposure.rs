@@ -90,7 +90,7 @@ pub const TARGET_MEAN: f32 = 0.18;
 pub const ENTRY: CatalogueEntry = CatalogueEntry {
     name: NAME,
     group: Group::Image,
-    description: "auto-exposure camera: exposure (then analog gain) follows the frames' mean brightness to 18 % grey with a first-order lag; sensor photons → electrons (Poisson shot noise, read noise, full-well saturation) → 10-bit DN; frames in capture order",
+    description: "auto-exposure camera: exposure (then analog gain) follows the frames' mean brightness to 18 % grey with a first-order lag; sensor photons → electrons (Poisson shot noise, read noise, full-well saturation) → 10-bit DN; frames in capture order; exposure and gain per frame in sensor_state.csv",
     parameters: |s| {
         let l = LEVELS[s as usize - 1];
         format!(
