@@ -1,6 +1,7 @@
 //! End-to-end tests of the `rslam` binary: one integration binary, one module per subcommand.
 
 mod agents;
+mod auto_exposure;
 mod bench;
 mod dataset_check;
 mod depth_png;

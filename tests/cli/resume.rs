@@ -23,7 +23,9 @@ fn render_args(format: &str) -> Vec<&str> {
         "--format",
         format,
         "--perturb",
-        "gaussian_noise:3@dynamic,depth_missing:2,misalign:3@dynamic",
+        // auto_exposure carries its controller from frame to frame: a resumed run must give
+        // the frames after the kill what the frames before them left.
+        "gaussian_noise:3@dynamic,auto_exposure:2,depth_missing:2,misalign:3@dynamic",
         "--seed",
         "5",
         "--out",

@@ -17,5 +17,5 @@ pub use context::{AdapterChoice, GpuContext};
 pub use error::GpuError;
 pub use frame::FrameTextures;
 pub use frame_ring::{FrameRing, ReadFrame};
-pub use readback::{read_texels, FrameReadback};
+pub use readback::{read_buffer, read_texels, FrameReadback};
 pub use wgpu;

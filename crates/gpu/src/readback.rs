@@ -94,6 +94,27 @@ impl FrameReadback {
     }
 }
 
+/// Reads a whole buffer (made with `COPY_SRC`) back to the CPU; blocks until the GPU is done.
+/// For small logs kept on the GPU during a run and read once at its end.
+pub fn read_buffer(ctx: &GpuContext, source: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback buffer"),
+        size: source.size(),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(source, 0, &staging, 0, None);
+    let submission = ctx.queue.submit([encoder.finish()]);
+    map_and_wait(ctx, [&staging], submission)?;
+    let bytes = staging
+        .get_mapped_range(..)
+        .map_err(readback_failed)?
+        .to_vec();
+    staging.unmap();
+    Ok(bytes)
+}
+
 /// Reads single texels of 4-byte formats (`Rgba8Unorm`, `R32Float`): each `(texture, x, y)` in
 /// order, as its raw bytes. For a pixel readout under a cursor; blocks until the GPU is done.
 pub fn read_texels(

@@ -25,6 +25,7 @@ pub static CATALOGUE: &[CatalogueEntry] = &[
     image::snow::ENTRY,
     image::spatter::ENTRY,
     image::vignetting::ENTRY,
+    image::auto_exposure::ENTRY,
     depth::depth_noise::ENTRY,
     depth::depth_edge_erosion::ENTRY,
     depth::depth_missing::ENTRY,

@@ -5,6 +5,7 @@
 
 use crate::perturbation::{CatalogueEntry, FrameKey};
 use crate::testing::{self, EntryOnGpu};
+use crate::twin::TwinRun;
 use crate::CATALOGUE;
 
 /// Not a multiple of 8 (runs of 8 pixels per invocation, 8×8 workgroups) nor of 16 (JPEG's
@@ -22,6 +23,7 @@ const SEEDS_FRAMES: [(u64, u32); 2] = [(5, 0), (6, 3)];
 fn check(
     entry: &CatalogueEntry,
     gpu: &mut EntryOnGpu,
+    twin: &mut TwinRun,
     clean: &testing::Frame,
     key: &FrameKey,
 ) -> Result<bool, String> {
@@ -34,9 +36,7 @@ fn check(
         .apply(key, &clean.color, Some(&clean.depth))
         .map_err(|e| format!("{label}: {e}"))?;
     let mut expected = clean.clone();
-    entry
-        .twin
-        .apply(&mut expected.color, &mut expected.depth, key);
+    twin.apply(&mut expected.color, &mut expected.depth, key);
     let tolerance = &entry.twin_tolerance;
     let color = testing::compare_color(&actual.color, &expected.color, tolerance, &label);
     let depth = testing::compare_depth(&actual.depth, &expected.depth, tolerance.metres, &label);
@@ -102,10 +102,12 @@ fn every_entry_matches_its_twin() {
                 continue;
             }
         };
+        // Built once like the GPU pass, so a stateful twin sees the same frames in the same order.
+        let mut twin = entry.twin.start();
         let (mut changed, failed_before) = (false, failures.len());
         for key in keys(explicit.as_deref()) {
             cases += 1;
-            match check(entry, &mut gpu, &clean, &key) {
+            match check(entry, &mut gpu, &mut twin, &clean, &key) {
                 Ok(changed_frame) => changed |= changed_frame,
                 Err(e) => failures.push(e),
             }

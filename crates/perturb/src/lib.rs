@@ -46,4 +46,4 @@ pub use perturbation::{
 };
 pub use perturber::{dynamic_severity, severity_on, FrameSeverities, ItemSeverity, Perturber};
 pub use spec::{all_names, parse_severity, Deviation, FrameItem, Level, Misalign, PerturbSpec};
-pub use twin::{Tolerance, Twin};
+pub use twin::{Tolerance, Twin, TwinRun, TwinState};

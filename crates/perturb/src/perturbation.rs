@@ -54,6 +54,20 @@ pub struct CatalogueEntry {
 }
 
 impl CatalogueEntry {
+    /// Whether its GPU pass carries a state from frame to frame (auto_exposure's controller), so
+    /// a frame's output depends on every frame before it in the run.
+    pub fn carries_state(&self) -> bool {
+        self.state_fields().is_some()
+    }
+
+    /// The names of the four values of its state ([`GpuPerturbation::state`]), where it has one.
+    pub fn state_fields(&self) -> Option<[&'static str; 4]> {
+        match self.twin {
+            Twin::ColorSequence { fields, .. } => Some(fields),
+            _ => None,
+        }
+    }
+
     /// `parameters` for severities 1..=5.
     pub fn parameter_table(&self) -> [String; 5] {
         std::array::from_fn(|i| (self.parameters)(i as u8 + 1))
@@ -98,6 +112,13 @@ pub trait GpuPerturbation: Send {
         frame: &FrameTextures,
         key: &FrameKey,
     ) -> Result<(), PerturbError>;
+
+    /// For a pass that carries a state from frame to frame: a buffer (`COPY_SRC`) holding the
+    /// state the last encoded frame was made with, four f32 named by the entry's
+    /// [`CatalogueEntry::state_fields`], for a per-frame log copied on the GPU.
+    fn state(&self) -> Option<&wgpu::Buffer> {
+        None
+    }
 }
 
 /// Textures shared by all perturbations of one [`crate::Perturber`], allocated once. Passes run

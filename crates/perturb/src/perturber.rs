@@ -51,6 +51,7 @@ pub struct FrameSeverities {
 
 struct Item {
     name: &'static str,
+    state_fields: Option<[&'static str; 4]>,
     level: Level,
     perturbation: Box<dyn GpuPerturbation>,
 }
@@ -96,6 +97,7 @@ impl Perturber {
             })?;
             items.push(Item {
                 name: entry.name,
+                state_fields: entry.state_fields(),
                 level: item.level.clone(),
                 perturbation: (entry.build)(&kit)?,
             });
@@ -113,6 +115,49 @@ impl Perturber {
 
     pub fn is_empty(&self) -> bool {
         self.items.is_empty()
+    }
+
+    /// Whether an item carries a state from frame to frame (see
+    /// [`crate::CatalogueEntry::carries_state`]): frames must then run in order from the first,
+    /// and a resumed run redoes them all.
+    pub fn carries_state(&self) -> bool {
+        self.items.iter().any(|item| item.state_fields.is_some())
+    }
+
+    /// The columns of the per-frame state log, `name.field` for each value of each item that
+    /// carries a state, in spec order: one row is [`Perturber::state_row_bytes`] of f32.
+    pub fn state_columns(&self) -> Vec<String> {
+        self.items
+            .iter()
+            .filter_map(|item| item.state_fields.map(|fields| (item.name, fields)))
+            .flat_map(|(name, fields)| fields.map(|field| format!("{name}.{field}")))
+            .collect()
+    }
+
+    pub fn state_row_bytes(&self) -> u64 {
+        self.state_columns().len() as u64 * 4
+    }
+
+    /// Records a copy of the state each stateful item made frame `got` with into `log` at byte
+    /// `offset` (one row of [`Perturber::state_columns`]); an item that did not run on the
+    /// frame (severity 0) leaves its cells as they were.
+    pub fn encode_state_copy(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        got: &FrameSeverities,
+        log: &wgpu::Buffer,
+        offset: u64,
+    ) {
+        let mut at = offset;
+        for (item, severity) in self.items.iter().zip(&got.items) {
+            if item.state_fields.is_none() {
+                continue;
+            }
+            if let (Some(state), true) = (item.perturbation.state(), severity.severity > 0) {
+                encoder.copy_buffer_to_buffer(state, 0, log, at, Some(16));
+            }
+            at += 16;
+        }
     }
 
     /// Takes the levels and seed of `spec` when it has this perturber's frame items in the same

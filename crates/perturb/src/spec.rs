@@ -227,6 +227,13 @@ impl PerturbSpec {
     pub fn frame_items(&self) -> impl Iterator<Item = &FrameItem> {
         self.image.iter().chain(&self.depth)
     }
+
+    /// The first frame item that carries a state from frame to frame (auto_exposure), if any:
+    /// its frames must run in capture order from the first, and a resumed run redoes them all.
+    pub fn stateful_item(&self) -> Option<&FrameItem> {
+        self.frame_items()
+            .find(|item| crate::catalogue::find(&item.name).is_some_and(|e| e.carries_state()))
+    }
 }
 
 fn parse_non_negative(value: &str) -> Option<f64> {

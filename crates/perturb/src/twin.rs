@@ -18,16 +18,50 @@ pub enum Twin {
     Color8(fn(&RgbImage, &FrameKey) -> RgbImage),
     /// Depth in metres (0 = no measurement) to depth in metres.
     Depth(fn(&DepthImage, &FrameKey) -> DepthImage),
+    /// Colour to colour (as [`Twin::Color`]) for a pass whose GPU state buffer carries over from
+    /// frame to frame (auto_exposure's controller): `step` transforms one frame and updates
+    /// `state` as the GPU pass updates its buffer; `initial` is the state when it is built.
+    ColorSequence {
+        initial: TwinState,
+        /// The names of the state's four values, for the per-frame log of what each frame was
+        /// made with.
+        fields: [&'static str; 4],
+        step: fn(&RgbF32, &FrameKey, &mut TwinState) -> RgbF32,
+    },
 }
 
+/// The state a [`Twin::ColorSequence`] carries between frames (the GPU buffer's `vec4<f32>`).
+pub type TwinState = [f32; 4];
+
 impl Twin {
+    /// The twin as it is when its entry is built, to be applied to frames in the order the GPU
+    /// pass sees them.
+    pub fn start(&self) -> TwinRun {
+        let state = match self {
+            Twin::ColorSequence { initial, .. } => *initial,
+            _ => TwinState::default(),
+        };
+        TwinRun { twin: *self, state }
+    }
+}
+
+/// A twin applied frame after frame, with the state a [`Twin::ColorSequence`] carries.
+pub struct TwinRun {
+    twin: Twin,
+    state: TwinState,
+}
+
+impl TwinRun {
     /// Transforms the frame in place as the entry's GPU pass does: the colour for an image
     /// corruption, the depth for a depth corruption; the other is left as it is.
-    pub fn apply(&self, color: &mut RgbImage, depth: &mut DepthImage, key: &FrameKey) {
-        match self {
+    pub fn apply(&mut self, color: &mut RgbImage, depth: &mut DepthImage, key: &FrameKey) {
+        match self.twin {
             Twin::Color(twin) => *color = twin(&RgbF32::from_rgb8(color), key).to_rgb8(),
             Twin::Color8(twin) => *color = twin(color, key),
             Twin::Depth(twin) => *depth = twin(depth, key),
+            Twin::ColorSequence { step, .. } => {
+                *color = step(&RgbF32::from_rgb8(color), key, &mut self.state).to_rgb8()
+            }
         }
     }
 }

@@ -65,10 +65,13 @@ pub fn write_dataset<S: FrameSource>(
         target.manifest.depth_png,
     )?;
     let mut sink = DatasetSink::new(writer, plan);
+    // A stateful item (auto_exposure) gives each frame what the frames before it left, so a
+    // resumed run redoes them all rather than start its state over at the first missing one.
+    let redo_all = pipeline.perturber().carries_state();
     let sources: Vec<usize> = plan
         .needed_sources()
         .into_iter()
-        .filter(|&s| !sink.is_written(s))
+        .filter(|&s| redo_all || !sink.is_written(s))
         .collect();
     progress.start(sources.len(), what);
     pipeline.run(ctx, &sources, progress, &mut sink)?;

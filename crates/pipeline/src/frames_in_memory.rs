@@ -178,6 +178,22 @@ impl FramesInMemory<DatasetSource> {
     }
 }
 
+/// Buffers come in any order, any number of times; an item that carries a state from frame to
+/// frame (auto_exposure) needs its frames in capture order from the first, so it is refused.
+fn check_stateless(spec: &PerturbSpec) -> Result<(), PipelineError> {
+    match spec.stateful_item() {
+        Some(item) => Err(PipelineError::option(
+            "--perturb",
+            format!(
+                "'{}' carries its state from frame to frame, so its frames must run in capture \
+                 order from the first: use `rslam render` or `rslam perturb --input`",
+                item.name
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
 impl FramesInMemory<BufferSource> {
     /// Frames given as buffers; frame i is the RNG's frame i. Image and depth corruptions only.
     pub fn buffers(
@@ -188,6 +204,7 @@ impl FramesInMemory<BufferSource> {
     ) -> Result<Self, PipelineError> {
         check_depth(spec, &source)?;
         check_frame_items_only(spec)?;
+        check_stateless(spec)?;
         let plan = FramePlan::images_at(source.frame_numbers(), source.has_depth(), spec, seed);
         let origin = Origin::Buffers;
         Ok(Self {
@@ -232,6 +249,7 @@ impl FramesInMemory<BufferSource> {
         seed: u64,
     ) -> Result<(), PipelineError> {
         check_frame_items_only(spec)?;
+        check_stateless(spec)?;
         let source = self.pipeline.source();
         check_depth(spec, source)?;
         let plan = FramePlan::images_at(source.frame_numbers(), source.has_depth(), spec, seed);

@@ -38,6 +38,7 @@ mod shown_frame;
 mod shutter_render;
 pub mod sink;
 pub mod source;
+mod state_log;
 
 pub use agents::{agent_folders, agent_scene_job};
 pub use dataset_run::RunReport;
@@ -56,3 +57,4 @@ pub use rig::{perturb_euroc, render_euroc, PerturbEurocJob, Rig, RigRenderJob, R
 pub use scene_job::{ResolvedScene, SceneJob};
 pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;
+pub use state_log::StateTable;

@@ -163,8 +163,10 @@ pub fn perturb_images(
             manifest: Manifest::read(&job.out)?,
         }));
     }
+    // As in a dataset run: a stateful item's frames follow from the ones before them.
+    let redo_all = job.spec.stateful_item().is_some();
     let missing: Vec<usize> = (0..names.len())
-        .filter(|&i| !job.out.join(&names[i]).is_file())
+        .filter(|&i| redo_all || !job.out.join(&names[i]).is_file())
         .collect();
     let content = Arc::new(ContentWriter::new(&job.out));
     let destination = Destination::Folder {

@@ -10,6 +10,7 @@ use crate::progress::Progress;
 use crate::shown_frame::{copy_frame, Held, ShownFrame, ShownSources};
 use crate::sink::FrameSink;
 use crate::source::FrameSource;
+use crate::state_log::StateLog;
 use crate::PipelineError;
 
 pub struct Pipeline<S> {
@@ -28,6 +29,10 @@ impl<S: FrameSource> Pipeline<S> {
         let (width, height) = source.size();
         let perturber = Perturber::new(ctx, spec, width, height, seed, source.camera())?;
         Ok(Self { source, perturber })
+    }
+
+    pub fn perturber(&self) -> &Perturber {
+        &self.perturber
     }
 
     pub fn source(&self) -> &S {
@@ -106,7 +111,8 @@ impl<S: FrameSource> Pipeline<S> {
         Ok(())
     }
 
-    /// Runs source frames `sources` (in that order) into `sink`, reporting to `progress`.
+    /// Runs source frames `sources` (in that order) into `sink`, reporting to `progress`; the
+    /// state of stateful perturbations per frame goes to the sink after the last frame.
     pub fn run(
         &mut self,
         ctx: &GpuContext,
@@ -117,6 +123,8 @@ impl<S: FrameSource> Pipeline<S> {
         let (width, height) = self.source.size();
         self.source.prepare(sources)?;
         let (source, perturber) = (&mut self.source, &mut self.perturber);
+        let log = StateLog::new(ctx, perturber, sources);
+        let mut position = 0;
         FrameRun {
             ctx,
             width,
@@ -128,10 +136,18 @@ impl<S: FrameSource> Pipeline<S> {
             progress,
             |index, encoder, frame| {
                 source.record(ctx, encoder, frame, index)?;
-                perturber.encode(ctx, encoder, frame, index as u32)?;
+                let got = perturber.encode(ctx, encoder, frame, index as u32)?;
+                if let Some(log) = &log {
+                    log.encode(encoder, perturber, &got, position);
+                }
+                position += 1;
                 Ok(())
             },
             |frame| sink.accept(frame.index, frame.color, frame.depth),
-        )
+        )?;
+        match log {
+            Some(log) => sink.accept_state(log.read(ctx)?),
+            None => Ok(()),
+        }
     }
 }

@@ -160,6 +160,21 @@ fn buffers_pass_through_unchanged_and_are_perturbed_per_frame() {
         .err()
         .unwrap();
     assert!(refused.to_string().contains("depth"), "{refused}");
+    // Buffers may come in any order; a stateful item needs them in capture order.
+    let one = || BufferSource::new(vec![(rendered[0].color.clone(), None)]).unwrap();
+    let stateful = PerturbSpec::parse("fog:1,auto_exposure:2").unwrap();
+    let refused = FramesInMemory::buffers(ctx, one(), &stateful, 0)
+        .err()
+        .unwrap();
+    assert!(
+        refused
+            .to_string()
+            .contains("'auto_exposure' carries its state"),
+        "{refused}"
+    );
+    let mut fog =
+        FramesInMemory::buffers(ctx, one(), &PerturbSpec::parse("fog:1").unwrap(), 0).unwrap();
+    assert!(fog.set_spec(ctx, &stateful, 0).is_err());
 }
 
 #[test]

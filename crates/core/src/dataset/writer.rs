@@ -172,7 +172,8 @@ impl DatasetWriter {
         self.content.finish(manifest)
     }
 
-    fn write_text(&self, rel: &str, text: &str) -> Result<(), CoreError> {
+    /// A text file of the dataset at `rel` (written whole, counted in its checksums).
+    pub fn write_text(&self, rel: &str, text: &str) -> Result<(), CoreError> {
         self.content.write(rel, text.as_bytes())
     }
 

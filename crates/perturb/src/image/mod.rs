@@ -1,6 +1,7 @@
 //! RGB corruptions: one file per corruption (parameters, GPU pass, CPU twin, tests), plus the
 //! shared per-pixel pass and HSV conversion.
 
+pub mod auto_exposure;
 pub mod brightness;
 pub mod color_pass;
 pub mod contrast;

@@ -1,5 +1,6 @@
 //! A dataset on disk: each source frame's colour and depth are encoded on worker threads into
-//! every output frame that uses them; index files, checksums and the manifest come last.
+//! every output frame that uses them; index files, the state log of stateful perturbations
+//! (`sensor_state.csv`), checksums and the manifest come last.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -10,13 +11,18 @@ use rslam_core::{DepthImage, RgbImage, Trajectory};
 use super::FrameSink;
 use crate::encoder_pool::EncoderPool;
 use crate::plan::{FramePlan, SourceOutputs};
+use crate::state_log::StateTable;
 use crate::PipelineError;
+
+/// The per-frame state of stateful perturbations (auto_exposure's exposure and gain).
+pub const STATE_FILE: &str = "sensor_state.csv";
 
 pub struct DatasetSink<'a> {
     writer: Arc<DatasetWriter>,
     pool: EncoderPool,
     plan: &'a FramePlan,
     outputs: HashMap<usize, SourceOutputs>,
+    state: Option<StateTable>,
 }
 
 impl<'a> DatasetSink<'a> {
@@ -26,6 +32,7 @@ impl<'a> DatasetSink<'a> {
             pool: EncoderPool::per_core(),
             outputs: plan.outputs_by_source(),
             plan,
+            state: None,
         }
     }
 
@@ -51,11 +58,36 @@ impl<'a> DatasetSink<'a> {
         self.pool.finish()?;
         let writer = Arc::try_unwrap(self.writer)
             .map_err(|_| PipelineError::Worker("dataset writer still shared".into()))?;
+        if let Some(table) = &self.state {
+            writer.write_text(STATE_FILE, &state_csv(table, self.plan))?;
+        }
         Ok(writer.finish(&self.plan.frames, ground_truth, manifest)?)
     }
 }
 
+/// One row per output frame: its index, its colour timestamp, and the state its colour source
+/// frame was made with (empty cells where an item did not run on it).
+fn state_csv(table: &StateTable, plan: &FramePlan) -> String {
+    let mut csv = format!("frame,timestamp,{}\n", table.columns.join(","));
+    for (j, frame) in plan.frames.iter().enumerate() {
+        let cells: Vec<String> = match table.rows.get(&plan.rgb_source[j]) {
+            Some(row) => row
+                .iter()
+                .map(|cell| cell.map(|v| v.to_string()).unwrap_or_default())
+                .collect(),
+            None => vec![String::new(); table.columns.len()],
+        };
+        csv.push_str(&format!("{j},{:.6},{}\n", frame.rgb_time, cells.join(",")));
+    }
+    csv
+}
+
 impl FrameSink for DatasetSink<'_> {
+    fn accept_state(&mut self, table: StateTable) -> Result<(), PipelineError> {
+        self.state = Some(table);
+        Ok(())
+    }
+
     fn accept(
         &mut self,
         source: usize,

@@ -9,6 +9,7 @@ pub use memory::{MemorySink, RgbdFrame};
 
 use rslam_core::{DepthImage, RgbImage};
 
+use crate::state_log::StateTable;
 use crate::PipelineError;
 
 pub trait FrameSink {
@@ -23,4 +24,9 @@ pub trait FrameSink {
         color: RgbImage,
         depth: Option<DepthImage>,
     ) -> Result<(), PipelineError>;
+    /// The state stateful perturbations made each source frame with, once after the last
+    /// frame; a sink that writes no dataset drops it.
+    fn accept_state(&mut self, _table: StateTable) -> Result<(), PipelineError> {
+        Ok(())
+    }
 }
