@@ -167,6 +167,30 @@ fn a_euroc_sequence_gets_a_bias_step_and_a_camera_offset_with_frames_untouched()
     }
     let verify = ws.rslam(&["verify", "out"]);
     assert!(verify.success().contains("out: ok"), "{}", verify.stdout());
+
+    // The offset alone leaves the IMU and the ground truth files as they were.
+    let args = [
+        "perturb",
+        "--input",
+        "seq",
+        "--out",
+        "offset",
+        "--perturb",
+        "cam_imu_offset:-1",
+    ];
+    ws.rslam(&args).success();
+    for file in ["imu0/data.csv", "state_groundtruth_estimate0/data.csv"] {
+        assert_eq!(
+            std::fs::read(ws.path("offset/mav0").join(file)).unwrap(),
+            std::fs::read(input.join(file)).unwrap(),
+            "{file}"
+        );
+    }
+    let stamps: Vec<u64> = rows(&ws.path("offset/mav0/cam1/data.csv"))
+        .iter()
+        .map(|r| r.0)
+        .collect();
+    assert_eq!(stamps, STAMPS.map(|t| t - 1_000_000));
 }
 
 /// Drops and jitter: the manifest's counts match the file, stamps stay strictly increasing, the

@@ -54,6 +54,8 @@ pub struct ImuReport {
 pub struct PerturbedImu {
     pub samples: Vec<ImuSample>,
     pub ground_truth: Vec<GroundTruthState>,
+    /// Whether the samples changed (any IMU item but `cam_imu_offset`).
+    pub samples_changed: bool,
     /// Whether the ground truth's biases changed (a bias step, or a bias walk added).
     pub ground_truth_changed: bool,
     pub report: ImuReport,
@@ -144,6 +146,7 @@ impl ImuSpec {
         Ok(PerturbedImu {
             samples,
             ground_truth,
+            samples_changed: self.changes_imu(),
             ground_truth_changed,
             report,
         })

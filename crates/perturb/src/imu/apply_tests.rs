@@ -266,6 +266,10 @@ fn camera_stamps_shift_by_whole_nanoseconds_and_never_below_zero() {
     let spec = imu_spec("cam_imu_offset:-2.5");
     assert_eq!(spec.cam_imu_offset_ns(), Some(-2_500_000));
     assert!(!spec.changes_imu());
+    let samples = still_recording(10, 1);
+    let out = spec.apply(&recorded(&samples, &[]), 0).unwrap();
+    assert!(!out.samples_changed && !out.ground_truth_changed);
+    assert_eq!(out.samples, samples);
     assert!(imu_spec("imu_jitter:1,cam_imu_offset:1").changes_imu());
     assert_eq!(
         shift_stamp(START_NS, -2_500_000),

@@ -111,7 +111,7 @@ fn write_sensor_files(
     }
     if dataset.imu.is_some() {
         copy(IMU_DIR, "sensor.yaml")?;
-        match imu {
+        match imu.filter(|p| p.samples_changed) {
             Some(perturbed) => writer.write_imu(&perturbed.samples)?,
             None => copy(IMU_DIR, "data.csv")?,
         }
@@ -125,7 +125,7 @@ fn write_sensor_files(
     Ok(())
 }
 
-/// The IMU items applied to imu0 (`None` when none changes it); refused without imu0.
+/// The IMU items applied to imu0 (`None` without IMU items); refused without imu0.
 fn perturb_recorded_imu(
     dataset: &EurocDataset,
     spec: &PerturbSpec,
@@ -243,9 +243,10 @@ pub fn perturb_euroc(
             })).collect::<Vec<_>>(),
             "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
                 "samples": imu_samples,
-                "copied": imu.is_none(),
+                "copied": !imu.as_ref().is_some_and(|p| p.samples_changed),
             })),
-            "ground_truth_copied": dataset.ground_truth.is_some(),
+            "ground_truth_copied": dataset.ground_truth.is_some()
+                && !imu.as_ref().is_some_and(|p| p.ground_truth_changed),
         }),
     }
     .build()?;
