@@ -18,6 +18,13 @@ fn list_shows_every_group_with_parameters_per_severity() {
         "Sensor effects",
         "exposure:MS[@K]",
         "rolling_shutter:MS",
+        "IMU items",
+        "imu_noise:K",
+        "imu_bias_step:GYRO/ACC",
+        "imu_saturation:GYRO/ACC",
+        "imu_drop:P | imu_drop:P/L",
+        "imu_jitter:MS",
+        "cam_imu_offset:MS",
     ] {
         assert!(out.contains(fragment), "list lacks '{fragment}':\n{out}");
     }
@@ -41,6 +48,8 @@ fn list_json_has_one_object_per_perturbation() {
         "misalign",
         "exposure",
         "rolling_shutter",
+        "imu_noise",
+        "cam_imu_offset",
     ] {
         assert_eq!(
             names.iter().filter(|&&n| n == name).count(),

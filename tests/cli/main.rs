@@ -9,6 +9,7 @@ mod eval;
 mod eval_agents;
 mod eval_recon;
 mod harness;
+mod imu_items;
 mod list;
 mod motion;
 mod perturb;

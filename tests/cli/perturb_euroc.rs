@@ -8,7 +8,7 @@ use crate::harness::Workspace;
 
 /// MH_01_easy's first two cam0 stamps (multiples of 256 ns, as published) and one of any
 /// nanosecond (TUM-VI's stamps are), which f64 seconds could not hold.
-const STAMPS: [u64; 3] = [
+pub(crate) const STAMPS: [u64; 3] = [
     1_403_636_579_763_555_584,
     1_403_636_579_813_555_456,
     1_403_636_579_863_555_555,
@@ -86,7 +86,7 @@ fn frame(camera: usize, j: usize) -> image::GrayImage {
 
 /// Lays out a MH_01_easy-style sequence under `root` (no rslam manifest; `leica0/` and
 /// `body.yaml`, which rslam does not read, as published).
-fn write_published_style(root: &Path) {
+pub(crate) fn write_published_style(root: &Path) {
     let mav = root.join("mav0");
     for (c, cam) in ["cam0", "cam1"].into_iter().enumerate() {
         let data = mav.join(cam).join("data");
@@ -265,7 +265,7 @@ fn items_that_are_not_image_corruptions_and_other_folders_are_refused() {
             .fails_with(
                 2,
                 &[&format!(
-                    "--perturb: '{item}': EuRoC inputs take image corruptions only for now"
+                    "--perturb: '{item}': EuRoC inputs take image corruptions and IMU items only for now"
                 )],
             );
         assert_eq!(err.lines().count(), 1, "{err}");

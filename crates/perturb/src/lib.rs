@@ -8,7 +8,9 @@
 //! in [`rslam_gpu::FrameTextures`]; a [`Perturber`] records the spec's image corruptions and then
 //! its depth corruptions into the frame's command encoder, each one a [`GpuPerturbation`] from the
 //! [`CATALOGUE`] transforming the textures in place, and reports the severity each got. Stream
-//! items (`fast`, `misalign`) choose which rendered frames are written ([`stream`]). Randomness
+//! items (`fast`, `misalign`) choose which rendered frames are written ([`stream`]). IMU items
+//! (`imu_noise`, `imu_bias_step`, …, `cam_imu_offset`) act on a rig's IMU stream and camera
+//! stamps on the CPU ([`imu`]). Randomness
 //! comes from one counter-based hash keyed by (seed, perturbation, frame, purpose) ([`rng`]),
 //! the same in Rust and WGSL. Every shader has a CPU twin next to it, reached through its entry
 //! ([`Twin`]): the oracle of one table-driven test over the catalogue. Each entry also lists the
@@ -22,6 +24,7 @@ pub mod depth;
 mod error;
 pub mod image;
 pub mod image_f32;
+pub mod imu;
 mod listing;
 mod perturbation;
 mod perturber;

@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::imu::IMU_ITEMS;
 use crate::sensor::SENSOR_ITEMS;
 use crate::trajectory::{SMOOTH_BAND_HZ, SMOOTH_TONES};
 use crate::{Group, CATALOGUE};
@@ -11,7 +12,7 @@ use crate::{Group, CATALOGUE};
 #[derive(Clone, Debug, Serialize)]
 pub struct ListEntry {
     pub name: &'static str,
-    /// "image", "depth", "trajectory", "stream" or "sensor".
+    /// "image", "depth", "trajectory", "stream", "sensor" or "imu".
     pub group: &'static str,
     /// How to write it in a spec.
     pub syntax: String,
@@ -21,7 +22,7 @@ pub struct ListEntry {
 }
 
 /// Every perturbation: image, then depth corruptions (catalogue order), then trajectory and
-/// stream items, then sensor effects.
+/// stream items, then sensor effects, then IMU items.
 pub fn listing() -> Vec<ListEntry> {
     let mut entries: Vec<ListEntry> = CATALOGUE
         .iter()
@@ -85,13 +86,15 @@ pub fn listing() -> Vec<ListEntry> {
                 parameters: Vec::new(),
             }),
     );
-    entries.extend(SENSOR_ITEMS.iter().map(|e| ListEntry {
-        name: e.name,
-        group: "sensor",
-        syntax: e.syntax.to_string(),
-        description: e.description.to_string(),
-        parameters: Vec::new(),
-    }));
+    for (group, items) in [("sensor", SENSOR_ITEMS), ("imu", IMU_ITEMS)] {
+        entries.extend(items.iter().map(|e| ListEntry {
+            name: e.name,
+            group,
+            syntax: e.syntax.to_string(),
+            description: e.description.to_string(),
+            parameters: Vec::new(),
+        }));
+    }
     entries
 }
 

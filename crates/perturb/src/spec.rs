@@ -7,6 +7,7 @@
 //!        | 'rot:' DEGREES ['@smooth'] | 'trans:' METRES ['@smooth']
 //!        | 'fast:' K | 'misalign:' FRAMES ['@dynamic']
 //!        | 'exposure:' MS ['@' K] | 'rolling_shutter:' MS      sensor effects (need a scene)
+//!        | 'imu_noise:' K | 'imu_bias_step:' G/A | …          IMU items (see crate::imu::items)
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)
 //! ```
 //!
@@ -19,6 +20,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::catalogue::{self, CATALOGUE};
+use crate::imu::{self, ImuSpec, IMU_ITEMS};
 use crate::sensor::{self, Exposure, RollingShutter, SENSOR_ITEMS};
 use crate::{Group, PerturbError};
 
@@ -43,6 +45,9 @@ pub struct PerturbSpec {
     /// `rolling_shutter:MS`: rows read out over MS milliseconds.
     #[serde(default)]
     pub rolling_shutter: Option<RollingShutter>,
+    /// IMU items and `cam_imu_offset`, for rigs with an IMU.
+    #[serde(default, skip_serializing_if = "ImuSpec::is_empty")]
+    pub imu: ImuSpec,
 }
 
 /// One image or depth corruption of a spec.
@@ -167,6 +172,7 @@ impl PerturbSpec {
             sensor::rolling_shutter::NAME => {
                 self.rolling_shutter = Some(RollingShutter::parse(value, mode).map_err(err)?)
             }
+            name if imu::is_imu_item(name) => self.imu.add(name, value, mode).map_err(err)?,
             _ => {
                 let entry = catalogue::find(name).ok_or_else(|| {
                     err(format!(
@@ -314,7 +320,7 @@ impl fmt::Display for FrameItem {
 
 impl fmt::Display for PerturbSpec {
     /// Canonical pipeline order: rot, trans, exposure, rolling_shutter, image items, depth
-    /// items, fast, misalign.
+    /// items, fast, misalign, IMU items.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut parts = self.scene_items();
         parts.extend(self.frame_items().map(|item| item.to_string()));
@@ -325,18 +331,20 @@ impl fmt::Display for PerturbSpec {
             let mode = if m.dynamic { "@dynamic" } else { "" };
             parts.push(format!("misalign:{}{mode}", m.frames));
         }
+        parts.extend(self.imu.items());
         write!(f, "{}", parts.join(","))
     }
 }
 
 /// Every name a spec accepts (catalogue entries, then trajectory and stream items, then sensor
-/// effects).
+/// effects, then IMU items).
 pub fn all_names() -> Vec<&'static str> {
     CATALOGUE
         .iter()
         .map(|e| e.name)
         .chain(TRAJECTORY_AND_STREAM)
         .chain(SENSOR_ITEMS.iter().map(|e| e.name))
+        .chain(IMU_ITEMS.iter().map(|e| e.name))
         .collect()
 }
 

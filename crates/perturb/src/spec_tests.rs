@@ -174,3 +174,34 @@ fn sensor_items_parse_need_a_scene_and_print_in_pipeline_order() {
         "sensor names are listed"
     );
 }
+
+#[test]
+fn imu_items_go_to_their_own_field_print_last_and_round_trip() {
+    let spec =
+        PerturbSpec::parse("cam_imu_offset:-3,fog:2,imu_jitter:0.2,imu_noise:2,imu_drop:0.01/5")
+            .unwrap();
+    assert_eq!(spec.imu.noise_scale, Some(2.0));
+    assert_eq!(spec.imu.cam_imu_offset_ms, Some(-3.0));
+    assert_eq!(spec.image.len(), 1);
+    assert!(!spec.needs_scene());
+    assert_eq!(
+        spec.to_string(),
+        "fog:2,imu_noise:2,imu_drop:0.01/5,imu_jitter:0.2,cam_imu_offset:-3"
+    );
+    assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
+    let json = serde_json::to_string(&spec).unwrap();
+    assert_eq!(serde_json::from_str::<PerturbSpec>(&json).unwrap(), spec);
+    // Specs without IMU items serialise as before (manifests of earlier runs stay the same).
+    let plain = serde_json::to_string(&PerturbSpec::parse("fog:2").unwrap()).unwrap();
+    assert!(!plain.contains("imu"), "{plain}");
+    let e = err("imu_saturation:2");
+    assert!(
+        e.starts_with("--perturb item 'imu_saturation:2': '2': expected GYRO/ACC"),
+        "{e}"
+    );
+    assert!(err("imu_noise:1,imu_noise:2").contains("twice"));
+    assert!(
+        err("nope:1").contains("cam_imu_offset"),
+        "IMU names are listed"
+    );
+}

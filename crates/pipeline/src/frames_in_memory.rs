@@ -59,6 +59,7 @@ impl FramesInMemory<SceneSource> {
         job: &SceneJob,
         resolved: crate::scene_job::ResolvedScene,
     ) -> Result<Self, PipelineError> {
+        crate::rig::refuse_imu_items(&job.spec, "a one-camera scene")?;
         let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
         source.set_shutter(ctx, &job.spec, job.rate_hz)?;
         Ok(Self {
@@ -91,6 +92,7 @@ impl FramesInMemory<SceneSource> {
                 "scene frames without their path".into(),
             ));
         };
+        crate::rig::refuse_imu_items(spec, "a one-camera scene")?;
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
         let shutter_changed = self

@@ -64,6 +64,7 @@ pub fn check_dataset_spec(
             format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
         ));
     }
+    crate::rig::refuse_imu_items(spec, "an RGB-D dataset")?;
     if !spec.depth.is_empty() {
         if let Some(frame) = dataset.frames.iter().find(|f| f.depth.is_none()) {
             return Err(PipelineError::option(

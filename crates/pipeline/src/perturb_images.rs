@@ -74,8 +74,9 @@ pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     check_frame_items_only(spec)
 }
 
-/// Refuses items that act on a sequence or a scene rather than on each frame.
+/// Refuses items that act on a sequence, a scene or an IMU rather than on each frame.
 pub fn check_frame_items_only(spec: &PerturbSpec) -> Result<(), PipelineError> {
+    crate::rig::refuse_imu_items(spec, "a set of frames")?;
     if spec.fast.is_some() || spec.misalign.is_some() || spec.needs_scene() {
         return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure and rolling_shutter on scenes; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
     }

@@ -30,6 +30,7 @@ pub fn render_dataset(
     job: &RenderJob,
     progress: &dyn Progress,
 ) -> Result<RunReport, PipelineError> {
+    crate::rig::refuse_imu_items(&job.scene.spec, "a one-camera render")?;
     let resolved = job.scene.resolve()?;
     let camera = job.scene.camera;
     let ground_truth = resolved.plan.ground_truth(&resolved.poses);

@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use super::allan::{allan_variance, fit_white_and_walk};
 use super::*;
 
 const RATE_HZ: f64 = 200.0;
@@ -18,38 +19,6 @@ const DURATION_S: f64 = 6.0 * 3600.0;
 const SAMPLES_PER_BIN: usize = 20;
 /// The issue's bar on the recovered parameters.
 const PARAMETER_TOLERANCE: f64 = 0.10;
-
-/// Overlapping Allan variance at τ = `m` bins of `bin_s` seconds, from the running integral
-/// `x[j] = bin_s · Σ_{i<j} y_i` of the bin means y (IEEE 1139 / Riley's "Handbook of Frequency
-/// Stability Analysis", eq. 14, in phase form).
-fn allan_variance(x: &[f64], m: usize, bin_s: f64) -> f64 {
-    let tau = m as f64 * bin_s;
-    let terms = x.len() - 2 * m;
-    let sum: f64 = (0..terms)
-        .map(|j| (x[j + 2 * m] - 2.0 * x[j + m] + x[j]).powi(2))
-        .sum();
-    sum / (2.0 * tau * tau * terms as f64)
-}
-
-/// `(N, K)` from the weighted least-squares fit of σ²(τ) = N²/τ + K²τ/3 (linear in N², K²):
-/// relative residuals, each weighted by 1/√τ since the estimate's relative variance grows like
-/// τ / (record length).
-fn fit_white_and_walk(points: &[(f64, f64)]) -> (f64, f64) {
-    let (mut a11, mut a12, mut a22, mut b1, mut b2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for &(tau, variance) in points {
-        let w = 1.0 / tau.sqrt();
-        let (p, q) = (w / (tau * variance), w * tau / (3.0 * variance));
-        a11 += p * p;
-        a12 += p * q;
-        a22 += q * q;
-        b1 += w * p;
-        b2 += w * q;
-    }
-    let det = a11 * a22 - a12 * a12;
-    let white = (b1 * a22 - b2 * a12) / det;
-    let walk = (a11 * b2 - a12 * b1) / det;
-    (white.sqrt(), walk.sqrt())
-}
 
 /// Running integrals of the bin means of the measurement error, per sensor and axis.
 struct StillRecording {
@@ -107,7 +76,8 @@ fn check_sensor(name: &str, axes: &[Vec<f64>; 3], density: f64, walk: f64) {
             (m as f64 * bin_s, mean)
         })
         .collect();
-    let (n, k) = fit_white_and_walk(&points);
+    let fit = fit_white_and_walk(&points);
+    let (n, k) = (fit.noise_density, fit.random_walk);
     let one_second = (1.0 / bin_s).round() as usize;
     let expected_at_1s = (density * density + walk * walk / 3.0).sqrt();
     eprintln!(
@@ -161,6 +131,7 @@ fn the_fit_recovers_an_exact_curve() {
         .iter()
         .map(|&t| (t, n * n / t + k * k * t / 3.0))
         .collect();
-    let (fit_n, fit_k) = fit_white_and_walk(&points);
+    let fit = fit_white_and_walk(&points);
+    let (fit_n, fit_k) = (fit.noise_density, fit.random_walk);
     assert!((fit_n / n - 1.0).abs() < 1e-9 && (fit_k / k - 1.0).abs() < 1e-9);
 }

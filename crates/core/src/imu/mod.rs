@@ -8,6 +8,7 @@
 //! does both at a fixed rate over the spline's valid range, and [`dead_reckon`] integrates readings
 //! back into a pose (the consistency check).
 
+pub mod allan;
 mod gaussian;
 mod measurement;
 mod noise;

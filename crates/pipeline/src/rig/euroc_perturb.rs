@@ -1,12 +1,14 @@
 //! `rslam perturb --input MH_01_easy/`: a recorded EuRoC (ASL) dataset copied with its camera
-//! frames corrupted.
+//! frames corrupted and its IMU perturbed.
 //!
 //! Each camera is its own source (its PNGs decoded ahead), pipeline and sink, seeded with
 //! [`camera_seed`]`(seed, i)` as a rendered rig's cameras are; frames keep their nanosecond
-//! timestamps, file names, size and PNG colour type. Every sensor.yaml, the IMU readings and the
-//! ground truth are copied byte for byte (through the writer, so they are in the checksum list);
-//! ORB-SLAM3's settings are made from the cameras' and IMU's values. Only image corruptions
-//! apply for now: depth, trajectory, stream and shutter items are refused.
+//! timestamps (moved by `cam_imu_offset`, file names with them), size and PNG colour type. With
+//! no image corruption the PNGs are copied byte for byte. IMU items apply to imu0's readings
+//! (from the job's seed) and, where they change the true biases, to the ground truth. Every
+//! sensor.yaml, and the IMU readings and ground truth that no item changed, are copied byte for
+//! byte (through the writer, so they are in the checksum list); ORB-SLAM3's settings are made
+//! from the cameras' and IMU's values. Depth, trajectory, stream and shutter items are refused.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -17,11 +19,13 @@ use rslam_core::dataset::euroc::{
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::CoreError;
 use rslam_gpu::GpuContext;
+use rslam_perturb::imu::{ImuOrigin, PerturbedImu};
 use rslam_perturb::PerturbSpec;
 
 use super::camera_sink::EurocCameraSink;
 use super::euroc_render::{camera_seed, CameraFrames, RigReport};
 use super::euroc_source::EurocCameraSource;
+use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::output;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
@@ -48,7 +52,7 @@ pub fn is_euroc_input(path: &Path) -> bool {
     path.join(MAV_DIR).is_dir() || (path.file_name().is_some_and(|n| n == MAV_DIR) && path.is_dir())
 }
 
-/// Refuses every item that is not an image corruption, naming the first one.
+/// Refuses every item that is not an image corruption or an IMU item, naming the first one.
 pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     let mut others = spec.scene_items();
     others.extend(spec.depth.iter().map(|item| item.to_string()));
@@ -57,7 +61,7 @@ pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     match others.first() {
         Some(item) => Err(PipelineError::option(
             "--perturb",
-            format!("'{item}': EuRoC inputs take image corruptions only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
+            format!("'{item}': EuRoC inputs take image corruptions and IMU items only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
         )),
         None => Ok(()),
     }
@@ -90,25 +94,89 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>, PipelineError> {
     Ok(std::fs::read(path).map_err(|e| CoreError::io(path, e))?)
 }
 
-/// Copies every sensor.yaml, the IMU readings and the ground truth as they are.
-fn copy_sensor_files(dataset: &EurocDataset, writer: &EurocWriter) -> Result<(), PipelineError> {
+/// Copies every sensor.yaml as it is; writes the IMU readings and the ground truth that the IMU
+/// items changed, and copies the others as they are.
+fn write_sensor_files(
+    dataset: &EurocDataset,
+    imu: Option<&PerturbedImu>,
+    writer: &EurocWriter,
+) -> Result<(), PipelineError> {
     let mav = &dataset.mav_dir;
+    let copy = |sensor: &str, file: &str| -> Result<(), PipelineError> {
+        let bytes = read_bytes(&mav.join(sensor).join(file))?;
+        Ok(writer.copy_sensor_file(sensor, file, &bytes)?)
+    };
     for camera in &dataset.cameras {
-        let name = &camera.camera.name;
-        let bytes = read_bytes(&mav.join(name).join("sensor.yaml"))?;
-        writer.copy_sensor_file(name, "sensor.yaml", &bytes)?;
+        copy(&camera.camera.name, "sensor.yaml")?;
     }
     if dataset.imu.is_some() {
-        for file in ["sensor.yaml", "data.csv"] {
-            let bytes = read_bytes(&mav.join(IMU_DIR).join(file))?;
-            writer.copy_sensor_file(IMU_DIR, file, &bytes)?;
+        copy(IMU_DIR, "sensor.yaml")?;
+        match imu.filter(|p| p.samples_changed) {
+            Some(perturbed) => writer.write_imu(&perturbed.samples)?,
+            None => copy(IMU_DIR, "data.csv")?,
         }
     }
     if dataset.ground_truth.is_some() {
-        let bytes = read_bytes(&mav.join(GROUND_TRUTH_DIR).join("data.csv"))?;
-        writer.copy_sensor_file(GROUND_TRUTH_DIR, "data.csv", &bytes)?;
+        match imu.filter(|p| p.ground_truth_changed) {
+            Some(perturbed) => writer.write_ground_truth(&perturbed.ground_truth)?,
+            None => copy(GROUND_TRUTH_DIR, "data.csv")?,
+        }
     }
     Ok(())
+}
+
+/// The IMU items applied to imu0 (`None` without IMU items); refused without imu0.
+fn perturb_recorded_imu(
+    dataset: &EurocDataset,
+    spec: &PerturbSpec,
+    seed: u64,
+) -> Result<Option<PerturbedImu>, PipelineError> {
+    let Some(imu) = &dataset.imu else {
+        refuse_imu_items(
+            spec,
+            &format!("the EuRoC dataset {} (no imu0/)", dataset.mav_dir.display()),
+        )?;
+        return Ok(None);
+    };
+    if spec.imu.is_empty() {
+        return Ok(None);
+    }
+    let ground_truth = dataset.ground_truth.as_deref().unwrap_or_default();
+    let perturbed = perturb_imu_stream(
+        spec,
+        &imu.samples,
+        ground_truth,
+        imu.imu.rate_hz,
+        ImuOrigin::Recorded(imu.imu.noise()),
+        seed,
+    )?;
+    Ok(Some(perturbed))
+}
+
+/// Camera `index`'s frames, written at `times_ns`: copied as they are when the spec has no
+/// image corruption, else through the GPU pipeline.
+fn write_camera(
+    ctx: &GpuContext,
+    job: &PerturbEurocJob,
+    camera: &EurocCameraFrames,
+    (index, seed): (usize, u64),
+    times_ns: Vec<u64>,
+    writer: &Arc<EurocWriter>,
+    progress: &dyn Progress,
+) -> Result<Option<EurocCameraSink>, PipelineError> {
+    if job.spec.image.is_empty() {
+        for (frame, &t_ns) in camera.frames.iter().zip(&times_ns) {
+            writer.copy_frame_ns(index, t_ns, &read_bytes(&frame.path)?)?;
+            progress.advance()?;
+        }
+        return Ok(None);
+    }
+    let source = EurocCameraSource::new(camera.frames.clone(), camera.camera.intrinsics);
+    let mut pipeline = Pipeline::new(ctx, source, &job.spec, seed)?;
+    let mut sink = EurocCameraSink::new(writer.clone(), index, times_ns);
+    let sources: Vec<usize> = (0..camera.frames.len()).collect();
+    pipeline.run(ctx, &sources, progress, &mut sink)?;
+    Ok(Some(sink))
 }
 
 pub fn perturb_euroc(
@@ -139,7 +207,19 @@ pub fn perturb_euroc(
         &job.spec,
         seeds[0],
     );
-    let imu_samples = dataset.imu.as_ref().map_or(0, |imu| imu.samples.len());
+    let imu = perturb_recorded_imu(&dataset, &job.spec, job.seed)?;
+    let stamps = dataset
+        .cameras
+        .iter()
+        .map(|c| {
+            let times: Vec<u64> = c.frames.iter().map(|f| f.t_ns).collect();
+            camera_stamps(&job.spec, &c.camera.name, &times)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let imu_samples = match (&imu, &dataset.imu) {
+        (Some(perturbed), _) => perturbed.samples.len(),
+        (None, recorded) => recorded.as_ref().map_or(0, |r| r.samples.len()),
+    };
     let manifest = ManifestParts {
         command: &job.command,
         source: job.input.display().to_string(),
@@ -163,12 +243,14 @@ pub fn perturb_euroc(
             })).collect::<Vec<_>>(),
             "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
                 "samples": imu_samples,
-                "copied": true,
+                "copied": !imu.as_ref().is_some_and(|p| p.samples_changed),
             })),
-            "ground_truth_copied": dataset.ground_truth.is_some(),
+            "ground_truth_copied": dataset.ground_truth.is_some()
+                && !imu.as_ref().is_some_and(|p| p.ground_truth_changed),
         }),
     }
     .build()?;
+    let manifest = with_imu_report(manifest, imu.as_ref().map(|p| &p.report))?;
     let cameras: Vec<CameraFrames> = dataset
         .cameras
         .iter()
@@ -195,21 +277,18 @@ pub fn perturb_euroc(
 
     progress.start(cameras.iter().map(|c| c.frames).sum(), "perturbing");
     let mut sinks = Vec::new();
-    for (i, (camera, &seed)) in dataset.cameras.iter().zip(&seeds).enumerate() {
-        let source = EurocCameraSource::new(camera.frames.clone(), camera.camera.intrinsics);
-        let mut pipeline = Pipeline::new(ctx, source, &job.spec, seed)?;
-        let times_ns = camera.frames.iter().map(|f| f.t_ns).collect();
-        let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
-        let sources: Vec<usize> = (0..camera.frames.len()).collect();
-        pipeline.run(ctx, &sources, progress, &mut sink)?;
-        sinks.push(sink);
+    for (i, ((camera, &seed), times_ns)) in
+        dataset.cameras.iter().zip(&seeds).zip(stamps).enumerate()
+    {
+        let sink = write_camera(ctx, job, camera, (i, seed), times_ns, &writer, progress)?;
+        sinks.extend(sink);
     }
     for sink in sinks {
         sink.finish()?;
     }
     progress.finish();
 
-    copy_sensor_files(&dataset, &writer)?;
+    write_sensor_files(&dataset, imu.as_ref(), &writer)?;
     let writer = Arc::try_unwrap(writer)
         .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
     let manifest = writer.finish(manifest)?;
@@ -229,6 +308,7 @@ mod tests {
     #[test]
     fn only_image_corruptions_pass_and_the_first_other_item_is_named() {
         check_euroc_spec(&PerturbSpec::parse("gaussian_noise:3,fog:2@dynamic").unwrap()).unwrap();
+        check_euroc_spec(&PerturbSpec::parse("imu_noise:2,cam_imu_offset:3").unwrap()).unwrap();
         for (text, item) in [
             ("fog:2,depth_noise:3", "depth_noise:3"),
             ("fast:2", "fast:2"),
@@ -240,7 +320,7 @@ mod tests {
             let err = check_euroc_spec(&spec).unwrap_err().to_string();
             assert!(
                 err.starts_with(&format!(
-                    "--perturb: '{item}': EuRoC inputs take image corruptions only for now"
+                    "--perturb: '{item}': EuRoC inputs take image corruptions and IMU items only for now"
                 )),
                 "{err}"
             );

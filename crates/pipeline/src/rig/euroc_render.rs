@@ -10,14 +10,16 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use rslam_core::dataset::euroc::EurocWriter;
+use rslam_core::dataset::euroc::{EurocWriter, GroundTruthState, ImuSample as ImuRow};
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::hash::splitmix64;
 use rslam_core::{CoreError, SplineSe3};
 use rslam_gpu::GpuContext;
+use rslam_perturb::imu::{ImuOrigin, ImuReport};
 use rslam_perturb::PerturbSpec;
 
 use super::camera_sink::EurocCameraSink;
+use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::motion::{
     body_path, camera_poses, ground_truth_rows, imu_rows, imu_samples, nanoseconds, sample_times,
 };
@@ -141,6 +143,7 @@ pub fn render_euroc(
         runs[0].seed,
     );
     let imu_seed = imu_seed(job.scene.seed);
+    let streams = imu_and_ground_truth(job, &spline, imu_seed, &runs[0].times_s)?;
     let mut extra = serde_json::json!({
         "adapter": ctx.describe(),
         "layout": "euroc",
@@ -172,6 +175,7 @@ pub fn render_euroc(
         extra,
     }
     .build()?;
+    let manifest = with_imu_report(manifest, streams.report.as_ref())?;
     let cameras: Vec<CameraFrames> = job
         .rig
         .cameras
@@ -185,14 +189,9 @@ pub fn render_euroc(
 
     let found = output::prepare(&job.out, &manifest, job.force)?;
     if found == FolderState::Complete {
-        let imu_samples = job
-            .rig
-            .imu
-            .as_ref()
-            .map_or(0, |imu| sample_times(&spline, imu.rate_hz).len());
         return Ok(RigReport {
             cameras,
-            imu_samples,
+            imu_samples: streams.imu.len(),
             found,
             manifest: Manifest::read(&job.out)?,
         });
@@ -216,6 +215,7 @@ pub fn render_euroc(
             .iter()
             .map(|&t| nanoseconds(t))
             .collect::<Result<Vec<_>, _>>()?;
+        let times_ns = camera_stamps(&job.scene.spec, &camera.name, &times_ns)?;
         let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
         let sources: Vec<usize> = (0..run.times_s.len()).collect();
         pipeline.run(ctx, &sources, progress, &mut sink)?;
@@ -226,23 +226,71 @@ pub fn render_euroc(
     }
     progress.finish();
 
-    let imu = match &job.rig.imu {
-        Some(imu) => imu_samples(&spline, imu, imu_seed)?,
-        None => Vec::new(),
-    };
     if job.rig.imu.is_some() {
-        writer.write_imu(&imu_rows(&imu)?)?;
+        writer.write_imu(&streams.imu)?;
     }
-    writer.write_ground_truth(&ground_truth_rows(&spline, &imu, &runs[0].times_s)?)?;
+    writer.write_ground_truth(&streams.ground_truth)?;
     let writer = Arc::try_unwrap(writer)
         .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
     let manifest = writer.finish(manifest)?;
     output_folder::finish(&job.out)?;
     Ok(RigReport {
         cameras,
-        imu_samples: imu.len(),
+        imu_samples: streams.imu.len(),
         found,
         manifest,
+    })
+}
+
+/// The rows of imu0/data.csv and of the ground truth, IMU items applied.
+struct Streams {
+    imu: Vec<ImuRow>,
+    ground_truth: Vec<GroundTruthState>,
+    /// What the IMU items drew, for the manifest.
+    report: Option<ImuReport>,
+}
+
+/// The IMU synthesised along the spline (its noise scaled by `imu_noise`), the ground truth at
+/// its samples (at `cam0_times` without an IMU), then the other IMU items, drawn from the job's
+/// seed. The IMU is cheap beside the frames: made before them so that the manifest can say what
+/// was drawn.
+fn imu_and_ground_truth(
+    job: &RigRenderJob,
+    spline: &SplineSe3,
+    imu_seed: u64,
+    cam0_times: &[f64],
+) -> Result<Streams, PipelineError> {
+    let spec = &job.scene.spec;
+    let Some(imu) = &job.rig.imu else {
+        refuse_imu_items(spec, &format!("the '{}' rig", job.rig.name))?;
+        return Ok(Streams {
+            imu: Vec::new(),
+            ground_truth: ground_truth_rows(spline, &[], cam0_times)?,
+            report: None,
+        });
+    };
+    let samples = imu_samples(spline, imu, spec.imu.synthesis_noise(imu.noise()), imu_seed)?;
+    let rows = imu_rows(&samples)?;
+    let ground_truth = ground_truth_rows(spline, &samples, cam0_times)?;
+    if spec.imu.is_empty() {
+        return Ok(Streams {
+            imu: rows,
+            ground_truth,
+            report: None,
+        });
+    }
+    let perturbed = perturb_imu_stream(
+        spec,
+        &rows,
+        &ground_truth,
+        imu.rate_hz,
+        ImuOrigin::Synthesised,
+        job.scene.seed,
+    )?;
+    Ok(Streams {
+        imu: perturbed.samples,
+        ground_truth: perturbed.ground_truth,
+        report: Some(perturbed.report),
     })
 }
 

@@ -11,7 +11,10 @@
 //! - [`preset`]: the `--rig` presets ([`Rig::stereo`], [`Rig::stereo_imu`]).
 //! - [`euroc_render`]: [`render_euroc`], the run.
 //! - [`euroc_perturb`]: [`perturb_euroc`], a recorded EuRoC dataset (MH_01_easy, …) copied with
-//!   every camera's frames corrupted (image corruptions only), IMU and ground truth unchanged.
+//!   every camera's frames corrupted (image corruptions) and its IMU perturbed (IMU items).
+//!
+//! - [`imu_items`]: the spec's IMU items (`imu_noise`, `imu_bias_step`, …) on the rig's IMU
+//!   stream and ground truth, `cam_imu_offset` on the camera stamps; refused without an IMU.
 //!
 //! Not built yet: `rgbd` and `rgbd-imu` presets, per-sensor spec items, frame-by-frame resume
 //! (an unfinished rig output is started over).
@@ -20,6 +23,7 @@ mod camera_sink;
 pub mod euroc_perturb;
 pub mod euroc_render;
 mod euroc_source;
+mod imu_items;
 mod motion;
 mod output;
 pub mod preset;
@@ -28,4 +32,5 @@ pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, Perturb
 pub use euroc_render::{
     camera_seed, check_rig_spec, imu_seed, render_euroc, CameraFrames, RigRenderJob, RigReport,
 };
+pub use imu_items::refuse_imu_items;
 pub use preset::{Rig, EUROC_CAM0_INTRINSICS, RIG_NAMES, STEREO_BASELINE_M};

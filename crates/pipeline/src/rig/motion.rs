@@ -50,21 +50,18 @@ pub fn camera_poses(
         .collect()
 }
 
-/// IMU samples along the spline with the sensor.yaml's noise and placement, seeded by `seed`.
+/// IMU samples along the spline at the sensor.yaml's rate and placement, with `noise` (the
+/// sensor.yaml's, or scaled by `imu_noise`), seeded by `seed`.
 pub fn imu_samples(
     spline: &SplineSe3,
     imu: &EurocImu,
+    noise: ImuNoise,
     seed: u64,
 ) -> Result<Vec<ImuSample>, PipelineError> {
     let options = ImuSynthesis {
         rate_hz: imu.rate_hz,
         body_from_imu: imu.body_from_imu,
-        noise: ImuNoise {
-            gyroscope_noise_density: imu.gyroscope_noise_density,
-            gyroscope_random_walk: imu.gyroscope_random_walk,
-            accelerometer_noise_density: imu.accelerometer_noise_density,
-            accelerometer_random_walk: imu.accelerometer_random_walk,
-        },
+        noise,
         seed,
         ..ImuSynthesis::default()
     };
@@ -121,5 +118,57 @@ pub fn ground_truth_rows(
         imu.iter()
             .map(|s| row(s.timestamp, s.bias.gyroscope, s.bias.accelerometer))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DQuat, DVec3};
+    use rslam_perturb::PerturbSpec;
+
+    use super::*;
+
+    /// `imu_noise:K` scales the synthesis noise: with the same seed, every reading's error
+    /// (white noise and walked bias alike) is K times the nominal one, exactly up to rounding.
+    #[test]
+    fn imu_noise_scales_every_synthesised_error_by_k() {
+        let poses = (0..8)
+            .map(|i| {
+                let t = i as f64 * 0.1;
+                Pose::new(
+                    DQuat::from_rotation_z(0.3 * t) * DQuat::from_rotation_x(0.1 * t),
+                    DVec3::new(t, 0.5 * t * t, 0.1),
+                )
+            })
+            .collect();
+        let spline = SplineSe3::from_control_poses(0.0, 0.1, poses).unwrap();
+        let imu = EurocImu::adis16448();
+        let with = |text: &str| {
+            let noise = PerturbSpec::parse(text)
+                .unwrap()
+                .imu
+                .synthesis_noise(imu.noise());
+            imu_samples(&spline, &imu, noise, 42).unwrap()
+        };
+        let (clean, nominal, tripled) = (
+            with("imu_noise:0"),
+            with("imu_noise:1"),
+            with("imu_noise:3"),
+        );
+        assert!(clean.len() > 50);
+        for ((c, n), t) in clean.iter().zip(&nominal).zip(&tripled) {
+            assert_eq!(c.measured, c.truth, "K = 0 is a perfect IMU");
+            let error = |s: &ImuSample| {
+                (
+                    s.measured.gyroscope - c.truth.gyroscope,
+                    s.measured.accelerometer - c.truth.accelerometer,
+                )
+            };
+            let ((gn, an), (gt, at)) = (error(n), error(t));
+            assert!((gt - 3.0 * gn).length() < 1e-12 * (1.0 + gn.length()));
+            assert!((at - 3.0 * an).length() < 1e-12 * (1.0 + an.length()));
+            assert!((t.bias.gyroscope - 3.0 * n.bias.gyroscope).length() < 1e-15);
+        }
+        assert!(nominal[1].measured != nominal[1].truth);
     }
 }

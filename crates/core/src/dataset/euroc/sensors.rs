@@ -1,6 +1,7 @@
 //! What the sensor.yaml files of a EuRoC dataset describe: each camera and the IMU, with their
 //! placement on the body (the IMU's frame, formats.md).
 
+use crate::imu::ImuNoise;
 use crate::{Intrinsics, Pose};
 
 /// Radial-tangential (plumb bob) distortion, EuRoC's `distortion_coefficients: [k1, k2, p1, p2]`.
@@ -86,6 +87,16 @@ impl EurocImu {
             gyroscope_random_walk: 1.9393e-5,
             accelerometer_noise_density: 2.0e-3,
             accelerometer_random_walk: 3.0e-3,
+        }
+    }
+
+    /// The four noise parameters, as the IMU model takes them.
+    pub fn noise(&self) -> ImuNoise {
+        ImuNoise {
+            gyroscope_noise_density: self.gyroscope_noise_density,
+            gyroscope_random_walk: self.gyroscope_random_walk,
+            accelerometer_noise_density: self.accelerometer_noise_density,
+            accelerometer_random_walk: self.accelerometer_random_walk,
         }
     }
 }

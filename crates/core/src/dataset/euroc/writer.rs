@@ -244,19 +244,35 @@ impl EurocWriter {
                 ),
             ));
         }
-        {
-            let mut times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
-            if let Some(&previous) = times.last().filter(|&&previous| t_ns <= previous) {
-                return Err(not_after(dir(), name, "frame", t_ns, previous));
-            }
-            times.push(t_ns);
-        }
+        self.take_stamp(stream, t_ns)?;
         let bytes = match stream.camera.colour {
             CameraColour::Grey => encode_grey_png(image)?,
             CameraColour::Rgb => encode_png(image)?,
         };
         self.content
             .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), &bytes)
+    }
+
+    /// Writes `png` (a recorded frame's file, copied byte for byte) as camera `camera`'s frame
+    /// at `t_ns`, in time order as [`EurocWriter::write_frame_ns`].
+    pub fn copy_frame_ns(&self, camera: usize, t_ns: u64, png: &[u8]) -> Result<(), CoreError> {
+        let stream = self.camera(camera)?;
+        self.take_stamp(stream, t_ns)?;
+        let name = &stream.camera.name;
+        self.content
+            .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), png)
+    }
+
+    /// Records a frame of `stream` at `t_ns`, refusing one not after the previous.
+    fn take_stamp(&self, stream: &CameraStream, t_ns: u64) -> Result<(), CoreError> {
+        let mut times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some(&previous) = times.last().filter(|&&previous| t_ns <= previous) {
+            let name = &stream.camera.name;
+            let dir = self.root().join(MAV_DIR).join(name);
+            return Err(not_after(dir, name, "frame", t_ns, previous));
+        }
+        times.push(t_ns);
+        Ok(())
     }
 
     fn camera(&self, camera: usize) -> Result<&CameraStream, CoreError> {

@@ -235,3 +235,25 @@ fn recorded_nanosecond_stamps_and_copied_files_are_kept_exactly() {
     );
     assert!(mav.join(format!("cam1/data/{ANY_NS}.png")).is_file());
 }
+
+#[test]
+fn copied_frames_keep_their_bytes_and_their_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let writer =
+        crate::dataset::euroc::EurocWriter::open(dir.path(), fixture::cameras(), None).unwrap();
+    let png = b"\x89PNG not decoded, copied";
+    writer.copy_frame_ns(0, 2_000, png).unwrap();
+    writer.write_frame_ns(0, 3_000, &fixture::image(0)).unwrap();
+    let err = writer.copy_frame_ns(0, 2_500, png).unwrap_err().to_string();
+    assert!(
+        err.contains("does not come after the previous one at 3000 ns"),
+        "{err}"
+    );
+    writer.finish(fixture::manifest()).unwrap();
+    let mav = dir.path().join("mav0");
+    assert_eq!(std::fs::read(mav.join("cam0/data/2000.png")).unwrap(), png);
+    assert_eq!(
+        std::fs::read_to_string(mav.join("cam0/data.csv")).unwrap(),
+        "#timestamp [ns],filename\n2000,2000.png\n3000,3000.png\n"
+    );
+}
