@@ -36,7 +36,7 @@ impl BiasStep {
             (0..)
                 .map(|round| {
                     DVec3::from_array(std::array::from_fn(|axis| {
-                        key.normal_f64_one_draw([axis as u32, round, 0, 0])
+                        key.normal_f64([axis as u32, round, 0, 0])
                     }))
                 })
                 .find(|v| v.length() > 1e-9)

@@ -34,9 +34,8 @@ pub fn jitter(times_ns: &[u64], sigma_ms: f64, seed: u64) -> (Vec<u64>, Jittered
                 (Some(g), None) | (None, Some(g)) => (g / 2).saturating_sub(1) as f64,
                 (None, None) => f64::INFINITY,
             };
-            let draw = (RngKey::new(seed, JITTER, k as u32, 0).normal_f64_one_draw([0; 4])
-                * sigma_ns)
-                .round();
+            let draw =
+                (RngKey::new(seed, JITTER, k as u32, 0).normal_f64([0; 4]) * sigma_ns).round();
             let error = draw.clamp(-limit, limit);
             report.clipped += usize::from(error != draw);
             sum_sq += error * error;
