@@ -15,6 +15,7 @@
 //! layouts of the parameter structs it writes into uniform blocks ([`uniform_layout`]), which a
 //! test checks against naga's layout of the WGSL structs.
 
+pub mod calibration;
 mod catalogue;
 #[cfg(test)]
 mod catalogue_tests;

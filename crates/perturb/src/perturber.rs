@@ -78,6 +78,11 @@ impl Perturber {
         seed: u64,
         camera: Option<Intrinsics>,
     ) -> Result<Self, PerturbError> {
+        // A rig hands each camera its own spec (`PerturbSpec::for_camera`); whatever else
+        // arrives here perturbs one camera.
+        if let Some(problem) = spec.one_camera_problem() {
+            return Err(problem);
+        }
         let scratch = Scratch::new(ctx, width, height);
         let kit = Kit {
             ctx,

@@ -5,8 +5,12 @@
 //! [`camera_seed`]`(seed, i)` as a rendered rig's cameras are; frames keep their nanosecond
 //! timestamps, file names, size and PNG colour type. Every sensor.yaml, the IMU readings and the
 //! ground truth are copied byte for byte (through the writer, so they are in the checksum list);
-//! ORB-SLAM3's settings are made from the cameras' and IMU's values. Only image corruptions
-//! apply for now: depth, trajectory, stream and shutter items are refused.
+//! ORB-SLAM3's settings are made from the cameras' and IMU's values. Image corruptions apply to
+//! every camera or the one named (`cam1:fog:3`); calibration items in `@calibration` mode change
+//! what the written calibration says (the sensor.yaml of each sensor they move is written anew
+//! from its values with the perturbed `T_BS`, and ORB-SLAM3's settings follow), the frames stay
+//! as recorded. A recorded dataset cannot be re-rendered, so depth, trajectory, stream, shutter
+//! and rendered-mode calibration items are refused.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -17,12 +21,15 @@ use rslam_core::dataset::euroc::{
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::CoreError;
 use rslam_gpu::GpuContext;
+use rslam_perturb::calibration::CalibrationMode;
 use rslam_perturb::PerturbSpec;
 
+use super::calibration::PerturbedRig;
 use super::camera_sink::EurocCameraSink;
 use super::euroc_render::{camera_seed, CameraFrames, RigReport};
 use super::euroc_source::EurocCameraSource;
 use super::output;
+use super::preset::Rig;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
 use crate::pipeline::Pipeline;
@@ -48,8 +55,21 @@ pub fn is_euroc_input(path: &Path) -> bool {
     path.join(MAV_DIR).is_dir() || (path.file_name().is_some_and(|n| n == MAV_DIR) && path.is_dir())
 }
 
-/// Refuses every item that is not an image corruption, naming the first one.
+/// Refuses every item that is not an image corruption or a `@calibration` item, naming the
+/// first one.
 pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
+    if let Some(item) = spec
+        .calibration
+        .iter()
+        .find(|i| i.mode == CalibrationMode::Rendered)
+    {
+        let item = item.to_string();
+        let base = item.split('@').next().unwrap_or(&item);
+        return Err(PipelineError::option(
+            "--perturb",
+            format!("'{item}': a recorded dataset cannot be re-rendered with a moved sensor; perturb its written calibration instead: {base}@calibration"),
+        ));
+    }
     let mut others = spec.scene_items();
     others.extend(spec.depth.iter().map(|item| item.to_string()));
     others.extend(spec.fast.map(|k| format!("fast:{k}")));
@@ -57,7 +77,7 @@ pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     match others.first() {
         Some(item) => Err(PipelineError::option(
             "--perturb",
-            format!("'{item}': EuRoC inputs take image corruptions only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
+            format!("'{item}': EuRoC inputs take image corruptions and @calibration items only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
         )),
         None => Ok(()),
     }
@@ -90,16 +110,28 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>, PipelineError> {
     Ok(std::fs::read(path).map_err(|e| CoreError::io(path, e))?)
 }
 
-/// Copies every sensor.yaml, the IMU readings and the ground truth as they are.
-fn copy_sensor_files(dataset: &EurocDataset, writer: &EurocWriter) -> Result<(), PipelineError> {
+/// Copies the sensor.yaml of every sensor whose written calibration is the recorded one (the
+/// writer makes the others from `written`), the IMU readings and the ground truth as they are.
+fn copy_sensor_files(
+    dataset: &EurocDataset,
+    written: &Rig,
+    writer: &EurocWriter,
+) -> Result<(), PipelineError> {
     let mav = &dataset.mav_dir;
-    for camera in &dataset.cameras {
+    for (camera, written) in dataset.cameras.iter().zip(&written.cameras) {
+        if camera.camera != *written {
+            continue;
+        }
         let name = &camera.camera.name;
         let bytes = read_bytes(&mav.join(name).join("sensor.yaml"))?;
         writer.copy_sensor_file(name, "sensor.yaml", &bytes)?;
     }
-    if dataset.imu.is_some() {
-        for file in ["sensor.yaml", "data.csv"] {
+    if let Some(imu) = &dataset.imu {
+        let mut files = vec!["data.csv"];
+        if written.imu.as_ref() == Some(&imu.imu) {
+            files.push("sensor.yaml");
+        }
+        for file in files {
             let bytes = read_bytes(&mav.join(IMU_DIR).join(file))?;
             writer.copy_sensor_file(IMU_DIR, file, &bytes)?;
         }
@@ -126,8 +158,19 @@ pub fn perturb_euroc(
         ));
     };
     check_file_names(&dataset)?;
+    let recorded = Rig {
+        name: "recorded".into(),
+        cameras: dataset.cameras.iter().map(|c| c.camera.clone()).collect(),
+        imu: dataset.imu.as_ref().map(|imu| imu.imu.clone()),
+    };
+    let perturbed = PerturbedRig::new(&recorded, &job.spec, job.seed)?;
     let seeds: Vec<u64> = (0..dataset.cameras.len())
         .map(|i| camera_seed(job.seed, i))
+        .collect();
+    let specs: Vec<PerturbSpec> = dataset
+        .cameras
+        .iter()
+        .map(|c| job.spec.for_camera(&c.camera.name))
         .collect();
     let cam0_times = times_s(cam0);
     let cam0_plan = FramePlan::recorded(
@@ -136,10 +179,29 @@ pub fn perturb_euroc(
             depth_offsets: &vec![0.0; cam0_times.len()],
             rate_hz: cam0.camera.rate_hz,
         },
-        &job.spec,
+        &specs[0],
         seeds[0],
     );
     let imu_samples = dataset.imu.as_ref().map_or(0, |imu| imu.samples.len());
+    let mut extra = serde_json::json!({
+        "adapter": ctx.describe(),
+        "layout": "euroc",
+        "input": "recorded",
+        "cameras": dataset.cameras.iter().zip(&seeds).map(|(c, seed)| serde_json::json!({
+            "name": c.camera.name,
+            "frames": c.frames.len(),
+            "rate_hz": c.camera.rate_hz,
+            "seed": seed,
+        })).collect::<Vec<_>>(),
+        "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
+            "samples": imu_samples,
+            "copied": true,
+        })),
+        "ground_truth_copied": dataset.ground_truth.is_some(),
+    });
+    if !job.spec.calibration.is_empty() {
+        extra["calibration"] = perturbed.record(&recorded);
+    }
     let manifest = ManifestParts {
         command: &job.command,
         source: job.input.display().to_string(),
@@ -151,22 +213,7 @@ pub fn perturb_euroc(
         seed: job.seed,
         spec: &job.spec,
         plan: &cam0_plan,
-        extra: serde_json::json!({
-            "adapter": ctx.describe(),
-            "layout": "euroc",
-            "input": "recorded",
-            "cameras": dataset.cameras.iter().zip(&seeds).map(|(c, seed)| serde_json::json!({
-                "name": c.camera.name,
-                "frames": c.frames.len(),
-                "rate_hz": c.camera.rate_hz,
-                "seed": seed,
-            })).collect::<Vec<_>>(),
-            "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
-                "samples": imu_samples,
-                "copied": true,
-            })),
-            "ground_truth_copied": dataset.ground_truth.is_some(),
-        }),
+        extra,
     }
     .build()?;
     let cameras: Vec<CameraFrames> = dataset
@@ -189,15 +236,15 @@ pub fn perturb_euroc(
     }
     let writer = Arc::new(EurocWriter::open(
         &job.out,
-        dataset.cameras.iter().map(|c| c.camera.clone()).collect(),
-        dataset.imu.as_ref().map(|imu| imu.imu.clone()),
+        perturbed.written.cameras.clone(),
+        perturbed.written.imu.clone(),
     )?);
 
     progress.start(cameras.iter().map(|c| c.frames).sum(), "perturbing");
     let mut sinks = Vec::new();
-    for (i, (camera, &seed)) in dataset.cameras.iter().zip(&seeds).enumerate() {
+    for (i, ((camera, &seed), spec)) in dataset.cameras.iter().zip(&seeds).zip(&specs).enumerate() {
         let source = EurocCameraSource::new(camera.frames.clone(), camera.camera.intrinsics);
-        let mut pipeline = Pipeline::new(ctx, source, &job.spec, seed)?;
+        let mut pipeline = Pipeline::new(ctx, source, spec, seed)?;
         let times_ns = camera.frames.iter().map(|f| f.t_ns).collect();
         let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
         let sources: Vec<usize> = (0..camera.frames.len()).collect();
@@ -209,7 +256,7 @@ pub fn perturb_euroc(
     }
     progress.finish();
 
-    copy_sensor_files(&dataset, &writer)?;
+    copy_sensor_files(&dataset, &perturbed.written, &writer)?;
     let writer = Arc::try_unwrap(writer)
         .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
     let manifest = writer.finish(manifest)?;
@@ -227,8 +274,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn only_image_corruptions_pass_and_the_first_other_item_is_named() {
+    fn only_image_corruptions_and_calibration_items_pass_and_the_first_other_item_is_named() {
         check_euroc_spec(&PerturbSpec::parse("gaussian_noise:3,fog:2@dynamic").unwrap()).unwrap();
+        check_euroc_spec(
+            &PerturbSpec::parse(
+                "cam1:fog:2,baseline:0.01@calibration,imu0:extrinsic_rot:1@calibration",
+            )
+            .unwrap(),
+        )
+        .unwrap();
         for (text, item) in [
             ("fog:2,depth_noise:3", "depth_noise:3"),
             ("fast:2", "fast:2"),
@@ -240,11 +294,27 @@ mod tests {
             let err = check_euroc_spec(&spec).unwrap_err().to_string();
             assert!(
                 err.starts_with(&format!(
-                    "--perturb: '{item}': EuRoC inputs take image corruptions only for now"
+                    "--perturb: '{item}': EuRoC inputs take image corruptions and @calibration items only for now"
                 )),
                 "{err}"
             );
             assert!(!err.contains('\n'), "{err}");
+        }
+        for (text, fix) in [
+            ("baseline:0.01", "baseline:0.01@calibration"),
+            ("baseline:0.01@dynamic", "baseline:0.01@calibration"),
+            (
+                "cam1:extrinsic_trans:0.02",
+                "cam1:extrinsic_trans:0.02@calibration",
+            ),
+        ] {
+            let err = check_euroc_spec(&PerturbSpec::parse(text).unwrap())
+                .unwrap_err()
+                .to_string();
+            assert!(
+                err.contains("a recorded dataset cannot be re-rendered") && err.ends_with(fix),
+                "{err}"
+            );
         }
     }
 }

@@ -17,6 +17,7 @@ use rslam_core::{CoreError, SplineSe3};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 
+use super::calibration::{PerturbedRig, PER_FRAME_FILE};
 use super::camera_sink::EurocCameraSink;
 use super::motion::{
     body_path, camera_poses, ground_truth_rows, imu_rows, imu_samples, nanoseconds, sample_times,
@@ -80,9 +81,10 @@ pub fn imu_seed(seed: u64) -> u64 {
 }
 
 /// Refuses what a rig cannot do yet: items that change the frame plan (`fast`, `misalign`) or
-/// the path (`rot`, `trans`). Image and depth corruptions and the shutter (`exposure`,
-/// `rolling_shutter`) apply to every camera; EuRoC cameras have no depth, so depth items change
-/// nothing written.
+/// the path (`rot`, `trans`). Image and depth corruptions apply to every camera or the one named
+/// (`cam1:fog:3`), the shutter (`exposure`, `rolling_shutter`) to every camera; EuRoC cameras
+/// have no depth, so depth items change nothing written. Calibration items and the sensors named
+/// are checked against the rig by [`PerturbedRig::new`].
 pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     let refused = [
         ("fast", spec.fast.is_some()),
@@ -103,6 +105,8 @@ pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
 struct CameraRun {
     times_s: Vec<f64>,
     seed: u64,
+    /// The job's spec as it applies to this camera's frames.
+    spec: PerturbSpec,
 }
 
 pub fn render_euroc(
@@ -114,6 +118,7 @@ pub fn render_euroc(
     let Some(cam0) = job.rig.cameras.first() else {
         return Err(PipelineError::option("--rig", "the rig has no camera"));
     };
+    let perturbed = PerturbedRig::new(&job.rig, &job.scene.spec, job.scene.seed)?;
     let resolved = job.scene.resolve()?;
     let body = body_path(&resolved.clean, &cam0.body_from_camera);
     let spline = SplineSe3::from_trajectory(&body).map_err(|e| match e {
@@ -131,15 +136,35 @@ pub fn render_euroc(
         .map(|(i, camera)| CameraRun {
             times_s: sample_times(&spline, camera.rate_hz),
             seed: camera_seed(job.scene.seed, i),
+            spec: job.scene.spec.for_camera(&camera.name),
         })
         .collect();
     let cam0_plan = FramePlan::rendered(
         runs[0].times_s.len(),
         cam0.rate_hz,
-        &job.scene.spec,
+        &runs[0].spec,
         runs[0].seed,
     );
     let imu_seed = imu_seed(job.scene.seed);
+    let mut extra = serde_json::json!({
+        "adapter": ctx.describe(),
+        "layout": "euroc",
+        "rig": job.rig.name,
+        "path_rate_hz": job.scene.rate_hz,
+        "cameras": job.rig.cameras.iter().zip(&runs).map(|(c, r)| serde_json::json!({
+            "name": c.name,
+            "frames": r.times_s.len(),
+            "rate_hz": c.rate_hz,
+            "seed": r.seed,
+        })).collect::<Vec<_>>(),
+        "imu": job.rig.imu.as_ref().map(|imu| serde_json::json!({
+            "rate_hz": imu.rate_hz,
+            "seed": imu_seed,
+        })),
+    });
+    if !job.scene.spec.calibration.is_empty() {
+        extra["calibration"] = perturbed.record(&job.rig);
+    }
     let manifest = ManifestParts {
         command: &job.command,
         source: resolved.scene.name.clone(),
@@ -151,22 +176,7 @@ pub fn render_euroc(
         seed: job.scene.seed,
         spec: &job.scene.spec,
         plan: &cam0_plan,
-        extra: serde_json::json!({
-            "adapter": ctx.describe(),
-            "layout": "euroc",
-            "rig": job.rig.name,
-            "path_rate_hz": job.scene.rate_hz,
-            "cameras": job.rig.cameras.iter().zip(&runs).map(|(c, r)| serde_json::json!({
-                "name": c.name,
-                "frames": r.times_s.len(),
-                "rate_hz": c.rate_hz,
-                "seed": r.seed,
-            })).collect::<Vec<_>>(),
-            "imu": job.rig.imu.as_ref().map(|imu| serde_json::json!({
-                "rate_hz": imu.rate_hz,
-                "seed": imu_seed,
-            })),
-        }),
+        extra,
     }
     .build()?;
     let cameras: Vec<CameraFrames> = job
@@ -196,23 +206,28 @@ pub fn render_euroc(
     }
     let writer = Arc::new(EurocWriter::open(
         &job.out,
-        job.rig.cameras.clone(),
-        job.rig.imu.clone(),
+        perturbed.written.cameras.clone(),
+        perturbed.written.imu.clone(),
     )?);
 
     let total = runs.iter().map(|r| r.times_s.len()).sum();
     progress.start(total, "rendering");
     let mut sinks = Vec::new();
     for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
-        let poses = camera_poses(&spline, camera, &run.times_s)?;
+        let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
         let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
-        source.set_shutter(ctx, &job.scene.spec, camera.rate_hz)?;
-        let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, run.seed)?;
+        source.set_shutter(ctx, &run.spec, camera.rate_hz)?;
+        let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
         let times_ns = run
             .times_s
             .iter()
             .map(|&t| nanoseconds(t))
             .collect::<Result<Vec<_>, _>>()?;
+        if i == 1 {
+            if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
+                writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
+            }
+        }
         let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
         let sources: Vec<usize> = (0..run.times_s.len()).collect();
         pipeline.run(ctx, &sources, progress, &mut sink)?;
@@ -223,7 +238,7 @@ pub fn render_euroc(
     }
     progress.finish();
 
-    let imu = match &job.rig.imu {
+    let imu = match &perturbed.actual.imu {
         Some(imu) => imu_samples(&spline, imu, imu_seed)?,
         None => Vec::new(),
     };
