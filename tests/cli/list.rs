@@ -18,6 +18,9 @@ fn list_shows_every_group_with_parameters_per_severity() {
         "Sensor effects",
         "exposure:MS[@K]",
         "rolling_shutter:MS",
+        "Calibration of a rig",
+        "baseline:METRES[@dynamic|@calibration]",
+        "[SENSOR:]extrinsic_rot:DEGREES[@calibration]",
         "IMU items",
         "imu_noise:K",
         "imu_bias_step:GYRO/ACC",
@@ -27,6 +30,13 @@ fn list_shows_every_group_with_parameters_per_severity() {
         "cam_imu_offset:MS",
     ] {
         assert!(out.contains(fragment), "list lacks '{fragment}':\n{out}");
+    }
+    // Every item is shown under a heading.
+    let json = Workspace::new().rslam(&["list", "--json"]).success();
+    let entries: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap();
+    for entry in &entries {
+        let name = entry["name"].as_str().unwrap();
+        assert!(out.contains(&format!("  {name} ")), "list lacks {name}");
     }
 }
 

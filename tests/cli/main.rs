@@ -17,6 +17,7 @@ mod perturb_euroc;
 mod render;
 mod resume;
 mod rig;
+mod rig_calibration;
 mod scene;
 mod sensor;
 mod suite;

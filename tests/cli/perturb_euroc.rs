@@ -265,11 +265,18 @@ fn items_that_are_not_image_corruptions_and_other_folders_are_refused() {
             .fails_with(
                 2,
                 &[&format!(
-                    "--perturb: '{item}': EuRoC inputs take image corruptions and IMU items only for now"
+                    "--perturb: '{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now"
                 )],
             );
         assert_eq!(err.lines().count(), 1, "{err}");
     }
+    let err = ws
+        .rslam(&["perturb", "--input", "seq", "--out", "x", "--perturb", "baseline:0.01"])
+        .fails_with(
+            2,
+            &["'baseline:0.01': a recorded dataset cannot be re-rendered with a moved sensor; perturb its written calibration instead: baseline:0.01@calibration"],
+        );
+    assert_eq!(err.lines().count(), 1, "{err}");
     assert!(!ws.path("x").exists());
     ws.write("mine/notes.txt", "mine");
     let err = ws
@@ -292,4 +299,124 @@ fn items_that_are_not_image_corruptions_and_other_folders_are_refused() {
         std::fs::read_to_string(ws.path("mine/notes.txt")).unwrap(),
         "mine"
     );
+}
+
+#[test]
+fn calibration_items_rewrite_the_written_calibration_and_per_camera_items_one_camera() {
+    let ws = Workspace::new();
+    write_published_style(&ws.path("MH_01_easy"));
+    let spec =
+        "cam1:gaussian_noise:3,baseline:0.01@calibration,imu0:extrinsic_trans:0.01@calibration";
+    let args = [
+        "perturb",
+        "--input",
+        "MH_01_easy",
+        "--out",
+        "out",
+        "--perturb",
+        spec,
+    ];
+    ws.rslam(&args).success();
+    let (input, out) = (ws.path("MH_01_easy/mav0"), ws.path("out/mav0"));
+
+    // cam0 is not addressed: its pixels are the recorded ones; cam1's are corrupted.
+    for (c, cam) in ["cam0", "cam1"].into_iter().enumerate() {
+        for (j, t) in STAMPS.iter().enumerate() {
+            let after = image::open(out.join(cam).join(format!("data/{t}.png")))
+                .unwrap()
+                .into_luma8()
+                .into_raw();
+            assert_eq!(after == frame(c, j).into_raw(), c == 0, "{cam} frame {j}");
+        }
+    }
+    for file in [
+        "cam0/sensor.yaml",
+        "imu0/data.csv",
+        "state_groundtruth_estimate0/data.csv",
+    ] {
+        assert_eq!(
+            std::fs::read(out.join(file)).unwrap(),
+            std::fs::read(input.join(file)).unwrap(),
+            "{file}: copied unchanged"
+        );
+    }
+
+    let recorded = rslam_core::dataset::euroc::read_euroc(&ws.path("MH_01_easy")).unwrap();
+    let written = rslam_core::dataset::euroc::read_euroc(&ws.path("out")).unwrap();
+    let manifest = rslam_core::dataset::Manifest::read(&ws.path("out")).unwrap();
+    let record = &manifest.extra["calibration"];
+    let delta = record["baseline_offset_m"].as_f64().unwrap();
+    assert!(delta != 0.0);
+    // cam1: the same camera, moved by δ along cam0's x axis.
+    let (cam0, cam1) = (&written.cameras[0].camera, &written.cameras[1].camera);
+    let recorded_cam1 = &recorded.cameras[1].camera;
+    assert_eq!(cam1.intrinsics, recorded_cam1.intrinsics);
+    assert_eq!(cam1.distortion, recorded_cam1.distortion);
+    let shift = cam0
+        .body_from_camera
+        .inverse()
+        .compose(&cam1.body_from_camera)
+        .translation
+        - cam0
+            .body_from_camera
+            .inverse()
+            .compose(&recorded_cam1.body_from_camera)
+            .translation;
+    assert!(
+        (shift.x - delta).abs() < 1e-9 && shift.y.abs() < 1e-9 && shift.z.abs() < 1e-9,
+        "{shift} vs δ {delta}"
+    );
+    assert!((record["baseline_m"]["written"].as_f64().unwrap() - delta).abs() < 1e-9);
+    assert_eq!(
+        record["baseline_m"]["true"],
+        record["baseline_m"]["nominal"]
+    );
+    // imu0: moved by the recorded offset, noise parameters kept.
+    let (imu, recorded_imu) = (
+        &written.imu.as_ref().unwrap().imu,
+        &recorded.imu.as_ref().unwrap().imu,
+    );
+    assert_eq!(
+        imu.gyroscope_noise_density,
+        recorded_imu.gyroscope_noise_density
+    );
+    assert_eq!(
+        imu.accelerometer_random_walk,
+        recorded_imu.accelerometer_random_walk
+    );
+    let imu_record = record["sensors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == "imu0")
+        .unwrap();
+    let written_t_bs: Vec<f64> = imu_record["written_T_BS"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let moved = imu.body_from_imu.translation;
+    assert!(moved.length() > 0.0 && moved.length() < 0.06, "{moved}");
+    for (axis, row) in [3, 7, 11].into_iter().enumerate() {
+        assert!((written_t_bs[row] - moved[axis]).abs() < 1e-9);
+    }
+    // ORB-SLAM3's stereo settings state the written baseline.
+    let settings = std::fs::read_to_string(ws.path("out/orbslam3_stereo.yaml")).unwrap();
+    let t_c1_c2 = settings.split("Stereo.T_c1_c2").nth(1).unwrap();
+    let data = t_c1_c2
+        .split("data: [")
+        .nth(1)
+        .unwrap()
+        .split(']')
+        .next()
+        .unwrap();
+    let x: f64 = data.split(',').nth(3).unwrap().trim().parse().unwrap();
+    assert!(
+        (x - delta).abs() < 1e-6,
+        "Stereo.T_c1_c2 x {x} vs δ {delta}"
+    );
+
+    let verify = ws.rslam(&["verify", "out"]);
+    assert!(verify.success().contains("out: ok"), "{}", verify.stdout());
 }

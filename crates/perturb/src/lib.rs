@@ -4,7 +4,8 @@
 //! Data flow: a `--perturb` string is parsed into a [`PerturbSpec`]. Trajectory items (`rot`,
 //! `trans`) deviate the poses before rendering ([`trajectory`]); sensor items (`exposure`,
 //! `rolling_shutter`) tell the renderer which poses of the capture interval to draw and sum
-//! ([`sensor`]). The renderer leaves each frame
+//! ([`sensor`]); calibration items (`baseline`, `extrinsic_*`) move a rig's sensors or its written
+//! calibration ([`calibration`]). The renderer leaves each frame
 //! in [`rslam_gpu::FrameTextures`]; a [`Perturber`] records the spec's image corruptions and then
 //! its depth corruptions into the frame's command encoder, each one a [`GpuPerturbation`] from the
 //! [`CATALOGUE`] transforming the textures in place, and reports the severity each got. Stream
@@ -17,6 +18,7 @@
 //! layouts of the parameter structs it writes into uniform blocks ([`uniform_layout`]), which a
 //! test checks against naga's layout of the WGSL structs.
 
+pub mod calibration;
 mod catalogue;
 #[cfg(test)]
 mod catalogue_tests;

@@ -3,8 +3,9 @@
 
 use serde::Serialize;
 
+use crate::calibration::{BASELINE, EXTRINSIC_ROT, EXTRINSIC_TRANS};
 use crate::imu::IMU_ITEMS;
-use crate::sensor::SENSOR_ITEMS;
+use crate::sensor::{SensorEntry, SENSOR_ITEMS};
 use crate::trajectory::{SMOOTH_BAND_HZ, SMOOTH_TONES};
 use crate::{Group, CATALOGUE};
 
@@ -12,7 +13,7 @@ use crate::{Group, CATALOGUE};
 #[derive(Clone, Debug, Serialize)]
 pub struct ListEntry {
     pub name: &'static str,
-    /// "image", "depth", "trajectory", "stream", "sensor" or "imu".
+    /// "image", "depth", "trajectory", "stream", "sensor", "calibration" or "imu".
     pub group: &'static str,
     /// How to write it in a spec.
     pub syntax: String,
@@ -22,7 +23,7 @@ pub struct ListEntry {
 }
 
 /// Every perturbation: image, then depth corruptions (catalogue order), then trajectory and
-/// stream items, then sensor effects, then IMU items.
+/// stream items, then sensor effects, then a rig's calibration items, then IMU items.
 pub fn listing() -> Vec<ListEntry> {
     let mut entries: Vec<ListEntry> = CATALOGUE
         .iter()
@@ -86,15 +87,37 @@ pub fn listing() -> Vec<ListEntry> {
                 parameters: Vec::new(),
             }),
     );
-    for (group, items) in [("sensor", SENSOR_ITEMS), ("imu", IMU_ITEMS)] {
-        entries.extend(items.iter().map(|e| ListEntry {
-            name: e.name,
-            group,
-            syntax: e.syntax.to_string(),
-            description: e.description.to_string(),
-            parameters: Vec::new(),
-        }));
-    }
+    entries.extend(item_entries("sensor", SENSOR_ITEMS));
+    let modes = "rendered (default): images and IMU made with the moved sensor, the calibration files state the nominal one; @calibration: images nominal, the written calibration moved; the manifest records both; needs a rig (--rig, or a EuRoC input: @calibration only)";
+    let calibration = [
+        (
+            BASELINE,
+            "baseline:METRES[@dynamic|@calibration]",
+            format!("cam1 moved by δ ~ N(0, σ) along cam0's x axis, once per sequence; @dynamic: a new δ on every cam1 frame (rendered only, per-frame values in calibration_per_frame.csv); {modes}"),
+        ),
+        (
+            EXTRINSIC_ROT,
+            "[SENSOR:]extrinsic_rot:DEGREES[@calibration]",
+            format!("T_BS' = T_BS·Rx·Ry·Rz, per-axis angles ~ N(0, D°) in the sensor's frame, one draw per sequence; SENSOR cam0, cam1, imu0, …, without one every camera draws its own; {modes}"),
+        ),
+        (
+            EXTRINSIC_TRANS,
+            "[SENSOR:]extrinsic_trans:METRES[@calibration]",
+            format!("T_BS' = T_BS·(I, Δt), Δt ~ N(0, M) per axis of the sensor's frame, one draw per sequence; SENSOR as for extrinsic_rot; {modes}"),
+        ),
+    ];
+    entries.extend(
+        calibration
+            .into_iter()
+            .map(|(name, syntax, description)| ListEntry {
+                name,
+                group: "calibration",
+                syntax: syntax.to_string(),
+                description,
+                parameters: Vec::new(),
+            }),
+    );
+    entries.extend(item_entries("imu", IMU_ITEMS));
     entries
 }
 
@@ -114,4 +137,18 @@ mod tests {
             .filter(|e| e.group == "image" || e.group == "depth")
             .all(|e| e.parameters.len() == 5));
     }
+}
+
+/// Listing entries of items described by their syntax alone (sensor effects, IMU items).
+fn item_entries(group: &'static str, items: &'static [SensorEntry]) -> Vec<ListEntry> {
+    items
+        .iter()
+        .map(|e| ListEntry {
+            name: e.name,
+            group,
+            syntax: e.syntax.to_string(),
+            description: e.description.to_string(),
+            parameters: Vec::new(),
+        })
+        .collect()
 }

@@ -79,6 +79,11 @@ impl Perturber {
         seed: u64,
         camera: Option<Intrinsics>,
     ) -> Result<Self, PerturbError> {
+        // A rig hands each camera its own spec (`PerturbSpec::for_camera`); whatever else
+        // arrives here perturbs one camera.
+        if let Some(problem) = spec.one_camera_problem() {
+            return Err(problem);
+        }
         let scratch = Scratch::new(ctx, width, height);
         let kit = Kit {
             ctx,
@@ -164,7 +169,9 @@ impl Perturber {
     /// order (a severity, mode or seed change: nothing is rebuilt) and says whether it could;
     /// `false` leaves it unchanged, and a new [`Perturber`] is needed.
     pub fn set_levels(&mut self, spec: &PerturbSpec, seed: u64) -> bool {
-        let same_items = spec.frame_items().count() == self.items.len()
+        // A spec this one camera cannot take goes to `Perturber::new`, which says why.
+        let same_items = spec.one_camera_problem().is_none()
+            && spec.frame_items().count() == self.items.len()
             && spec
                 .frame_items()
                 .zip(&self.items)
@@ -346,6 +353,17 @@ mod tests {
         let other = PerturbSpec::parse("contrast:5").unwrap();
         assert!(!relevelled.set_levels(&other, 1));
         assert_eq!(relevelled.severities(0).items[0].name, "brightness");
+        // The same item for another sensor is no new level for this one camera.
+        let cam1 = PerturbSpec::parse("cam1:brightness:5").unwrap();
+        assert!(!relevelled.set_levels(&cam1, 1));
+        let err = Perturber::new(ctx, &cam1, w, h, 1, None)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("this input has one camera, cam0"), "{err}");
+        let cam0 = PerturbSpec::parse("cam0:brightness:5").unwrap();
+        assert!(relevelled.set_levels(&cam0, 1));
+        assert_eq!(run(&mut relevelled), run(&mut built));
     }
 
     #[test]

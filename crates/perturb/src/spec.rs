@@ -2,23 +2,34 @@
 //!
 //! ```text
 //! spec  := item (',' item)*
-//! item  := NAME ':' SEVERITY ['@static' | '@dynamic']      image and depth corruptions
-//!        | NAME ':' EXPLICIT                               e.g. depth_range:0.42-10
+//! item  := [SENSOR ':'] NAME ':' SEVERITY ['@static' | '@dynamic']   image and depth corruptions
+//!        | [SENSOR ':'] NAME ':' EXPLICIT                          e.g. depth_range:0.42-10
 //!        | 'rot:' DEGREES ['@smooth'] | 'trans:' METRES ['@smooth']
 //!        | 'fast:' K | 'misalign:' FRAMES ['@dynamic']
 //!        | 'exposure:' MS ['@' K] | 'rolling_shutter:' MS      sensor effects (need a scene)
 //!        | 'imu_noise:' K | 'imu_bias_step:' G/A | …          IMU items (see crate::imu::items)
+//!        | 'baseline:' METRES ['@calibration' | '@dynamic']      calibration of a rig
+//!        | [SENSOR ':'] ('extrinsic_rot:' DEGREES | 'extrinsic_trans:' METRES) ['@calibration']
+//! SENSOR := 'cam' N | 'imu' N                               a rig's sensor: cam0, cam1, imu0
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)
 //! ```
 //!
 //! Whatever the written order, the pipeline order is trajectory → render (with the sensor
 //! effects) → image → depth → stream; inside the image and depth groups the written order is the order applied.
+//!
+//! Sensors: an image or depth item with a camera (`cam1:fog:3`) corrupts that camera's frames
+//! only; without one, every camera's. A one-camera input's camera is `cam0`, so `cam0:fog:3`
+//! there is `fog:3` and any other sensor is refused when the frames are perturbed
+//! ([`PerturbSpec::one_camera_problem`]). An item may be given once per sensor, and not both
+//! with and without a sensor (`fog:2,cam1:fog:4` is refused: write `cam0:fog:2,cam1:fog:4`).
+//! Calibration items are described in [`crate::calibration`].
 
 use std::fmt;
 use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
+use crate::calibration::{self, CalibrationItem};
 use crate::catalogue::{self, CATALOGUE};
 use crate::imu::{self, ImuSpec, IMU_ITEMS};
 use crate::sensor::{self, Exposure, RollingShutter, SENSOR_ITEMS};
@@ -48,11 +59,17 @@ pub struct PerturbSpec {
     /// IMU items and `cam_imu_offset`, for rigs with an IMU.
     #[serde(default, skip_serializing_if = "ImuSpec::is_empty")]
     pub imu: ImuSpec,
+    /// `baseline`, `extrinsic_rot`, `extrinsic_trans`: a rig's calibration, in the order written.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub calibration: Vec<CalibrationItem>,
 }
 
 /// One image or depth corruption of a spec.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FrameItem {
+    /// The camera whose frames it corrupts (`cam1`); `None`: every camera's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensor: Option<String>,
     pub name: String,
     pub level: Level,
 }
@@ -86,7 +103,8 @@ const TRAJECTORY_AND_STREAM: [&str; 4] = ["rot", "trans", "fast", "misalign"];
 impl PerturbSpec {
     pub fn parse(text: &str) -> Result<Self, PerturbError> {
         let mut spec = PerturbSpec::default();
-        let mut seen: Vec<String> = Vec::new();
+        // (sensor, name) of every item so far.
+        let mut seen: Vec<(Option<String>, String)> = Vec::new();
         for raw in text.split(',') {
             let item = raw.trim();
             if item.is_empty() {
@@ -95,19 +113,23 @@ impl PerturbSpec {
                     "empty item; expected NAME:VALUE items separated by commas, e.g. fog:3,depth_missing:5",
                 ));
             }
-            let (name, rest) = item.split_once(':').ok_or_else(|| {
-                PerturbError::spec(item, "expected NAME:VALUE, e.g. fog:3 or rot:1")
-            })?;
-            let name = name.trim();
-            if seen.iter().any(|s| s == name) {
-                return Err(PerturbError::spec(item, format!("'{name}' is given twice")));
-            }
-            seen.push(name.to_string());
+            let expected = || PerturbError::spec(item, "expected NAME:VALUE, e.g. fog:3 or rot:1");
+            let (first, rest) = item.split_once(':').ok_or_else(expected)?;
+            let (sensor, name, rest) = if is_sensor_name(first.trim()) {
+                let (name, rest) = rest.split_once(':').ok_or_else(|| {
+                    PerturbError::spec(item, "expected SENSOR:NAME:VALUE, e.g. cam1:fog:3")
+                })?;
+                (Some(first.trim()), name.trim(), rest)
+            } else {
+                (None, first.trim(), rest)
+            };
+            check_once(item, sensor, name, &seen)?;
+            seen.push((sensor.map(str::to_string), name.to_string()));
             let (value, mode) = match rest.split_once('@') {
                 Some((v, m)) => (v.trim(), Some(m.trim())),
                 None => (rest.trim(), None),
             };
-            spec.add(item, name, value, mode)?;
+            spec.add(item, sensor, name, value, mode)?;
         }
         Ok(spec)
     }
@@ -115,11 +137,30 @@ impl PerturbSpec {
     fn add(
         &mut self,
         item: &str,
+        sensor: Option<&str>,
         name: &str,
         value: &str,
         mode: Option<&str>,
     ) -> Result<(), PerturbError> {
         let err = |message: String| PerturbError::spec(item, message);
+        if calibration::NAMES.contains(&name) {
+            let parsed = CalibrationItem::parse(sensor, name, value, mode).map_err(err)?;
+            self.calibration.push(parsed);
+            return Ok(());
+        }
+        let known = |name: &str| catalogue::find(name).is_some() || all_names().contains(&name);
+        if let Some(sensor) = sensor.filter(|_| known(name)) {
+            if catalogue::find(name).is_none() {
+                return Err(err(format!(
+                    "'{name}' applies to the whole rig and takes no sensor; per-sensor items: image and depth corruptions, extrinsic_rot, extrinsic_trans"
+                )));
+            }
+            if !sensor.starts_with("cam") {
+                return Err(err(format!(
+                    "'{name}' corrupts a camera's frames; expected a camera (cam0, cam1, …), not {sensor}"
+                )));
+            }
+        }
         match name {
             "rot" | "trans" => {
                 let unit = if name == "rot" { "degrees" } else { "metres" };
@@ -182,6 +223,7 @@ impl PerturbSpec {
                 })?;
                 let level = parse_level(entry, value, mode).map_err(err)?;
                 let frame_item = FrameItem {
+                    sensor: sensor.map(str::to_string),
                     name: entry.name.to_string(),
                     level,
                 };
@@ -239,6 +281,113 @@ impl PerturbSpec {
     pub fn stateful_item(&self) -> Option<&FrameItem> {
         self.frame_items()
             .find(|item| crate::catalogue::find(&item.name).is_some_and(|e| e.carries_state()))
+    }
+
+    /// The spec camera `camera` of a rig applies to its frames: the image and depth items for
+    /// every camera and for it (no longer addressed), every item of the whole rig, and no
+    /// calibration items (the rig has placed the cameras already).
+    pub fn for_camera(&self, camera: &str) -> PerturbSpec {
+        let own = |items: &[FrameItem]| -> Vec<FrameItem> {
+            items
+                .iter()
+                .filter(|i| i.sensor.as_deref().is_none_or(|s| s == camera))
+                .map(|i| FrameItem {
+                    sensor: None,
+                    ..i.clone()
+                })
+                .collect()
+        };
+        PerturbSpec {
+            image: own(&self.image),
+            depth: own(&self.depth),
+            calibration: Vec::new(),
+            ..self.clone()
+        }
+    }
+
+    /// The first item addressed to a sensor not in `sensors` (`cam0`, `cam1`, `imu0`, …), with
+    /// the message for it.
+    pub fn unknown_sensor(&self, sensors: &[&str]) -> Option<PerturbError> {
+        let addressed = self
+            .frame_items()
+            .filter_map(|i| Some((i.sensor.as_deref()?, i.to_string())))
+            .chain(
+                self.calibration
+                    .iter()
+                    .filter_map(|i| Some((i.sensor.as_deref()?, i.to_string()))),
+            );
+        for (sensor, item) in addressed {
+            if !sensors.contains(&sensor) {
+                return Some(PerturbError::spec(
+                    item,
+                    format!(
+                        "no sensor '{sensor}' here; the sensors are {}",
+                        sensors.join(", ")
+                    ),
+                ));
+            }
+        }
+        None
+    }
+
+    /// Why this spec cannot perturb the frames of a one-camera input (a dataset, an RGB-D
+    /// render, image files): a calibration item, or an item addressed to a sensor other than
+    /// `cam0`, that one camera.
+    pub fn one_camera_problem(&self) -> Option<PerturbError> {
+        if let Some(item) = self.calibration.first() {
+            return Some(PerturbError::spec(
+                item.to_string(),
+                "a calibration item needs a rig (`rslam render --rig … --format euroc`, or `rslam perturb` of a EuRoC folder)",
+            ));
+        }
+        self.unknown_sensor(&["cam0"]).map(|_| {
+            let item = self
+                .frame_items()
+                .find(|i| i.sensor.as_deref().is_some_and(|s| s != "cam0"))
+                .map(|i| i.to_string())
+                .unwrap_or_default();
+            PerturbError::spec(
+                item,
+                "this input has one camera, cam0: address it as cam0 or give no sensor (other sensors need a rig)",
+            )
+        })
+    }
+}
+
+/// `cam` or `imu` followed by a number: the name of a rig's sensor.
+fn is_sensor_name(text: &str) -> bool {
+    ["cam", "imu"].iter().any(|prefix| {
+        text.strip_prefix(prefix)
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+    })
+}
+
+/// Refuses an item given twice for the same sensor, or both for every camera and for one.
+fn check_once(
+    item: &str,
+    sensor: Option<&str>,
+    name: &str,
+    seen: &[(Option<String>, String)],
+) -> Result<(), PerturbError> {
+    // An item without a sensor covers every camera (an IMU only when named).
+    let covers = |every: Option<&str>, one: Option<&str>| {
+        every.is_none() && one.is_some_and(|s| s.starts_with("cam"))
+    };
+    let clash = seen.iter().find(|(s, n)| {
+        n == name
+            && (s.as_deref() == sensor
+                || covers(s.as_deref(), sensor)
+                || covers(sensor, s.as_deref()))
+    });
+    match clash {
+        None => Ok(()),
+        Some((s, _)) if s.as_deref() == sensor => {
+            Err(PerturbError::spec(item, format!("'{name}' is given twice")))
+        }
+        Some(_) => Err(PerturbError::spec(
+            item,
+            format!("'{name}' is given for every camera and for one; give it per camera instead, e.g. cam0:{name}:…,cam1:{name}:…"),
+        )),
     }
 }
 
@@ -299,6 +448,9 @@ impl FromStr for PerturbSpec {
 
 impl fmt::Display for FrameItem {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(sensor) = &self.sensor {
+            write!(f, "{sensor}:")?;
+        }
         match &self.level {
             Level::Severity { severity, dynamic } => {
                 write!(f, "{}:{severity}", self.name)?;
@@ -319,10 +471,11 @@ impl fmt::Display for FrameItem {
 }
 
 impl fmt::Display for PerturbSpec {
-    /// Canonical pipeline order: rot, trans, exposure, rolling_shutter, image items, depth
-    /// items, fast, misalign, IMU items.
+    /// Canonical pipeline order: calibration items, rot, trans, exposure, rolling_shutter,
+    /// image items, depth items, fast, misalign, IMU items.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mut parts = self.scene_items();
+        let mut parts: Vec<String> = self.calibration.iter().map(|i| i.to_string()).collect();
+        parts.extend(self.scene_items());
         parts.extend(self.frame_items().map(|item| item.to_string()));
         if let Some(k) = self.fast {
             parts.push(format!("fast:{k}"));
@@ -337,13 +490,14 @@ impl fmt::Display for PerturbSpec {
 }
 
 /// Every name a spec accepts (catalogue entries, then trajectory and stream items, then sensor
-/// effects, then IMU items).
+/// effects, then calibration items, then IMU items).
 pub fn all_names() -> Vec<&'static str> {
     CATALOGUE
         .iter()
         .map(|e| e.name)
         .chain(TRAJECTORY_AND_STREAM)
         .chain(SENSOR_ITEMS.iter().map(|e| e.name))
+        .chain(calibration::NAMES)
         .chain(IMU_ITEMS.iter().map(|e| e.name))
         .collect()
 }

@@ -205,3 +205,148 @@ fn imu_items_go_to_their_own_field_print_last_and_round_trip() {
         "IMU names are listed"
     );
 }
+
+#[test]
+fn items_addressed_to_a_camera_reach_only_that_camera() {
+    let spec =
+        PerturbSpec::parse("cam1:fog:3,gaussian_noise:2,cam0:motion_blur:2@dynamic").unwrap();
+    assert_eq!(spec.image[0].sensor.as_deref(), Some("cam1"));
+    assert_eq!(spec.image[1].sensor, None);
+    let names =
+        |s: &PerturbSpec| -> Vec<String> { s.image.iter().map(|i| i.to_string()).collect() };
+    // Written order kept, the sensor dropped.
+    assert_eq!(
+        names(&spec.for_camera("cam0")),
+        ["gaussian_noise:2", "motion_blur:2@dynamic"]
+    );
+    assert_eq!(
+        names(&spec.for_camera("cam1")),
+        ["fog:3", "gaussian_noise:2"]
+    );
+    assert_eq!(names(&spec.for_camera("cam2")), ["gaussian_noise:2"]);
+    assert_eq!(
+        spec.to_string(),
+        "cam1:fog:3,gaussian_noise:2,cam0:motion_blur:2@dynamic"
+    );
+    assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
+    let json = serde_json::to_string(&spec).unwrap();
+    assert_eq!(serde_json::from_str::<PerturbSpec>(&json).unwrap(), spec);
+    // An unaddressed spec serialises as before the sensor field existed.
+    let plain = serde_json::to_string(&PerturbSpec::parse("fog:3").unwrap()).unwrap();
+    assert!(
+        !plain.contains("sensor") && !plain.contains("calibration"),
+        "{plain}"
+    );
+}
+
+#[test]
+fn calibration_items_parse_with_their_modes_and_round_trip() {
+    let spec = PerturbSpec::parse(
+        "fog:1,baseline:0.01@dynamic,cam1:extrinsic_rot:0.5@calibration,imu0:extrinsic_trans:0.01,extrinsic_trans:0.002",
+    )
+    .unwrap();
+    use crate::calibration::CalibrationMode::{Calibration, Rendered};
+    let got: Vec<(Option<&str>, &str, f64, _, bool)> = spec
+        .calibration
+        .iter()
+        .map(|i| {
+            (
+                i.sensor.as_deref(),
+                i.name.as_str(),
+                i.sigma,
+                i.mode,
+                i.dynamic,
+            )
+        })
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (None, "baseline", 0.01, Rendered, true),
+            (Some("cam1"), "extrinsic_rot", 0.5, Calibration, false),
+            (Some("imu0"), "extrinsic_trans", 0.01, Rendered, false),
+            (None, "extrinsic_trans", 0.002, Rendered, false),
+        ]
+    );
+    assert_eq!(
+        spec.to_string(),
+        "baseline:0.01@dynamic,cam1:extrinsic_rot:0.5@calibration,imu0:extrinsic_trans:0.01,extrinsic_trans:0.002,fog:1"
+    );
+    assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
+    assert!(!spec.needs_scene());
+    assert!(spec.for_camera("cam0").calibration.is_empty());
+}
+
+#[test]
+fn sensor_and_calibration_errors_name_the_item_and_what_was_expected() {
+    let e = err("cam1:rot:1");
+    assert!(
+        e.starts_with("--perturb item 'cam1:rot:1': 'rot' applies to the whole rig"),
+        "{e}"
+    );
+    let e = err("imu0:fog:3");
+    assert!(
+        e.contains("expected a camera (cam0, cam1, …), not imu0"),
+        "{e}"
+    );
+    assert!(err("cam1:fog").contains("SENSOR:NAME:VALUE"));
+    assert!(err("cam1:fgo:3").contains("unknown perturbation 'fgo'"));
+    assert!(err("cam1:fog:3,cam1:fog:2").contains("'fog' is given twice"));
+    let e = err("fog:2,cam1:fog:4");
+    assert!(
+        e.contains("for every camera and for one") && e.contains("cam0:fog:"),
+        "{e}"
+    );
+    PerturbSpec::parse("cam0:fog:2,cam1:fog:4").unwrap();
+    assert!(err("cam1:baseline:0.01").contains("takes no sensor"));
+    assert!(err("baseline:-0.01").contains("metres ≥ 0"));
+    assert!(err("extrinsic_rot:x").contains("degrees ≥ 0"));
+    let e = err("cam1:extrinsic_rot:1@dynamic");
+    assert!(
+        e.contains("unknown mode '@dynamic'; valid: @calibration"),
+        "{e}"
+    );
+    assert!(err("baseline:0.1@smooth").contains("@calibration, @dynamic"));
+    assert!(err("baseline:0.01,baseline:0.02@calibration").contains("twice"));
+    for text in ["cam1:fog:3", "baseline:0.01", "cam0:extrinsic_rot:1"] {
+        assert!(!err(text.split(':').next().unwrap()).contains('\n'));
+    }
+}
+
+#[test]
+fn a_one_camera_input_takes_cam0_items_and_refuses_other_sensors_and_calibration() {
+    let one = |text: &str| {
+        PerturbSpec::parse(text)
+            .unwrap()
+            .one_camera_problem()
+            .map(|e| e.to_string())
+    };
+    assert_eq!(one("cam0:fog:3,gaussian_noise:1"), None);
+    let e = one("gaussian_noise:1,cam1:fog:3").unwrap();
+    assert!(
+        e.starts_with("--perturb item 'cam1:fog:3': this input has one camera, cam0"),
+        "{e}"
+    );
+    let e = one("baseline:0.01@calibration").unwrap();
+    assert!(
+        e.starts_with("--perturb item 'baseline:0.01@calibration': a calibration item needs a rig"),
+        "{e}"
+    );
+    let spec = PerturbSpec::parse("cam2:fog:1,imu0:extrinsic_rot:1").unwrap();
+    let e = spec.unknown_sensor(&["cam0", "cam1"]).unwrap().to_string();
+    assert_eq!(
+        e,
+        "--perturb item 'cam2:fog:1': no sensor 'cam2' here; the sensors are cam0, cam1"
+    );
+    let e = spec
+        .unknown_sensor(&["cam0", "cam1", "cam2"])
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("'imu0:extrinsic_rot:1': no sensor 'imu0'"),
+        "{e}"
+    );
+    assert!(spec
+        .unknown_sensor(&["cam0", "cam1", "cam2", "imu0"])
+        .is_none());
+}

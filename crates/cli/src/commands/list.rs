@@ -19,12 +19,13 @@ pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-const HEADINGS: [(&str, &str); 6] = [
+const HEADINGS: [(&str, &str); 7] = [
     ("image", "Image corruptions (severity 1-5 or low/mid/high; @dynamic: per-frame severity uniform in 0..s)"),
     ("depth", "Depth corruptions (0 = invalid depth, stays invalid)"),
     ("trajectory", "Trajectory deviations (frames re-rendered along the deviated poses)"),
     ("stream", "Stream operations"),
     ("sensor", "Sensor effects (the image formed from the camera's motion during capture; need a scene)"),
+    ("calibration", "Calibration of a rig (--rig, or a EuRoC input with @calibration); image and depth items also take a camera: cam1:fog:3"),
     ("imu", "IMU items (need an IMU: `render --rig stereo-imu --format euroc`, or a EuRoC dataset with imu0/)"),
 ];
 

@@ -23,7 +23,9 @@ pub struct PerturbArgs {
     /// Output: a folder for datasets and image folders, a file for one image (same format).
     #[arg(long)]
     out: PathBuf,
-    /// Perturbations, e.g. `gaussian_noise:3,depth_missing:5,misalign:10` (see `rslam list`).
+    /// Perturbations, e.g. `gaussian_noise:3,depth_missing:5,misalign:10` (see `rslam list`);
+    /// on a EuRoC folder per camera (`cam1:fog:3`) and `@calibration` items
+    /// (`baseline:0.01@calibration`).
     #[arg(long)]
     perturb: String,
     /// Seed of every random draw.

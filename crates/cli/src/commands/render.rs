@@ -51,7 +51,9 @@ pub struct RenderArgs {
     /// Seed of every random draw.
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Perturbations, e.g. `fog:3,depth_missing:5,rot:1,fast:2` (see `rslam list`).
+    /// Perturbations, e.g. `fog:3,depth_missing:5,rot:1,fast:2` (see `rslam list`); with
+    /// `--rig` per camera (`cam1:fog:3`) and calibration items (`baseline:0.01`,
+    /// `cam1:extrinsic_rot:0.5@calibration`).
     #[arg(long)]
     perturb: Option<String>,
     /// Replace what --out holds if it is another rslam output (never a folder of other files).

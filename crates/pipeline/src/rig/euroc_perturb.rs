@@ -4,11 +4,15 @@
 //! Each camera is its own source (its PNGs decoded ahead), pipeline and sink, seeded with
 //! [`camera_seed`]`(seed, i)` as a rendered rig's cameras are; frames keep their nanosecond
 //! timestamps (moved by `cam_imu_offset`, file names with them), size and PNG colour type. With
-//! no image corruption the PNGs are copied byte for byte. IMU items apply to imu0's readings
-//! (from the job's seed) and, where they change the true biases, to the ground truth. Every
-//! sensor.yaml, and the IMU readings and ground truth that no item changed, are copied byte for
-//! byte (through the writer, so they are in the checksum list); ORB-SLAM3's settings are made
-//! from the cameras' and IMU's values. Depth, trajectory, stream and shutter items are refused.
+//! no image corruption for a camera its PNGs are copied byte for byte. Image corruptions apply to
+//! every camera or the one named (`cam1:fog:3`). IMU items apply to imu0's readings (from the
+//! job's seed) and, where they change the true biases, to the ground truth. Calibration items in
+//! `@calibration` mode change what the written calibration says (the sensor.yaml of each sensor
+//! they move is written anew from its values with the perturbed `T_BS`, and ORB-SLAM3's settings
+//! follow); the frames stay as recorded. Every other sensor.yaml, and the IMU readings and ground
+//! truth that no item changed, are copied byte for byte (through the writer, so they are in the
+//! checksum list). A recorded dataset cannot be re-rendered, so depth, trajectory, stream,
+//! shutter and rendered-mode calibration items are refused.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -19,14 +23,17 @@ use rslam_core::dataset::euroc::{
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::CoreError;
 use rslam_gpu::GpuContext;
+use rslam_perturb::calibration::CalibrationMode;
 use rslam_perturb::imu::{ImuOrigin, PerturbedImu};
 use rslam_perturb::PerturbSpec;
 
+use super::calibration::PerturbedRig;
 use super::camera_sink::EurocCameraSink;
 use super::euroc_render::{camera_seed, CameraFrames, RigReport};
 use super::euroc_source::EurocCameraSource;
 use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::output;
+use super::preset::Rig;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
 use crate::pipeline::Pipeline;
@@ -52,8 +59,21 @@ pub fn is_euroc_input(path: &Path) -> bool {
     path.join(MAV_DIR).is_dir() || (path.file_name().is_some_and(|n| n == MAV_DIR) && path.is_dir())
 }
 
-/// Refuses every item that is not an image corruption or an IMU item, naming the first one.
+/// Refuses every item that is not an image corruption, an IMU item or a `@calibration` item,
+/// naming the first one.
 pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
+    if let Some(item) = spec
+        .calibration
+        .iter()
+        .find(|i| i.mode == CalibrationMode::Rendered)
+    {
+        let item = item.to_string();
+        let base = item.split('@').next().unwrap_or(&item);
+        return Err(PipelineError::option(
+            "--perturb",
+            format!("'{item}': a recorded dataset cannot be re-rendered with a moved sensor; perturb its written calibration instead: {base}@calibration"),
+        ));
+    }
     let mut others = spec.scene_items();
     others.extend(spec.depth.iter().map(|item| item.to_string()));
     others.extend(spec.fast.map(|k| format!("fast:{k}")));
@@ -61,7 +81,7 @@ pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     match others.first() {
         Some(item) => Err(PipelineError::option(
             "--perturb",
-            format!("'{item}': EuRoC inputs take image corruptions and IMU items only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
+            format!("'{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
         )),
         None => Ok(()),
     }
@@ -94,10 +114,12 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>, PipelineError> {
     Ok(std::fs::read(path).map_err(|e| CoreError::io(path, e))?)
 }
 
-/// Copies every sensor.yaml as it is; writes the IMU readings and the ground truth that the IMU
-/// items changed, and copies the others as they are.
+/// Copies the sensor.yaml of every sensor whose written calibration is the recorded one (the
+/// writer makes the others from `written`); writes the IMU readings and the ground truth that the
+/// IMU items changed, and copies the others as they are.
 fn write_sensor_files(
     dataset: &EurocDataset,
+    written: &Rig,
     imu: Option<&PerturbedImu>,
     writer: &EurocWriter,
 ) -> Result<(), PipelineError> {
@@ -106,11 +128,15 @@ fn write_sensor_files(
         let bytes = read_bytes(&mav.join(sensor).join(file))?;
         Ok(writer.copy_sensor_file(sensor, file, &bytes)?)
     };
-    for camera in &dataset.cameras {
-        copy(&camera.camera.name, "sensor.yaml")?;
+    for (camera, written) in dataset.cameras.iter().zip(&written.cameras) {
+        if camera.camera == *written {
+            copy(&camera.camera.name, "sensor.yaml")?;
+        }
     }
-    if dataset.imu.is_some() {
-        copy(IMU_DIR, "sensor.yaml")?;
+    if let Some(recorded) = &dataset.imu {
+        if written.imu.as_ref() == Some(&recorded.imu) {
+            copy(IMU_DIR, "sensor.yaml")?;
+        }
         match imu.filter(|p| p.samples_changed) {
             Some(perturbed) => writer.write_imu(&perturbed.samples)?,
             None => copy(IMU_DIR, "data.csv")?,
@@ -153,18 +179,18 @@ fn perturb_recorded_imu(
     Ok(Some(perturbed))
 }
 
-/// Camera `index`'s frames, written at `times_ns`: copied as they are when the spec has no
+/// Camera `index`'s frames, written at `times_ns`: copied as they are when its spec has no
 /// image corruption, else through the GPU pipeline.
 fn write_camera(
     ctx: &GpuContext,
-    job: &PerturbEurocJob,
+    spec: &PerturbSpec,
     camera: &EurocCameraFrames,
     (index, seed): (usize, u64),
     times_ns: Vec<u64>,
     writer: &Arc<EurocWriter>,
     progress: &dyn Progress,
 ) -> Result<Option<EurocCameraSink>, PipelineError> {
-    if job.spec.image.is_empty() {
+    if spec.image.is_empty() {
         for (frame, &t_ns) in camera.frames.iter().zip(&times_ns) {
             writer.copy_frame_ns(index, t_ns, &read_bytes(&frame.path)?)?;
             progress.advance()?;
@@ -172,7 +198,7 @@ fn write_camera(
         return Ok(None);
     }
     let source = EurocCameraSource::new(camera.frames.clone(), camera.camera.intrinsics);
-    let mut pipeline = Pipeline::new(ctx, source, &job.spec, seed)?;
+    let mut pipeline = Pipeline::new(ctx, source, spec, seed)?;
     let mut sink = EurocCameraSink::new(writer.clone(), index, times_ns);
     let sources: Vec<usize> = (0..camera.frames.len()).collect();
     pipeline.run(ctx, &sources, progress, &mut sink)?;
@@ -194,8 +220,19 @@ pub fn perturb_euroc(
         ));
     };
     check_file_names(&dataset)?;
+    let recorded = Rig {
+        name: "recorded".into(),
+        cameras: dataset.cameras.iter().map(|c| c.camera.clone()).collect(),
+        imu: dataset.imu.as_ref().map(|imu| imu.imu.clone()),
+    };
+    let perturbed = PerturbedRig::new(&recorded, &job.spec, job.seed)?;
     let seeds: Vec<u64> = (0..dataset.cameras.len())
         .map(|i| camera_seed(job.seed, i))
+        .collect();
+    let specs: Vec<PerturbSpec> = dataset
+        .cameras
+        .iter()
+        .map(|c| job.spec.for_camera(&c.camera.name))
         .collect();
     let cam0_times = times_s(cam0);
     let cam0_plan = FramePlan::recorded(
@@ -204,7 +241,7 @@ pub fn perturb_euroc(
             depth_offsets: &vec![0.0; cam0_times.len()],
             rate_hz: cam0.camera.rate_hz,
         },
-        &job.spec,
+        &specs[0],
         seeds[0],
     );
     let imu = perturb_recorded_imu(&dataset, &job.spec, job.seed)?;
@@ -220,6 +257,26 @@ pub fn perturb_euroc(
         (Some(perturbed), _) => perturbed.samples.len(),
         (None, recorded) => recorded.as_ref().map_or(0, |r| r.samples.len()),
     };
+    let mut extra = serde_json::json!({
+        "adapter": ctx.describe(),
+        "layout": "euroc",
+        "input": "recorded",
+        "cameras": dataset.cameras.iter().zip(&seeds).map(|(c, seed)| serde_json::json!({
+            "name": c.camera.name,
+            "frames": c.frames.len(),
+            "rate_hz": c.camera.rate_hz,
+            "seed": seed,
+        })).collect::<Vec<_>>(),
+        "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
+            "samples": imu_samples,
+            "copied": !imu.as_ref().is_some_and(|p| p.samples_changed),
+        })),
+        "ground_truth_copied": dataset.ground_truth.is_some()
+            && !imu.as_ref().is_some_and(|p| p.ground_truth_changed),
+    });
+    if !job.spec.calibration.is_empty() {
+        extra["calibration"] = perturbed.record(&recorded);
+    }
     let manifest = ManifestParts {
         command: &job.command,
         source: job.input.display().to_string(),
@@ -231,23 +288,7 @@ pub fn perturb_euroc(
         seed: job.seed,
         spec: &job.spec,
         plan: &cam0_plan,
-        extra: serde_json::json!({
-            "adapter": ctx.describe(),
-            "layout": "euroc",
-            "input": "recorded",
-            "cameras": dataset.cameras.iter().zip(&seeds).map(|(c, seed)| serde_json::json!({
-                "name": c.camera.name,
-                "frames": c.frames.len(),
-                "rate_hz": c.camera.rate_hz,
-                "seed": seed,
-            })).collect::<Vec<_>>(),
-            "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
-                "samples": imu_samples,
-                "copied": !imu.as_ref().is_some_and(|p| p.samples_changed),
-            })),
-            "ground_truth_copied": dataset.ground_truth.is_some()
-                && !imu.as_ref().is_some_and(|p| p.ground_truth_changed),
-        }),
+        extra,
     }
     .build()?;
     let manifest = with_imu_report(manifest, imu.as_ref().map(|p| &p.report))?;
@@ -271,16 +312,21 @@ pub fn perturb_euroc(
     }
     let writer = Arc::new(EurocWriter::open(
         &job.out,
-        dataset.cameras.iter().map(|c| c.camera.clone()).collect(),
-        dataset.imu.as_ref().map(|imu| imu.imu.clone()),
+        perturbed.written.cameras.clone(),
+        perturbed.written.imu.clone(),
     )?);
 
     progress.start(cameras.iter().map(|c| c.frames).sum(), "perturbing");
     let mut sinks = Vec::new();
-    for (i, ((camera, &seed), times_ns)) in
-        dataset.cameras.iter().zip(&seeds).zip(stamps).enumerate()
+    for (i, (((camera, &seed), times_ns), spec)) in dataset
+        .cameras
+        .iter()
+        .zip(&seeds)
+        .zip(stamps)
+        .zip(&specs)
+        .enumerate()
     {
-        let sink = write_camera(ctx, job, camera, (i, seed), times_ns, &writer, progress)?;
+        let sink = write_camera(ctx, spec, camera, (i, seed), times_ns, &writer, progress)?;
         sinks.extend(sink);
     }
     for sink in sinks {
@@ -288,7 +334,7 @@ pub fn perturb_euroc(
     }
     progress.finish();
 
-    write_sensor_files(&dataset, imu.as_ref(), &writer)?;
+    write_sensor_files(&dataset, &perturbed.written, imu.as_ref(), &writer)?;
     let writer = Arc::try_unwrap(writer)
         .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
     let manifest = writer.finish(manifest)?;
@@ -306,9 +352,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn only_image_corruptions_pass_and_the_first_other_item_is_named() {
+    fn only_image_corruptions_and_calibration_items_pass_and_the_first_other_item_is_named() {
         check_euroc_spec(&PerturbSpec::parse("gaussian_noise:3,fog:2@dynamic").unwrap()).unwrap();
         check_euroc_spec(&PerturbSpec::parse("imu_noise:2,cam_imu_offset:3").unwrap()).unwrap();
+        check_euroc_spec(
+            &PerturbSpec::parse(
+                "cam1:fog:2,baseline:0.01@calibration,imu0:extrinsic_rot:1@calibration",
+            )
+            .unwrap(),
+        )
+        .unwrap();
         for (text, item) in [
             ("fog:2,depth_noise:3", "depth_noise:3"),
             ("fast:2", "fast:2"),
@@ -320,11 +373,27 @@ mod tests {
             let err = check_euroc_spec(&spec).unwrap_err().to_string();
             assert!(
                 err.starts_with(&format!(
-                    "--perturb: '{item}': EuRoC inputs take image corruptions and IMU items only for now"
+                    "--perturb: '{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now"
                 )),
                 "{err}"
             );
             assert!(!err.contains('\n'), "{err}");
+        }
+        for (text, fix) in [
+            ("baseline:0.01", "baseline:0.01@calibration"),
+            ("baseline:0.01@dynamic", "baseline:0.01@calibration"),
+            (
+                "cam1:extrinsic_trans:0.02",
+                "cam1:extrinsic_trans:0.02@calibration",
+            ),
+        ] {
+            let err = check_euroc_spec(&PerturbSpec::parse(text).unwrap())
+                .unwrap_err()
+                .to_string();
+            assert!(
+                err.contains("a recorded dataset cannot be re-rendered") && err.ends_with(fix),
+                "{err}"
+            );
         }
     }
 }

@@ -10,7 +10,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use rslam_core::dataset::euroc::{EurocWriter, GroundTruthState, ImuSample as ImuRow};
+use rslam_core::dataset::euroc::{EurocImu, EurocWriter, GroundTruthState, ImuSample as ImuRow};
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::hash::splitmix64;
 use rslam_core::{CoreError, SplineSe3};
@@ -18,6 +18,7 @@ use rslam_gpu::GpuContext;
 use rslam_perturb::imu::{ImuOrigin, ImuReport};
 use rslam_perturb::PerturbSpec;
 
+use super::calibration::{PerturbedRig, PER_FRAME_FILE};
 use super::camera_sink::EurocCameraSink;
 use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::motion::{
@@ -83,9 +84,10 @@ pub fn imu_seed(seed: u64) -> u64 {
 }
 
 /// Refuses what a rig cannot do yet: items that change the frame plan (`fast`, `misalign`) or
-/// the path (`rot`, `trans`). Image and depth corruptions and the shutter (`exposure`,
-/// `rolling_shutter`) apply to every camera; EuRoC cameras have no depth, so depth items change
-/// nothing written.
+/// the path (`rot`, `trans`). Image and depth corruptions apply to every camera or the one named
+/// (`cam1:fog:3`), the shutter (`exposure`, `rolling_shutter`) to every camera; EuRoC cameras
+/// have no depth, so depth items change nothing written. Calibration items and the sensors named
+/// are checked against the rig by [`PerturbedRig::new`].
 pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     let refused = [
         ("fast", spec.fast.is_some()),
@@ -106,6 +108,8 @@ pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
 struct CameraRun {
     times_s: Vec<f64>,
     seed: u64,
+    /// The job's spec as it applies to this camera's frames.
+    spec: PerturbSpec,
 }
 
 pub fn render_euroc(
@@ -117,6 +121,7 @@ pub fn render_euroc(
     let Some(cam0) = job.rig.cameras.first() else {
         return Err(PipelineError::option("--rig", "the rig has no camera"));
     };
+    let perturbed = PerturbedRig::new(&job.rig, &job.scene.spec, job.scene.seed)?;
     let resolved = job.scene.resolve()?;
     let body = body_path(&resolved.clean, &cam0.body_from_camera);
     let spline = SplineSe3::from_trajectory(&body).map_err(|e| match e {
@@ -134,16 +139,23 @@ pub fn render_euroc(
         .map(|(i, camera)| CameraRun {
             times_s: sample_times(&spline, camera.rate_hz),
             seed: camera_seed(job.scene.seed, i),
+            spec: job.scene.spec.for_camera(&camera.name),
         })
         .collect();
     let cam0_plan = FramePlan::rendered(
         runs[0].times_s.len(),
         cam0.rate_hz,
-        &job.scene.spec,
+        &runs[0].spec,
         runs[0].seed,
     );
     let imu_seed = imu_seed(job.scene.seed);
-    let streams = imu_and_ground_truth(job, &spline, imu_seed, &runs[0].times_s)?;
+    let streams = imu_and_ground_truth(
+        job,
+        perturbed.actual.imu.as_ref(),
+        &spline,
+        imu_seed,
+        &runs[0].times_s,
+    )?;
     let mut extra = serde_json::json!({
         "adapter": ctx.describe(),
         "layout": "euroc",
@@ -161,6 +173,9 @@ pub fn render_euroc(
         })),
     });
     record_agent(&mut extra, &job.scene);
+    if !job.scene.spec.calibration.is_empty() {
+        extra["calibration"] = perturbed.record(&job.rig);
+    }
     let manifest = ManifestParts {
         command: &job.command,
         source: resolved.scene.name.clone(),
@@ -198,24 +213,29 @@ pub fn render_euroc(
     }
     let writer = Arc::new(EurocWriter::open(
         &job.out,
-        job.rig.cameras.clone(),
-        job.rig.imu.clone(),
+        perturbed.written.cameras.clone(),
+        perturbed.written.imu.clone(),
     )?);
 
     let total = runs.iter().map(|r| r.times_s.len()).sum();
     progress.start(total, "rendering");
     let mut sinks = Vec::new();
     for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
-        let poses = camera_poses(&spline, camera, &run.times_s)?;
+        let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
         let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
-        source.set_shutter(ctx, &job.scene.spec, camera.rate_hz)?;
-        let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, run.seed)?;
+        source.set_shutter(ctx, &run.spec, camera.rate_hz)?;
+        let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
         let times_ns = run
             .times_s
             .iter()
             .map(|&t| nanoseconds(t))
             .collect::<Result<Vec<_>, _>>()?;
         let times_ns = camera_stamps(&job.scene.spec, &camera.name, &times_ns)?;
+        if i == 1 {
+            if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
+                writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
+            }
+        }
         let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
         let sources: Vec<usize> = (0..run.times_s.len()).collect();
         pipeline.run(ctx, &sources, progress, &mut sink)?;
@@ -250,18 +270,19 @@ struct Streams {
     report: Option<ImuReport>,
 }
 
-/// The IMU synthesised along the spline (its noise scaled by `imu_noise`), the ground truth at
-/// its samples (at `cam0_times` without an IMU), then the other IMU items, drawn from the job's
-/// seed. The IMU is cheap beside the frames: made before them so that the manifest can say what
-/// was drawn.
+/// `imu` (the rig's IMU as mounted) synthesised along the spline (its noise scaled by
+/// `imu_noise`), the ground truth at its samples (at `cam0_times` without an IMU), then the other
+/// IMU items, drawn from the job's seed. The IMU is cheap beside the frames: made before them so
+/// that the manifest can say what was drawn.
 fn imu_and_ground_truth(
     job: &RigRenderJob,
+    imu: Option<&EurocImu>,
     spline: &SplineSe3,
     imu_seed: u64,
     cam0_times: &[f64],
 ) -> Result<Streams, PipelineError> {
     let spec = &job.scene.spec;
-    let Some(imu) = &job.rig.imu else {
+    let Some(imu) = imu else {
         refuse_imu_items(spec, &format!("the '{}' rig", job.rig.name))?;
         return Ok(Streams {
             imu: Vec::new(),

@@ -16,9 +16,16 @@
 //! - [`imu_items`]: the spec's IMU items (`imu_noise`, `imu_bias_step`, …) on the rig's IMU
 //!   stream and ground truth, `cam_imu_offset` on the camera stamps; refused without an IMU.
 //!
-//! Not built yet: `rgbd` and `rgbd-imu` presets, per-sensor spec items, frame-by-frame resume
-//! (an unfinished rig output is started over).
+//! - [`calibration`]: [`PerturbedRig`], the rig as mounted and as calibrated under the spec's
+//!   `baseline` and `extrinsic_*` items.
+//!
+//! Image and depth items reach every camera, or only the one they name (`cam1:fog:3`,
+//! [`rslam_perturb::PerturbSpec::for_camera`]).
+//!
+//! Not built yet: `rgbd` and `rgbd-imu` presets, frame-by-frame resume (an unfinished rig output
+//! is started over).
 
+pub mod calibration;
 mod camera_sink;
 pub mod euroc_perturb;
 pub mod euroc_render;
@@ -28,6 +35,7 @@ mod motion;
 mod output;
 pub mod preset;
 
+pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
 pub use euroc_render::{
     camera_seed, check_rig_spec, imu_seed, render_euroc, CameraFrames, RigRenderJob, RigReport,

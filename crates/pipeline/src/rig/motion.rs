@@ -2,7 +2,7 @@
 //! the IMU and ground-truth rows of the EuRoC layout.
 
 use rslam_core::dataset::euroc::{
-    nanoseconds_from_seconds, EurocCamera, EurocImu, GroundTruthState, ImuSample as ImuRow,
+    nanoseconds_from_seconds, EurocImu, GroundTruthState, ImuSample as ImuRow,
 };
 use rslam_core::imu::{synthesize_imu, ImuNoise, ImuSample, ImuSynthesis};
 use rslam_core::{Pose, SplineSe3, Trajectory};
@@ -35,17 +35,19 @@ pub fn sample_times(spline: &SplineSe3, rate_hz: f64) -> Vec<f64> {
         .collect()
 }
 
-/// Camera poses at `times`: `world_from_body(t) ∘ body_from_camera`.
+/// Camera poses at `times`: `world_from_body(t_k) ∘ body_from_camera(k)` for frame k (the
+/// camera's placement may change from frame to frame: `baseline@dynamic`).
 pub fn camera_poses(
     spline: &SplineSe3,
-    camera: &EurocCamera,
+    body_from_camera: impl Fn(usize) -> Pose,
     times: &[f64],
 ) -> Result<Vec<Pose>, PipelineError> {
     times
         .iter()
-        .map(|&t| {
+        .enumerate()
+        .map(|(k, &t)| {
             let state = spline.evaluate(t)?;
-            Ok(state.world_from_body.compose(&camera.body_from_camera))
+            Ok(state.world_from_body.compose(&body_from_camera(k)))
         })
         .collect()
 }

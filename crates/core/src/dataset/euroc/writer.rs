@@ -325,6 +325,22 @@ impl EurocWriter {
         Ok(())
     }
 
+    /// Writes `bytes` as `<root>/<name>`, beside the manifest: a record of the run that does not
+    /// fit in it (per-frame values). `name` is a plain file name; hashed like every other file.
+    pub fn write_record(&self, name: &str, bytes: &[u8]) -> Result<(), CoreError> {
+        let plain = !name.starts_with('.')
+            && name
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'.' || b == b'-');
+        if !plain || name.is_empty() || name == MAV_DIR {
+            return Err(CoreError::bad_file(
+                self.root().join(crate::printable(name)),
+                "expected a plain file name for a record beside the manifest",
+            ));
+        }
+        self.content.write(name, bytes)
+    }
+
     /// Appends IMU samples, each after the last one. Requires an IMU given to `open`.
     pub fn write_imu(&self, samples: &[ImuSample]) -> Result<(), CoreError> {
         if self.imu.is_none() {

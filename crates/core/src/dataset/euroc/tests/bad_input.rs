@@ -267,4 +267,15 @@ fn the_writer_refuses_symlinks_bad_names_and_an_absent_imu() {
     };
     let error = writer.write_imu(&[sample]).unwrap_err().to_string();
     assert!(error.contains("opened without an IMU"), "{error}");
+    for name in ["../x.csv", "mav0", "", ".hidden", "a/b.csv"] {
+        let error = writer.write_record(name, b"x").unwrap_err().to_string();
+        assert!(
+            error.contains("expected a plain file name"),
+            "{name}: {error}"
+        );
+    }
+    writer
+        .write_record("calibration_per_frame.csv", b"x")
+        .unwrap();
+    assert!(dir.path().join("calibration_per_frame.csv").is_file());
 }

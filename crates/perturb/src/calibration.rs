@@ -1,0 +1,228 @@
+//! Calibration perturbations of a multi-sensor rig: `baseline:σ`, `extrinsic_rot:DEG` and
+//! `extrinsic_trans:M`, each in one of two modes.
+//!
+//! - rendered (the default): the sensor really sits elsewhere (the mount moved). Images and IMU
+//!   readings are made with the perturbed placement; the calibration files state the nominal one.
+//! - `@calibration`: the sensor is where it should be, images are nominal, and the written
+//!   calibration is perturbed (what the seed paper did to the real EuRoC sequences).
+//!
+//! Draws (perturbations.md §2): a sensor's draws are keyed by (that sensor's seed, item name,
+//! frame, purpose); a per-sequence draw is frame 0's. What each item moves:
+//! - `baseline:σ` moves cam1 by δ ~ N(0, σ) metres along cam0's x axis (the baseline axis of a
+//!   rectified pair), once per sequence, or per cam1 frame with `@dynamic` (rendered only: a
+//!   calibration file holds one value).
+//! - `extrinsic_rot:DEG` turns the sensor about its own centre, `T_BS' = T_BS · Rx(αx)·Ry(αy)·Rz(αz)`
+//!   with α ~ N(0, DEG°) per axis of the sensor's frame.
+//! - `extrinsic_trans:M` shifts the sensor by Δt ~ N(0, M) per axis of its own frame.
+//!
+//! `SENSOR:extrinsic_*` moves that sensor (`cam1`, `imu0`); without a sensor each camera draws its
+//! own offset (the IMU, the body frame's reference, only when named).
+
+use std::fmt;
+
+use glam::{DQuat, DVec3};
+use rslam_core::Pose;
+use serde::{Deserialize, Serialize};
+
+use crate::rng::RngKey;
+
+pub const BASELINE: &str = "baseline";
+pub const EXTRINSIC_ROT: &str = "extrinsic_rot";
+pub const EXTRINSIC_TRANS: &str = "extrinsic_trans";
+/// Every calibration item name, in the order `rslam list` shows them.
+pub const NAMES: [&str; 3] = [BASELINE, EXTRINSIC_ROT, EXTRINSIC_TRANS];
+
+const PURPOSE_OFFSET: u32 = 1;
+
+/// Where a calibration perturbation shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CalibrationMode {
+    /// Images and IMU made with the perturbed rig; the files state the nominal one.
+    Rendered,
+    /// Images and IMU nominal; the files state the perturbed rig.
+    Calibration,
+}
+
+/// One calibration item of a spec.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CalibrationItem {
+    /// One of [`NAMES`].
+    pub name: String,
+    /// The sensor it moves (`cam1`, `imu0`); `None`: every camera (`baseline`: cam1).
+    pub sensor: Option<String>,
+    /// Standard deviation: metres (`baseline`, `extrinsic_trans`) or degrees (`extrinsic_rot`).
+    pub sigma: f64,
+    pub mode: CalibrationMode,
+    /// A new draw on every frame (`baseline@dynamic`).
+    pub dynamic: bool,
+}
+
+impl CalibrationItem {
+    /// `name:value[@mode]` addressed to `sensor`; the error is the message for the item.
+    pub fn parse(
+        sensor: Option<&str>,
+        name: &str,
+        value: &str,
+        mode: Option<&str>,
+    ) -> Result<Self, String> {
+        let unit = if name == EXTRINSIC_ROT {
+            "degrees"
+        } else {
+            "metres"
+        };
+        let sigma = value
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v >= 0.0)
+            .ok_or_else(|| {
+                format!("expected a standard deviation in {unit} ≥ 0, e.g. {name}:0.01")
+            })?;
+        if name == BASELINE && sensor.is_some() {
+            return Err("baseline moves cam1 along cam0's x axis and takes no sensor".into());
+        }
+        let (mode, dynamic) = match mode {
+            None => (CalibrationMode::Rendered, false),
+            Some("calibration") => (CalibrationMode::Calibration, false),
+            Some("dynamic") if name == BASELINE => (CalibrationMode::Rendered, true),
+            Some(m) => {
+                let valid = if name == BASELINE {
+                    "@calibration, @dynamic"
+                } else {
+                    "@calibration"
+                };
+                return Err(format!(
+                    "unknown mode '@{m}'; valid: {valid} (rendered is the default)"
+                ));
+            }
+        };
+        Ok(Self {
+            name: name.to_string(),
+            sensor: sensor.map(str::to_string),
+            sigma,
+            mode,
+            dynamic,
+        })
+    }
+
+    /// Whether this item moves `sensor` (`cam0`, `imu0`, …; `cam1` for `baseline`).
+    pub fn moves(&self, sensor: &str) -> bool {
+        match (&self.sensor, self.name.as_str()) {
+            (_, BASELINE) => sensor == "cam1",
+            (Some(s), _) => s == sensor,
+            (None, _) => sensor.starts_with("cam"),
+        }
+    }
+
+    /// Three draws ~ N(0, σ) for frame `frame` (0 for a per-sequence draw) with the moved
+    /// sensor's `seed`.
+    fn draw3(&self, seed: u64, frame: u32) -> DVec3 {
+        let key = RngKey::new(seed, &self.name, frame, PURPOSE_OFFSET);
+        DVec3::from_array(std::array::from_fn(|axis| {
+            self.sigma * key.normal_f64([axis as u32, 0, 0, 0])
+        }))
+    }
+
+    /// `baseline`'s δ in metres on frame `frame` (frame 0 for a per-sequence draw), drawn with
+    /// cam1's seed.
+    pub fn baseline_offset(&self, cam1_seed: u64, frame: u32) -> f64 {
+        self.draw3(cam1_seed, frame).x
+    }
+
+    /// `T_BS` of the sensor after an `extrinsic_*` item with the sensor's `seed`.
+    pub fn apply_extrinsic(&self, body_from_sensor: &Pose, seed: u64) -> Pose {
+        let d = self.draw3(seed, 0);
+        let delta = if self.name == EXTRINSIC_ROT {
+            let a = d * std::f64::consts::PI / 180.0;
+            let rotation = DQuat::from_rotation_x(a.x)
+                * DQuat::from_rotation_y(a.y)
+                * DQuat::from_rotation_z(a.z);
+            Pose::new(rotation, DVec3::ZERO)
+        } else {
+            Pose::new(DQuat::IDENTITY, d)
+        };
+        body_from_sensor.compose(&delta)
+    }
+}
+
+/// cam1's `T_BS` moved by `delta` metres along cam0's x axis.
+pub fn move_along_baseline(body_from_cam0: &Pose, body_from_cam1: &Pose, delta: f64) -> Pose {
+    Pose::new(
+        body_from_cam1.rotation,
+        body_from_cam1.translation + body_from_cam0.rotation * DVec3::X * delta,
+    )
+}
+
+impl fmt::Display for CalibrationItem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(sensor) = &self.sensor {
+            write!(f, "{sensor}:")?;
+        }
+        write!(f, "{}:{}", self.name, self.sigma)?;
+        match (self.mode, self.dynamic) {
+            (CalibrationMode::Calibration, _) => write!(f, "@calibration"),
+            (CalibrationMode::Rendered, true) => write!(f, "@dynamic"),
+            (CalibrationMode::Rendered, false) => Ok(()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn item(text: &str) -> CalibrationItem {
+        let spec = crate::PerturbSpec::parse(text).unwrap();
+        assert_eq!(spec.calibration.len(), 1, "{text}");
+        spec.calibration[0].clone()
+    }
+
+    #[test]
+    fn per_sequence_draws_are_normal_with_the_stated_sigma_across_seeds() {
+        let baseline = item("baseline:0.01");
+        let draws: Vec<f64> = (0..4000u64)
+            .map(|seed| baseline.baseline_offset(seed, 0))
+            .collect();
+        let n = draws.len() as f64;
+        let mean = draws.iter().sum::<f64>() / n;
+        let std = (draws.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        assert!(mean.abs() < 4.0 * 0.01 / n.sqrt(), "mean {mean}");
+        assert!((std / 0.01 - 1.0).abs() < 0.05, "std {std}");
+    }
+
+    #[test]
+    fn extrinsic_rot_turns_about_the_sensor_centre_and_trans_shifts_in_its_frame() {
+        let t_bs = Pose::new(DQuat::from_rotation_z(0.7), DVec3::new(0.1, -0.2, 0.3));
+        let rot = item("cam1:extrinsic_rot:2").apply_extrinsic(&t_bs, 5);
+        assert_eq!(rot.translation, t_bs.translation);
+        let angle = rot.rotation.angle_between(t_bs.rotation).to_degrees();
+        assert!(angle > 0.0 && angle < 4.0 * 2.0 * 3f64.sqrt(), "{angle}");
+        let trans = item("imu0:extrinsic_trans:0.01").apply_extrinsic(&t_bs, 5);
+        assert!(trans.rotation.angle_between(t_bs.rotation) < 1e-12);
+        let shift = trans.translation - t_bs.translation;
+        assert!(shift.length() > 0.0 && shift.length() < 0.06, "{shift}");
+        // The same item, seed and sensor pose give the same draw; another seed another.
+        assert_eq!(item("cam1:extrinsic_rot:2").apply_extrinsic(&t_bs, 5), rot);
+        assert_ne!(item("cam1:extrinsic_rot:2").apply_extrinsic(&t_bs, 6), rot);
+    }
+
+    #[test]
+    fn the_baseline_moves_cam1_along_cam0_x() {
+        let cam0 = Pose::new(DQuat::from_rotation_y(0.5), DVec3::new(1.0, 2.0, 3.0));
+        let cam1 = cam0.compose(&Pose::new(DQuat::IDENTITY, DVec3::X * 0.11));
+        let moved = move_along_baseline(&cam0, &cam1, 0.02);
+        let cam0_from_cam1 = cam0.inverse().compose(&moved);
+        assert!((cam0_from_cam1.translation - DVec3::X * 0.13).length() < 1e-12);
+    }
+
+    #[test]
+    fn which_sensors_an_item_moves() {
+        assert!(item("baseline:0.01").moves("cam1"));
+        assert!(!item("baseline:0.01").moves("cam0"));
+        let every_camera = item("extrinsic_rot:1");
+        assert!(every_camera.moves("cam0") && every_camera.moves("cam1"));
+        assert!(!every_camera.moves("imu0"));
+        assert!(item("imu0:extrinsic_trans:0.01").moves("imu0"));
+        assert!(!item("cam1:extrinsic_trans:0.01").moves("cam0"));
+    }
+}
