@@ -8,7 +8,7 @@ use rslam_core::dataset::{
     read_dataset, read_rgb, DatasetFormat, DatasetOverrides, DatasetWriter, DepthPng, Manifest,
     OutputFrame,
 };
-use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage, Trajectory};
+use rslam_core::{DepthImage, Distortion, Intrinsics, Pose, RgbImage, Trajectory};
 
 const CAMERA: Intrinsics = Intrinsics {
     width: 8,
@@ -79,7 +79,18 @@ fn write(root: &Path, format: DatasetFormat) {
 }
 
 fn write_encoded(root: &Path, format: DatasetFormat, depth_png: DepthPng) {
-    let writer = DatasetWriter::open(root, format, CAMERA, depth_png).unwrap();
+    write_through(root, format, depth_png, None);
+}
+
+fn write_through(
+    root: &Path,
+    format: DatasetFormat,
+    depth_png: DepthPng,
+    distortion: Option<Distortion>,
+) {
+    let writer = DatasetWriter::open(root, format, CAMERA, depth_png)
+        .unwrap()
+        .with_distortion(distortion);
     let frames = frames();
     for (j, frame) in frames.iter().enumerate() {
         let mut color = RgbImage::new(CAMERA.width, CAMERA.height);
@@ -157,6 +168,38 @@ fn both_layouts_read_back_what_was_written() {
             }
         }
     }
+}
+
+/// A lens goes into cam_params.json in OpenCV's coefficient order, exactly; a dataset without
+/// one keeps the plain Replica file.
+#[test]
+fn cam_params_carry_the_lens() {
+    let camera_json = |root: &Path| -> serde_json::Value {
+        let text = std::fs::read_to_string(root.join("cam_params.json")).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()["camera"].clone()
+    };
+    for (text, model) in [
+        ("radtan(-0.28,0.07,0.0002,-0.00003)", "radtan"),
+        ("equidistant(0.1,-0.02,0.003,-0.0004)", "equidistant"),
+    ] {
+        let lens = Distortion::parse(text).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        write_through(
+            dir.path(),
+            DatasetFormat::Replica,
+            DepthPng::Fast,
+            Some(lens),
+        );
+        let camera = camera_json(dir.path());
+        assert_eq!(camera["distortion_model"], model);
+        let written: Vec<f64> = serde_json::from_value(camera["distortion"].clone()).unwrap();
+        assert_eq!(written, lens.coefficients());
+        assert_eq!(camera["fx"], CAMERA.fx);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), DatasetFormat::Replica);
+    let camera = camera_json(dir.path());
+    assert!(camera.get("distortion").is_none() && camera.get("distortion_model").is_none());
 }
 
 #[test]

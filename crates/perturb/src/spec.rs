@@ -7,15 +7,17 @@
 //!        | 'rot:' DEGREES ['@smooth'] | 'trans:' METRES ['@smooth']
 //!        | 'fast:' K | 'misalign:' FRAMES ['@dynamic']
 //!        | 'exposure:' MS ['@' K] | 'rolling_shutter:' MS      sensor effects (need a scene)
+//!        | 'distortion:' ('radtan' | 'equidistant') '(' C ',' C ',' C ',' C ')'
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)
 //! ```
 //!
-//! Whatever the written order, the pipeline order is trajectory → render (with the sensor
-//! effects) → image → depth → stream; inside the image and depth groups the written order is the order applied.
+//! Commas inside parentheses belong to their item. Whatever the written order, the pipeline
+//! order is trajectory → render (with the sensor effects) → image → depth → stream; inside the image and depth groups the written order is the order applied.
 
 use std::fmt;
 use std::str::FromStr;
 
+use rslam_core::Distortion;
 use serde::{Deserialize, Serialize};
 
 use crate::catalogue::{self, CATALOGUE};
@@ -43,6 +45,9 @@ pub struct PerturbSpec {
     /// `rolling_shutter:MS`: rows read out over MS milliseconds.
     #[serde(default)]
     pub rolling_shutter: Option<RollingShutter>,
+    /// `distortion:MODEL(…)`: the lens the frames are seen through.
+    #[serde(default)]
+    pub distortion: Option<Distortion>,
 }
 
 /// One image or depth corruption of a spec.
@@ -82,7 +87,7 @@ impl PerturbSpec {
     pub fn parse(text: &str) -> Result<Self, PerturbError> {
         let mut spec = PerturbSpec::default();
         let mut seen: Vec<String> = Vec::new();
-        for raw in text.split(',') {
+        for raw in split_items(text)? {
             let item = raw.trim();
             if item.is_empty() {
                 return Err(PerturbError::spec(
@@ -167,6 +172,9 @@ impl PerturbSpec {
             sensor::rolling_shutter::NAME => {
                 self.rolling_shutter = Some(RollingShutter::parse(value, mode).map_err(err)?)
             }
+            sensor::distortion::NAME => {
+                self.distortion = Some(sensor::distortion::parse(value, mode).map_err(err)?)
+            }
             _ => {
                 let entry = catalogue::find(name).ok_or_else(|| {
                     err(format!(
@@ -220,13 +228,41 @@ impl PerturbSpec {
     fn sensor_items(&self) -> Vec<String> {
         let exposure = self.exposure.map(|e| e.to_string());
         let rolling = self.rolling_shutter.map(|r| r.to_string());
-        exposure.into_iter().chain(rolling).collect()
+        let lens = self.distortion.as_ref().map(sensor::distortion::item);
+        exposure.into_iter().chain(rolling).chain(lens).collect()
     }
 
     /// Image then depth items, in the order they are applied.
     pub fn frame_items(&self) -> impl Iterator<Item = &FrameItem> {
         self.image.iter().chain(&self.depth)
     }
+}
+
+/// The items of `text`: split at the commas outside parentheses.
+fn split_items(text: &str) -> Result<Vec<&str>, PerturbError> {
+    let unbalanced = || {
+        PerturbError::spec(
+            text,
+            "unbalanced parentheses; expected NAME:MODEL(a,b,…) items, e.g. distortion:radtan(-0.28,0.07,0.0002,0.00002)",
+        )
+    };
+    let (mut items, mut start, mut depth) = (Vec::new(), 0, 0usize);
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = depth.checked_sub(1).ok_or_else(unbalanced)?,
+            ',' if depth == 0 => {
+                items.push(&text[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    if depth != 0 {
+        return Err(unbalanced());
+    }
+    items.push(&text[start..]);
+    Ok(items)
 }
 
 fn parse_non_negative(value: &str) -> Option<f64> {
@@ -306,8 +342,8 @@ impl fmt::Display for FrameItem {
 }
 
 impl fmt::Display for PerturbSpec {
-    /// Canonical pipeline order: rot, trans, exposure, rolling_shutter, image items, depth
-    /// items, fast, misalign.
+    /// Canonical pipeline order: rot, trans, exposure, rolling_shutter, distortion, image
+    /// items, depth items, fast, misalign.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut parts = self.scene_items();
         parts.extend(self.frame_items().map(|item| item.to_string()));

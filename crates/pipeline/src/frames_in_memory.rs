@@ -60,7 +60,7 @@ impl FramesInMemory<SceneSource> {
         resolved: crate::scene_job::ResolvedScene,
     ) -> Result<Self, PipelineError> {
         let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
-        source.set_shutter(ctx, &job.spec, job.rate_hz)?;
+        source.set_sensor(ctx, &job.spec, job.rate_hz)?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, &job.spec, job.seed)?,
             plan: resolved.plan,
@@ -93,10 +93,7 @@ impl FramesInMemory<SceneSource> {
         };
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
-        let shutter_changed = self
-            .pipeline
-            .source_mut()
-            .set_shutter(ctx, spec, *rate_hz)?;
+        let shutter_changed = self.pipeline.source_mut().set_sensor(ctx, spec, *rate_hz)?;
         if deviated.poses != self.pipeline.source().poses() || shutter_changed {
             self.pipeline.source_mut().set_poses(deviated.poses);
             self.generation += 1;

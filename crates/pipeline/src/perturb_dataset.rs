@@ -61,7 +61,7 @@ pub fn check_dataset_spec(
     if let Some(item) = spec.scene_items().first() {
         return Err(PipelineError::option(
             "--perturb",
-            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
+            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter, distortion) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
         ));
     }
     if !spec.depth.is_empty() {
@@ -107,6 +107,7 @@ pub fn perturb_dataset(
         out: &job.out,
         format: dataset.format,
         camera: dataset.intrinsics,
+        distortion: None,
         force: job.force,
         plan: &plan,
         ground_truth: &ground_truth,

@@ -77,7 +77,7 @@ pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
 /// Refuses items that act on a sequence or a scene rather than on each frame.
 pub fn check_frame_items_only(spec: &PerturbSpec) -> Result<(), PipelineError> {
     if spec.fast.is_some() || spec.misalign.is_some() || spec.needs_scene() {
-        return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure and rolling_shutter on scenes; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
+        return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure, rolling_shutter and distortion on scenes; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
     }
     Ok(())
 }

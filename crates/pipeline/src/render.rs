@@ -47,12 +47,13 @@ pub fn render_dataset(
     }
     .build()?;
     let mut source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
-    source.set_shutter(ctx, &job.scene.spec, job.scene.rate_hz)?;
+    source.set_sensor(ctx, &job.scene.spec, job.scene.rate_hz)?;
     let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, job.scene.seed)?;
     let output = DatasetOutput {
         out: &job.out,
         format: job.format,
         camera,
+        distortion: job.scene.spec.distortion,
         force: job.force,
         plan: &resolved.plan,
         ground_truth: &ground_truth,

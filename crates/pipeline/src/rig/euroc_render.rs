@@ -15,6 +15,7 @@ use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::hash::splitmix64;
 use rslam_core::{CoreError, SplineSe3};
 use rslam_gpu::GpuContext;
+use rslam_perturb::sensor::distortion;
 use rslam_perturb::PerturbSpec;
 
 use super::camera_sink::EurocCameraSink;
@@ -80,7 +81,7 @@ pub fn imu_seed(seed: u64) -> u64 {
 }
 
 /// Refuses what a rig cannot do yet: items that change the frame plan (`fast`, `misalign`) or
-/// the path (`rot`, `trans`). Image and depth corruptions and the shutter (`exposure`,
+/// the path (`rot`, `trans`), and a lens (`distortion`). Image and depth corruptions and the shutter (`exposure`,
 /// `rolling_shutter`) apply to every camera; EuRoC cameras have no depth, so depth items change
 /// nothing written.
 pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
@@ -90,10 +91,16 @@ pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
         ("rot", spec.rotation.is_some()),
         ("trans", spec.translation.is_some()),
     ];
-    match refused.iter().find(|(_, given)| *given) {
-        Some((name, _)) => Err(PipelineError::option(
+    if let Some((name, _)) = refused.iter().find(|(_, given)| *given) {
+        return Err(PipelineError::option(
             "--perturb",
             format!("'{name}': rigs do not support it yet (it changes the frame plan or the path); image, depth and shutter items work"),
+        ));
+    }
+    match &spec.distortion {
+        Some(lens) => Err(PipelineError::option(
+            "--perturb",
+            format!("'{}': rigs do not support it yet (their sensor.yaml and stereo settings describe undistorted, rectified cameras); image, depth and shutter items work", distortion::item(lens)),
         )),
         None => Ok(()),
     }
@@ -206,7 +213,7 @@ pub fn render_euroc(
     for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
         let poses = camera_poses(&spline, camera, &run.times_s)?;
         let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
-        source.set_shutter(ctx, &job.scene.spec, camera.rate_hz)?;
+        source.set_sensor(ctx, &job.scene.spec, camera.rate_hz)?;
         let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, run.seed)?;
         let times_ns = run
             .times_s
