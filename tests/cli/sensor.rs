@@ -61,8 +61,8 @@ fn render_blurs_along_the_path_and_perturb_refuses_sensor_items() {
 }
 
 /// Through a lens: the frames change, the ground truth does not, the manifest records the lens,
-/// cam_params.json (Replica) and orbslam3.yaml (TUM) carry it; a recorded dataset and a rig
-/// refuse it with one line naming the item.
+/// cam_params.json (Replica) and orbslam3.yaml (TUM) carry it, and so does a perturbed copy; a
+/// recorded dataset and a rig refuse it with one line naming the item.
 #[test]
 fn render_through_a_lens_writes_it_into_the_camera_files() {
     let ws = Workspace::new();
@@ -87,10 +87,10 @@ fn render_through_a_lens_writes_it_into_the_camera_files() {
     render("clean", "replica", None);
     render("lens", "replica", Some(lens));
     let root = ws.path("lens");
-    let manifest = manifest(&root);
-    assert_eq!(manifest.perturbation, lens);
+    let recorded = manifest(&root);
+    assert_eq!(recorded.perturbation, lens);
     assert_eq!(
-        manifest.perturbation_parsed["distortion"]["model"],
+        recorded.perturbation_parsed["distortion"]["model"],
         "equidistant"
     );
     assert_ne!(replica_rgb(&root, 1), replica_rgb(&ws.path("clean"), 1));
@@ -119,6 +119,21 @@ fn render_through_a_lens_writes_it_into_the_camera_files() {
     ] {
         assert!(yaml.contains(line), "orbslam3.yaml lacks '{line}':\n{yaml}");
     }
+    ws.rslam(&[
+        "perturb",
+        "--input",
+        "lens",
+        "--out",
+        "fog",
+        "--perturb",
+        "fog:1",
+    ])
+    .success();
+    let fog: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(ws.path("fog/cam_params.json")).unwrap())
+            .unwrap();
+    assert_eq!(fog["camera"], cam["camera"], "perturbing keeps the lens");
+    assert_eq!(manifest(&ws.path("fog")).distortion, recorded.distortion);
     ws.rslam(&[
         "perturb",
         "--input",

@@ -49,20 +49,28 @@ impl Distortion {
                 values.len()
             ));
         };
-        match model.trim() {
-            Self::RADTAN => Ok(Self::Radtan {
+        let model = model.trim();
+        Self::from_coefficients(model, [a, b, c, d])
+            .ok_or_else(|| format!("unknown lens model '{model}'; {expected}"))
+    }
+
+    /// The lens of `model` ([`Distortion::RADTAN`] or [`Distortion::EQUIDISTANT`]) with
+    /// [`Distortion::coefficients`] `[a, b, c, d]`; `None` for another model.
+    pub fn from_coefficients(model: &str, [a, b, c, d]: [f64; 4]) -> Option<Self> {
+        match model {
+            Self::RADTAN => Some(Self::Radtan {
                 k1: a,
                 k2: b,
                 p1: c,
                 p2: d,
             }),
-            Self::EQUIDISTANT => Ok(Self::Equidistant {
+            Self::EQUIDISTANT => Some(Self::Equidistant {
                 k1: a,
                 k2: b,
                 k3: c,
                 k4: d,
             }),
-            other => Err(format!("unknown lens model '{other}'; {expected}")),
+            _ => None,
         }
     }
 

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use rslam_core::dataset::{DatasetFormat, DatasetWriter, Manifest};
-use rslam_core::{Distortion, Intrinsics, Trajectory};
+use rslam_core::{Intrinsics, Trajectory};
 use rslam_gpu::GpuContext;
 
 use crate::output_folder::{self, FolderState};
@@ -33,13 +33,12 @@ pub struct DatasetOutput<'a> {
     pub out: &'a Path,
     pub format: DatasetFormat,
     pub camera: Intrinsics,
-    /// The lens the frames were seen through, for the camera files.
-    pub distortion: Option<Distortion>,
     /// Replace whatever rslam output `out` holds.
     pub force: bool,
     pub plan: &'a FramePlan,
     pub ground_truth: &'a Trajectory,
-    /// The job's manifest, without the content digest; its `depth_png` is how depth is encoded.
+    /// The job's manifest, without the content digest; its `depth_png` is how depth is encoded,
+    /// its `distortion` the lens the camera files carry.
     pub manifest: Manifest,
 }
 
@@ -66,7 +65,7 @@ pub fn write_dataset<S: FrameSource>(
         target.camera,
         target.manifest.depth_png,
     )?
-    .with_distortion(target.distortion);
+    .with_distortion(target.manifest.distortion);
     let mut sink = DatasetSink::new(writer, plan);
     let sources: Vec<usize> = plan
         .needed_sources()

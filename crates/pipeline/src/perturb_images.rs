@@ -143,6 +143,7 @@ pub fn perturb_images(
         source_hash: String::new(),
         format: None,
         camera: None,
+        distortion: None,
         depth_png: DepthPng::default(),
         rate_hz: 0.0,
         seed: job.seed,

@@ -153,6 +153,7 @@ pub fn render_euroc(
         source_hash: resolved.scene.content_hash(),
         format: None,
         camera: Some(cam0.intrinsics),
+        distortion: None,
         depth_png: DepthPng::default(),
         rate_hz: cam0.rate_hz,
         seed: job.scene.seed,
