@@ -105,7 +105,7 @@ impl Distortion {
             let (at, jacobian) = self.distort_with_jacobian(p);
             let residual = at - distorted;
             let determinant = jacobian.determinant();
-            if !(determinant > 0.0) || !at.is_finite() {
+            if determinant.is_nan() || determinant <= 0.0 || !at.is_finite() {
                 return None;
             }
             if residual.length() <= UNDISTORT_TOLERANCE {
