@@ -28,6 +28,7 @@ fn list_shows_every_group_with_parameters_per_severity() {
         "imu_drop:P | imu_drop:P/L",
         "imu_jitter:MS",
         "cam_imu_offset:MS",
+        "distortion:radtan(k1,k2,p1,p2) | distortion:equidistant(k1,k2,k3,k4)",
     ] {
         assert!(out.contains(fragment), "list lacks '{fragment}':\n{out}");
     }

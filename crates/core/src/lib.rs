@@ -12,6 +12,7 @@
 //! into ideal and noisy IMU readings (Kalibr's noise model) at a rig's IMU extrinsic.
 
 pub mod dataset;
+mod distortion;
 mod error;
 pub mod hash;
 mod image_buffer;
@@ -30,6 +31,7 @@ mod test_motion;
 mod trajectory;
 pub mod trajectory_io;
 
+pub use distortion::{Distortion, UNDISTORT_TOLERANCE};
 pub use error::{printable, CoreError};
 pub use image_buffer::{DepthImage, RgbImage};
 pub use intrinsics::{Intrinsics, REPLICA_RATE_HZ, TUM_RATE_HZ};

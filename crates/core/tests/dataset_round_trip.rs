@@ -8,7 +8,7 @@ use rslam_core::dataset::{
     read_dataset, read_rgb, DatasetFormat, DatasetOverrides, DatasetWriter, DepthPng, Manifest,
     OutputFrame,
 };
-use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage, Trajectory};
+use rslam_core::{DepthImage, Distortion, Intrinsics, Pose, RgbImage, Trajectory};
 
 const CAMERA: Intrinsics = Intrinsics {
     width: 8,
@@ -60,6 +60,7 @@ fn manifest(format: DatasetFormat, depth_png: DepthPng) -> Manifest {
         source_hash: String::new(),
         format: Some(format),
         camera: Some(CAMERA),
+        distortion: None,
         depth_png,
         rate_hz: RATE_HZ,
         frame_count: FRAMES,
@@ -79,7 +80,18 @@ fn write(root: &Path, format: DatasetFormat) {
 }
 
 fn write_encoded(root: &Path, format: DatasetFormat, depth_png: DepthPng) {
-    let writer = DatasetWriter::open(root, format, CAMERA, depth_png).unwrap();
+    write_through(root, format, depth_png, None);
+}
+
+fn write_through(
+    root: &Path,
+    format: DatasetFormat,
+    depth_png: DepthPng,
+    distortion: Option<Distortion>,
+) {
+    let writer = DatasetWriter::open(root, format, CAMERA, depth_png)
+        .unwrap()
+        .with_distortion(distortion);
     let frames = frames();
     for (j, frame) in frames.iter().enumerate() {
         let mut color = RgbImage::new(CAMERA.width, CAMERA.height);
@@ -94,9 +106,11 @@ fn write_encoded(root: &Path, format: DatasetFormat, depth_png: DepthPng) {
         }
     }
     let gt = Trajectory::new(frames.iter().map(|f| f.rgb_time).collect(), poses());
-    writer
-        .finish(&frames, &gt, manifest(format, depth_png))
-        .unwrap();
+    let manifest = Manifest {
+        distortion,
+        ..manifest(format, depth_png)
+    };
+    writer.finish(&frames, &gt, manifest).unwrap();
 }
 
 fn assert_poses_close(a: &[Pose], b: &[Pose], tolerance: f64) {
@@ -157,6 +171,54 @@ fn both_layouts_read_back_what_was_written() {
             }
         }
     }
+}
+
+/// A lens goes into cam_params.json in OpenCV's coefficient order, exactly, and reads back from
+/// the manifest or, without one, from cam_params.json; a dataset without one keeps the plain
+/// Replica file.
+#[test]
+fn cam_params_carry_the_lens() {
+    let camera_json = |root: &Path| -> serde_json::Value {
+        let text = std::fs::read_to_string(root.join("cam_params.json")).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()["camera"].clone()
+    };
+    for (text, model) in [
+        ("radtan(-0.28,0.07,0.0002,-0.00003)", "radtan"),
+        ("equidistant(0.1,-0.02,0.003,-0.0004)", "equidistant"),
+    ] {
+        let lens = Distortion::parse(text).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        write_through(
+            dir.path(),
+            DatasetFormat::Replica,
+            DepthPng::Fast,
+            Some(lens),
+        );
+        let camera = camera_json(dir.path());
+        assert_eq!(camera["distortion_model"], model);
+        let written: Vec<f64> = serde_json::from_value(camera["distortion"].clone()).unwrap();
+        assert_eq!(written, lens.coefficients());
+        assert_eq!(camera["fx"], CAMERA.fx);
+        let rate = DatasetOverrides {
+            rate_hz: Some(RATE_HZ),
+            ..DatasetOverrides::default()
+        };
+        assert_eq!(
+            read_dataset(dir.path(), &rate).unwrap().distortion,
+            Some(lens)
+        );
+        std::fs::remove_file(dir.path().join("rslam.json")).unwrap();
+        assert_eq!(
+            read_dataset(dir.path(), &rate).unwrap().distortion,
+            Some(lens)
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), DatasetFormat::Replica);
+    let camera = camera_json(dir.path());
+    assert!(camera.get("distortion").is_none() && camera.get("distortion_model").is_none());
+    let manifest = std::fs::read_to_string(dir.path().join("rslam.json")).unwrap();
+    assert!(!manifest.contains("distortion"), "{manifest}");
 }
 
 #[test]
@@ -238,6 +300,21 @@ fn malformed_datasets_are_one_line_errors_naming_the_file() {
     )
     .unwrap();
     assert_one_line_error(dir.path(), &with_rate, &["cam_params.json", "camera.w"]);
+    for lens in [
+        r#""distortion_model": "radtan", "distortion": [0.1, 0.2, 0.3]"#,
+        r#""distortion_model": "fisheye", "distortion": [0.1, 0.2, 0.3, 0.4]"#,
+        r#""distortion": [0.1, 0.2, 0.3, 0.4]"#,
+    ] {
+        let text = format!(
+            r#"{{"camera": {{"w": 8, "h": 6, "fx": 7, "fy": 7, "cx": 3.5, "cy": 2.5, {lens}}}}}"#
+        );
+        std::fs::write(&cam, text).unwrap();
+        assert_one_line_error(
+            dir.path(),
+            &with_rate,
+            &["cam_params.json", "distortion_model"],
+        );
+    }
 
     let rgb = dir.path().join("results/frame000002.jpg");
     std::fs::write(&rgb, b"\xff\xd8 not a jpeg").unwrap();

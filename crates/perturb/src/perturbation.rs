@@ -283,13 +283,7 @@ impl Kit<'_> {
         width: u32,
         height: u32,
     ) {
-        self.dispatch_workgroups(
-            encoder,
-            pipeline,
-            bind_group,
-            label,
-            [width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1],
-        );
+        dispatch_grid(encoder, pipeline, bind_group, label, [width, height]);
     }
 
     /// One compute pass with an explicit workgroup count.
@@ -324,6 +318,18 @@ pub(crate) fn bind_group_at(
         layout: &pipeline.get_bind_group_layout(0),
         entries: &entries,
     })
+}
+
+/// One compute pass covering a `width`×`height` grid with 8×8 workgroups.
+pub(crate) fn dispatch_grid(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    bind_group: &wgpu::BindGroup,
+    label: &str,
+    [width, height]: [u32; 2],
+) {
+    let workgroups = [width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1];
+    dispatch_workgroups(encoder, pipeline, bind_group, label, workgroups);
 }
 
 /// One compute pass with an explicit workgroup count.

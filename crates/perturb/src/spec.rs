@@ -10,12 +10,14 @@
 //!        | 'imu_noise:' K | 'imu_bias_step:' G/A | …          IMU items (see crate::imu::items)
 //!        | 'baseline:' METRES ['@calibration' | '@dynamic']      calibration of a rig
 //!        | [SENSOR ':'] ('extrinsic_rot:' DEGREES | 'extrinsic_trans:' METRES) ['@calibration']
+//!        | 'distortion:' ('radtan' | 'equidistant') '(' C ',' C ',' C ',' C ')'
 //! SENSOR := 'cam' N | 'imu' N                               a rig's sensor: cam0, cam1, imu0
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)
 //! ```
 //!
-//! Whatever the written order, the pipeline order is trajectory → render (with the sensor
-//! effects) → image → depth → stream; inside the image and depth groups the written order is the order applied.
+//! Commas inside parentheses belong to their item. Whatever the written order, the pipeline
+//! order is trajectory → render (with the sensor effects) → image → depth → stream; inside the
+//! image and depth groups the written order is the order applied.
 //!
 //! Sensors: an image or depth item with a camera (`cam1:fog:3`) corrupts that camera's frames
 //! only; without one, every camera's. A one-camera input's camera is `cam0`, so `cam0:fog:3`
@@ -27,6 +29,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use rslam_core::Distortion;
 use serde::{Deserialize, Serialize};
 
 use crate::calibration::{self, CalibrationItem};
@@ -62,6 +65,9 @@ pub struct PerturbSpec {
     /// `baseline`, `extrinsic_rot`, `extrinsic_trans`: a rig's calibration, in the order written.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub calibration: Vec<CalibrationItem>,
+    /// `distortion:MODEL(…)`: the lens the frames are seen through.
+    #[serde(default)]
+    pub distortion: Option<Distortion>,
 }
 
 /// One image or depth corruption of a spec.
@@ -105,7 +111,7 @@ impl PerturbSpec {
         let mut spec = PerturbSpec::default();
         // (sensor, name) of every item so far.
         let mut seen: Vec<(Option<String>, String)> = Vec::new();
-        for raw in text.split(',') {
+        for raw in split_items(text)? {
             let item = raw.trim();
             if item.is_empty() {
                 return Err(PerturbError::spec(
@@ -214,6 +220,9 @@ impl PerturbSpec {
                 self.rolling_shutter = Some(RollingShutter::parse(value, mode).map_err(err)?)
             }
             name if imu::is_imu_item(name) => self.imu.add(name, value, mode).map_err(err)?,
+            sensor::distortion::NAME => {
+                self.distortion = Some(sensor::distortion::parse(value, mode).map_err(err)?)
+            }
             _ => {
                 let entry = catalogue::find(name).ok_or_else(|| {
                     err(format!(
@@ -268,7 +277,8 @@ impl PerturbSpec {
     fn sensor_items(&self) -> Vec<String> {
         let exposure = self.exposure.map(|e| e.to_string());
         let rolling = self.rolling_shutter.map(|r| r.to_string());
-        exposure.into_iter().chain(rolling).collect()
+        let lens = self.distortion.as_ref().map(sensor::distortion::item);
+        exposure.into_iter().chain(rolling).chain(lens).collect()
     }
 
     /// Image then depth items, in the order they are applied.
@@ -391,6 +401,33 @@ fn check_once(
     }
 }
 
+/// The items of `text`: split at the commas outside parentheses.
+fn split_items(text: &str) -> Result<Vec<&str>, PerturbError> {
+    let unbalanced = || {
+        PerturbError::spec(
+            text,
+            "unbalanced parentheses; expected NAME:MODEL(a,b,…) items, e.g. distortion:radtan(-0.28,0.07,0.0002,0.00002)",
+        )
+    };
+    let (mut items, mut start, mut depth) = (Vec::new(), 0, 0usize);
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = depth.checked_sub(1).ok_or_else(unbalanced)?,
+            ',' if depth == 0 => {
+                items.push(&text[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    if depth != 0 {
+        return Err(unbalanced());
+    }
+    items.push(&text[start..]);
+    Ok(items)
+}
+
 fn parse_non_negative(value: &str) -> Option<f64> {
     value
         .parse::<f64>()
@@ -472,7 +509,7 @@ impl fmt::Display for FrameItem {
 
 impl fmt::Display for PerturbSpec {
     /// Canonical pipeline order: calibration items, rot, trans, exposure, rolling_shutter,
-    /// image items, depth items, fast, misalign, IMU items.
+    /// distortion, image items, depth items, fast, misalign, IMU items.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut parts: Vec<String> = self.calibration.iter().map(|i| i.to_string()).collect();
         parts.extend(self.scene_items());

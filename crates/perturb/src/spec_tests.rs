@@ -350,3 +350,46 @@ fn a_one_camera_input_takes_cam0_items_and_refuses_other_sensors_and_calibration
         .unknown_sensor(&["cam0", "cam1", "cam2", "imu0"])
         .is_none());
 }
+
+#[test]
+fn distortion_keeps_its_commas_and_round_trips() {
+    let spec =
+        PerturbSpec::parse("fog:2, distortion:radtan(-0.28, 0.07,2e-4,-3e-5),exposure:20").unwrap();
+    assert_eq!(
+        spec.distortion,
+        Some(rslam_core::Distortion::Radtan {
+            k1: -0.28,
+            k2: 0.07,
+            p1: 2e-4,
+            p2: -3e-5
+        })
+    );
+    assert_eq!(spec.image.len(), 1);
+    assert!(spec.needs_scene());
+    assert_eq!(
+        spec.to_string(),
+        "exposure:20,distortion:radtan(-0.28,0.07,0.0002,-0.00003),fog:2"
+    );
+    assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
+    let fisheye = PerturbSpec::parse("distortion:equidistant(0.1,-0.02,0.003,-0.0004)").unwrap();
+    assert!(matches!(
+        fisheye.distortion,
+        Some(rslam_core::Distortion::Equidistant { k4, .. }) if k4 == -0.0004
+    ));
+    for (bad, says) in [
+        ("distortion:radtan(1,2,3)", "3 coefficients"),
+        ("distortion:radtan(1,2,3,4", "unbalanced parentheses"),
+        ("distortion:radtan(1,2,3,4))", "unbalanced parentheses"),
+        (
+            "distortion:pinhole(1,2,3,4)",
+            "unknown lens model 'pinhole'",
+        ),
+        ("distortion:radtan(1,2,3,4)@x", "takes no mode"),
+        ("distortion:3", "expected radtan(k1,k2,p1,p2)"),
+    ] {
+        let e = err(bad);
+        assert!(e.contains(says) && !e.contains('\n'), "{bad}: {e}");
+    }
+    assert!(err("distortion:radtan(1,x,3,4)")
+        .starts_with("--perturb item 'distortion:radtan(1,x,3,4)'"));
+}

@@ -37,7 +37,8 @@ pub struct DatasetOutput<'a> {
     pub force: bool,
     pub plan: &'a FramePlan,
     pub ground_truth: &'a Trajectory,
-    /// The job's manifest, without the content digest; its `depth_png` is how depth is encoded.
+    /// The job's manifest, without the content digest; its `depth_png` is how depth is encoded,
+    /// its `distortion` the lens the camera files carry.
     pub manifest: Manifest,
 }
 
@@ -63,7 +64,8 @@ pub fn write_dataset<S: FrameSource>(
         target.format,
         target.camera,
         target.manifest.depth_png,
-    )?;
+    )?
+    .with_distortion(target.manifest.distortion);
     let mut sink = DatasetSink::new(writer, plan);
     // A stateful item (auto_exposure) gives each frame what the frames before it left, so a
     // resumed run redoes them all rather than start its state over at the first missing one.

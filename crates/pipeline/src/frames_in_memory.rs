@@ -61,7 +61,7 @@ impl FramesInMemory<SceneSource> {
     ) -> Result<Self, PipelineError> {
         crate::rig::refuse_imu_items(&job.spec, "a one-camera scene")?;
         let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
-        source.set_shutter(ctx, &job.spec, job.rate_hz)?;
+        source.set_sensor(ctx, &job.spec, job.rate_hz)?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, &job.spec, job.seed)?,
             plan: resolved.plan,
@@ -95,10 +95,7 @@ impl FramesInMemory<SceneSource> {
         crate::rig::refuse_imu_items(spec, "a one-camera scene")?;
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
-        let shutter_changed = self
-            .pipeline
-            .source_mut()
-            .set_shutter(ctx, spec, *rate_hz)?;
+        let shutter_changed = self.pipeline.source_mut().set_sensor(ctx, spec, *rate_hz)?;
         if deviated.poses != self.pipeline.source().poses() || shutter_changed {
             self.pipeline.source_mut().set_poses(deviated.poses);
             self.generation += 1;

@@ -4,7 +4,8 @@
 //! ([`FramesInMemory`]) picks a [`source`] — a scene drawn along a (deviated) path, a dataset or
 //! image files decoded ahead, buffers in memory — and makes the [`FramePlan`] before any frame is
 //! drawn (a scene under a shutter — `exposure`, `rolling_shutter` — draws each frame from the
-//! poses of its capture interval and sums them on the GPU): which source frame each output frame's colour and depth come from, their capture times
+//! poses of its capture interval and sums them on the GPU; under a lens — `distortion` — it draws
+//! with a wider pinhole and resamples through the lens): which source frame each output frame's colour and depth come from, their capture times
 //! and every frame's severities. The [`Pipeline`] records each needed source frame and its image
 //! then depth corruptions into one command encoder, keeps several frames in flight and reads each
 //! back once; a [`sink`] encodes it into a dataset on worker threads or assembles output frames
@@ -24,6 +25,7 @@ mod error;
 mod frame_loop;
 mod frames_in_memory;
 mod input;
+mod lens_render;
 mod manifest;
 pub mod output_folder;
 mod perturb_dataset;

@@ -3,7 +3,7 @@
 //! same bytes.
 
 use rslam_core::dataset::{DatasetFormat, DepthPng, Manifest};
-use rslam_core::Intrinsics;
+use rslam_core::{Distortion, Intrinsics};
 use rslam_perturb::PerturbSpec;
 
 use crate::plan::FramePlan;
@@ -16,6 +16,8 @@ pub struct ManifestParts<'a> {
     pub source_hash: String,
     pub format: Option<DatasetFormat>,
     pub camera: Option<Intrinsics>,
+    /// The lens the frames were seen through (written into the camera files too).
+    pub distortion: Option<Distortion>,
     pub depth_png: DepthPng,
     pub rate_hz: f64,
     pub seed: u64,
@@ -36,6 +38,7 @@ impl ManifestParts<'_> {
             source_hash: self.source_hash,
             format: self.format,
             camera: self.camera,
+            distortion: self.distortion,
             depth_png: self.depth_png,
             rate_hz: self.rate_hz,
             frame_count: self.plan.len(),

@@ -61,7 +61,7 @@ pub fn check_dataset_spec(
     if let Some(item) = spec.scene_items().first() {
         return Err(PipelineError::option(
             "--perturb",
-            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
+            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter, distortion) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
         ));
     }
     crate::rig::refuse_imu_items(spec, "an RGB-D dataset")?;
@@ -95,6 +95,7 @@ pub fn perturb_dataset(
         source_hash: String::new(),
         format: Some(dataset.format),
         camera: Some(dataset.intrinsics),
+        distortion: dataset.distortion,
         depth_png: job.depth_png,
         rate_hz: dataset.rate_hz,
         seed: job.seed,

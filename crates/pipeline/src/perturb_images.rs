@@ -78,7 +78,7 @@ pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
 pub fn check_frame_items_only(spec: &PerturbSpec) -> Result<(), PipelineError> {
     crate::rig::refuse_imu_items(spec, "a set of frames")?;
     if spec.fast.is_some() || spec.misalign.is_some() || spec.needs_scene() {
-        return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure and rolling_shutter on scenes; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
+        return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure, rolling_shutter and distortion on scenes; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
     }
     Ok(())
 }
@@ -144,6 +144,7 @@ pub fn perturb_images(
         source_hash: String::new(),
         format: None,
         camera: None,
+        distortion: None,
         depth_png: DepthPng::default(),
         rate_hz: 0.0,
         seed: job.seed,

@@ -42,6 +42,7 @@ pub fn render_dataset(
         source_hash: resolved.scene.content_hash(),
         format: Some(job.format),
         camera: Some(camera),
+        distortion: job.scene.spec.distortion,
         depth_png: job.depth_png,
         rate_hz: job.scene.rate_hz,
         seed: job.scene.seed,
@@ -51,7 +52,7 @@ pub fn render_dataset(
     }
     .build()?;
     let mut source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
-    source.set_shutter(ctx, &job.scene.spec, job.scene.rate_hz)?;
+    source.set_sensor(ctx, &job.scene.spec, job.scene.rate_hz)?;
     let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, job.scene.seed)?;
     let output = DatasetOutput {
         out: &job.out,

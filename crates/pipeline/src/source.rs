@@ -12,6 +12,7 @@ use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
 use crate::decode_ahead::{next_frame, DecodeAhead};
+use crate::lens_render::LensRender;
 use crate::shutter_render::ShutterRender;
 use crate::PipelineError;
 
@@ -37,11 +38,15 @@ pub trait FrameSource {
 }
 
 /// A mesh drawn along a path: source frame `i` is the view from `poses[i]`, or under a shutter
-/// the views from the poses around it during capture.
+/// the views from the poses around it during capture; under a lens, drawn wider and resampled.
 pub struct SceneSource {
+    /// Draws with `camera`, or under a lens with the lens view's wider pinhole.
     rasterizer: Rasterizer,
+    /// The camera of the frames.
+    camera: Intrinsics,
     poses: Vec<Pose>,
     shutter: Option<ShutterRender>,
+    lens: Option<LensRender>,
 }
 
 impl SceneSource {
@@ -53,30 +58,45 @@ impl SceneSource {
     ) -> Result<Self, PipelineError> {
         Ok(Self {
             rasterizer: Rasterizer::new(ctx, scene, camera)?,
+            camera,
             poses,
             shutter: None,
+            lens: None,
         })
     }
 
-    /// Captures frames under the shutter of `spec` (`exposure`, `rolling_shutter`), the path
-    /// sampled at `rate_hz`; says whether that changes the frames. Under `fast:K` the camera
-    /// covers K samples of the path per frame interval, during capture too.
-    pub fn set_shutter(
+    /// Captures frames with the sensor of `spec`: its shutter (`exposure`, `rolling_shutter`),
+    /// the path sampled at `rate_hz`, and its lens (`distortion`); says whether that changes the
+    /// frames. Under `fast:K` the camera covers K samples of the path per frame interval, during
+    /// capture too.
+    pub fn set_sensor(
         &mut self,
         ctx: &GpuContext,
         spec: &PerturbSpec,
         rate_hz: f64,
     ) -> Result<bool, PipelineError> {
+        let lens_changed = self.lens.as_ref().map(|l| *l.lens()) != spec.distortion;
+        if lens_changed {
+            self.lens = spec
+                .distortion
+                .map(|lens| LensRender::new(ctx, &self.camera, lens))
+                .transpose()?;
+            let drawn = self.lens.as_ref().map_or(self.camera, |l| l.wide_camera());
+            self.rasterizer.set_intrinsics(ctx, drawn);
+        }
         let shutter = Shutter::of(spec);
         let rate_hz = rate_hz * spec.fast.unwrap_or(1) as f64;
-        let same = match &self.shutter {
-            Some(current) => current.is(&shutter, rate_hz),
-            None => shutter.is_none(),
-        };
-        if !same {
-            self.shutter = ShutterRender::new(ctx, shutter, rate_hz, self.size())?;
+        let same_shutter = !lens_changed
+            && match &self.shutter {
+                Some(current) => current.is(&shutter, rate_hz),
+                None => shutter.is_none(),
+            };
+        if !same_shutter {
+            let drawn = self.rasterizer.intrinsics();
+            let size = (drawn.width, drawn.height);
+            self.shutter = ShutterRender::new(ctx, shutter, rate_hz, size)?;
         }
-        Ok(!same)
+        Ok(!same_shutter)
     }
 
     pub fn poses(&self) -> &[Pose] {
@@ -89,7 +109,7 @@ impl SceneSource {
     }
 
     /// Records the view from `world_from_camera`, off the path (a free camera, at rest: no
-    /// shutter effect).
+    /// shutter effect; through the lens).
     pub fn record_from(
         &self,
         ctx: &GpuContext,
@@ -97,15 +117,27 @@ impl SceneSource {
         frame: &FrameTextures,
         world_from_camera: &Pose,
     ) {
+        let drawn = self.lens.as_ref().map_or(frame, |l| l.wide());
         self.rasterizer
-            .encode(ctx, encoder, frame, world_from_camera);
+            .encode(ctx, encoder, drawn, world_from_camera);
+        self.through_lens(ctx, encoder, frame);
+    }
+
+    fn through_lens(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+    ) {
+        if let Some(lens) = &self.lens {
+            lens.record(ctx, encoder, frame);
+        }
     }
 }
 
 impl FrameSource for SceneSource {
     fn size(&self) -> (u32, u32) {
-        let k = self.rasterizer.intrinsics();
-        (k.width, k.height)
+        (self.camera.width, self.camera.height)
     }
 
     fn has_depth(&self) -> bool {
@@ -113,7 +145,7 @@ impl FrameSource for SceneSource {
     }
 
     fn camera(&self) -> Option<Intrinsics> {
-        Some(*self.rasterizer.intrinsics())
+        Some(self.camera)
     }
 
     fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
@@ -127,15 +159,20 @@ impl FrameSource for SceneSource {
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        if let Some(shutter) = &self.shutter {
-            let renders = shutter.schedule(&self.rasterizer, &self.poses, index);
-            if !renders.is_empty() {
-                shutter.record(ctx, &self.rasterizer, &renders, encoder, frame);
-                return Ok(());
+        let drawn = self.lens.as_ref().map_or(frame, |l| l.wide());
+        let renders = match &self.shutter {
+            Some(shutter) => shutter.schedule(&self.rasterizer, &self.poses, index),
+            None => Vec::new(),
+        };
+        match (&self.shutter, renders.is_empty()) {
+            (Some(shutter), false) => {
+                shutter.record(ctx, &self.rasterizer, &renders, encoder, drawn)
             }
+            _ => self
+                .rasterizer
+                .encode(ctx, encoder, drawn, &self.poses[index]),
         }
-        self.rasterizer
-            .encode(ctx, encoder, frame, &self.poses[index]);
+        self.through_lens(ctx, encoder, frame);
         Ok(())
     }
 }

@@ -100,7 +100,7 @@ fn render(scene: &Scene, poses: &[Pose], spec: &str, index: usize) -> (RgbImage,
         text => PerturbSpec::parse(text).unwrap(),
     };
     let mut source = SceneSource::new(ctx, scene, CAMERA, poses.to_vec()).unwrap();
-    source.set_shutter(ctx, &spec, RATE_HZ).unwrap();
+    source.set_sensor(ctx, &spec, RATE_HZ).unwrap();
     let mut pipeline = Pipeline::new(ctx, source, &spec, 0).unwrap();
     let mut sink = Collect(Vec::new());
     pipeline.run(ctx, &[index], &Silent, &mut sink).unwrap();
@@ -274,4 +274,138 @@ fn rolling_shutter_shears_a_vertical_edge_by_the_pan() {
         depth.data.iter().all(|&z| z > 0.0),
         "every row has depth from its own read-out"
     );
+}
+
+/// The lenses of the distortion tests: a barrel radial-tangential one with tangential terms,
+/// and an equidistant fisheye.
+const LENSES: [&str; 2] = [
+    "distortion:radtan(-0.3,0.08,0.002,-0.0015)",
+    "distortion:equidistant(0.08,-0.03,0.01,-0.002)",
+];
+
+/// A bright round dot on the plane at (x, y): a fan whose brightness falls linearly from the
+/// centre to black at `radius`, so that its centroid is found to a small fraction of a pixel.
+fn dot(mesh: &mut Mesh, (x, y): (f64, f64), radius: f64) {
+    const SIDES: u32 = 24;
+    let vertex = |x: f64, y: f64, grey: u8| Vertex {
+        position: [x as f32, y as f32, PLANE_Z as f32],
+        uv: [0.0, 0.0],
+        color: [grey, grey, grey, 255],
+        layer: 0,
+    };
+    let centre = mesh.vertices.len() as u32;
+    mesh.vertices.push(vertex(x, y, 255));
+    for i in 0..SIDES {
+        let a = std::f64::consts::TAU * i as f64 / SIDES as f64;
+        mesh.vertices
+            .push(vertex(x + radius * a.cos(), y + radius * a.sin(), 0));
+        mesh.indices
+            .extend([centre, centre + 1 + i, centre + 1 + (i + 1) % SIDES]);
+    }
+}
+
+/// Dots on the plane, placed to be seen 12 px from the corners, at the centre and between,
+/// through each lens: the brightness centroid of each is within 0.5 px of its centre projected
+/// through the lens (the intrinsics and coefficients the dataset files carry), and the depth
+/// there is the plane's z.
+#[test]
+fn distorted_render_puts_points_where_the_lens_model_projects_them() {
+    let radius = 0.05;
+    let corner = CAMERA.cx.hypot(CAMERA.cy);
+    for spec in LENSES {
+        let lens = PerturbSpec::parse(spec).unwrap().distortion.unwrap();
+        let mut mesh = Mesh::default();
+        let mut centres = Vec::new();
+        for u in [12.0, 40.0, 80.0, 120.0, 148.0] {
+            for v in [12.0, 36.0, 60.0, 84.0, 108.0] {
+                let seen =
+                    glam::DVec2::new((u - CAMERA.cx) / CAMERA.fx, (v - CAMERA.cy) / CAMERA.fy);
+                let ray = lens.undistort(seen).unwrap();
+                centres.push((ray.x * PLANE_Z, ray.y * PLANE_Z));
+                dot(&mut mesh, *centres.last().unwrap(), radius);
+            }
+        }
+        let dots = scene("dots", mesh);
+        let (color, depth) = render(&dots, &[Pose::IDENTITY; 3], spec, 1);
+        let (mut checked, mut outermost, mut worst) = (0, 0.0f64, 0.0f64);
+        for &(x, y) in &centres {
+            let d = lens.distort(glam::DVec2::new(x / PLANE_Z, y / PLANE_Z));
+            let (u, v) = (CAMERA.fx * d.x + CAMERA.cx, CAMERA.fy * d.y + CAMERA.cy);
+            let half = 9;
+            let (u0, v0) = (u.round() as i64 - half, v.round() as i64 - half);
+            let inside = |p: i64, side: u32| p >= 0 && p + 2 * half < side as i64;
+            if !inside(u0, CAMERA.width) || !inside(v0, CAMERA.height) {
+                continue;
+            }
+            let (mut sum, mut su, mut sv, mut rim) = (0.0, 0.0, 0.0, 0.0f64);
+            for py in v0..=v0 + 2 * half {
+                for px in u0..=u0 + 2 * half {
+                    let i = (py as u32 * CAMERA.width + px as u32) as usize;
+                    let w = srgb_to_linear(color.data[i * 3] as f32 / 255.0) as f64;
+                    sum += w;
+                    su += w * px as f64;
+                    sv += w * py as f64;
+                    if px == u0 || py == v0 || px == u0 + 2 * half || py == v0 + 2 * half {
+                        rim = rim.max(w);
+                    }
+                }
+            }
+            assert!(sum > 1.0, "{spec}: no dot near ({u:.1}, {v:.1})");
+            assert!(
+                rim == 0.0,
+                "{spec}: the dot at ({u:.1}, {v:.1}) is not inside its window: {rim}"
+            );
+            let error = (su / sum - u).hypot(sv / sum - v);
+            assert!(
+                error < 0.5,
+                "{spec}: dot ({x}, {y}) at ({:.2}, {:.2}), projected to ({u:.2}, {v:.2})",
+                su / sum,
+                sv / sum
+            );
+            let z = depth.data[(v.round() as u32 * CAMERA.width + u.round() as u32) as usize];
+            assert!(
+                (z as f64 - PLANE_Z).abs() < 1e-4,
+                "{spec}: depth {z} at ({u:.1}, {v:.1})"
+            );
+            checked += 1;
+            worst = worst.max(error);
+            outermost = outermost.max((u - CAMERA.cx).hypot(v - CAMERA.cy));
+        }
+        assert_eq!(checked, centres.len(), "{spec}: every dot is checked");
+        assert!(
+            outermost > 0.75 * corner,
+            "{spec}: the outermost dot checked is {outermost:.1} px from the centre, the corners {corner:.1}"
+        );
+        eprintln!("{spec}: {checked} dots, worst {worst:.3} px, out to {outermost:.0} px");
+    }
+}
+
+/// The lens comes after the shutter's sum: a camera at rest gives the same frame with or
+/// without `exposure` (to the level of the sum's sRGB round trip), and the lens changes it.
+#[test]
+fn distortion_composes_with_the_shutter() {
+    let still = vec![Pose::new(DQuat::IDENTITY, DVec3::new(0.03, 0.02, 0.0)); 5];
+    let checker = checker_scene();
+    let (plain, _) = render(&checker, &still, "", 2);
+    for lens in LENSES {
+        let (through_lens, lens_depth) = render(&checker, &still, lens, 2);
+        let (summed, summed_depth) = render(
+            &checker,
+            &still,
+            &format!("exposure:30@5,rolling_shutter:20,{lens}"),
+            2,
+        );
+        assert_eq!(lens_depth, summed_depth, "{lens}");
+        let worst = summed
+            .data
+            .iter()
+            .zip(&through_lens.data)
+            .map(|(a, b)| a.abs_diff(*b))
+            .max();
+        assert!(
+            worst <= Some(1),
+            "{lens}: largest difference {worst:?} levels"
+        );
+        assert_ne!(through_lens, plain, "{lens} changes the frame");
+    }
 }

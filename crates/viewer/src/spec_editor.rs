@@ -2,7 +2,8 @@
 //! parameters, static or dynamic) and the path and stream items, turned into a spec string that
 //! the spec parser of `rslam-perturb` reads, the same string `rslam render --perturb` takes.
 
-use rslam_perturb::sensor::{Exposure, RollingShutter};
+use rslam_core::Distortion;
+use rslam_perturb::sensor::{distortion, Exposure, RollingShutter};
 use rslam_perturb::{find, Level, PerturbSpec, CATALOGUE};
 
 /// How one catalogue item is set.
@@ -87,6 +88,8 @@ pub struct SpecEditor {
     pub exposure: Option<Exposure>,
     /// `rolling_shutter:MS` (scenes only), kept as given.
     pub rolling_shutter: Option<RollingShutter>,
+    /// `distortion:MODEL(…)` (scenes only), kept as given.
+    pub distortion: Option<Distortion>,
 }
 
 impl SpecEditor {
@@ -126,6 +129,7 @@ impl SpecEditor {
             misalign: spec.misalign.map(|m| (m.frames, m.dynamic)),
             exposure: spec.exposure,
             rolling_shutter: spec.rolling_shutter,
+            distortion: spec.distortion,
         }
     }
 
@@ -174,6 +178,7 @@ impl SpecEditor {
         }
         parts.extend(self.exposure.map(|e| e.to_string()));
         parts.extend(self.rolling_shutter.map(|r| r.to_string()));
+        parts.extend(self.distortion.as_ref().map(distortion::item));
         parts.extend(self.items.iter().map(EditorItem::text));
         if let Some(k) = self.fast {
             parts.push(format!("fast:{k}"));
@@ -200,7 +205,7 @@ mod tests {
 
     #[test]
     fn a_spec_round_trips_through_the_editor() {
-        let text = "rot:0.5@smooth,exposure:20@8,rolling_shutter:30,fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
+        let text = "rot:0.5@smooth,exposure:20@8,rolling_shutter:30,distortion:radtan(-0.28,0.07,0.0002,0.00002),fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
         let spec = PerturbSpec::parse(text).unwrap();
         let editor = SpecEditor::from_spec(&spec);
         assert_eq!(editor.spec().unwrap(), spec);

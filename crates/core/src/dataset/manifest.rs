@@ -3,7 +3,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::dataset::{write_atomically, DepthPng};
-use crate::{read_text_file, CoreError, Intrinsics};
+use crate::{read_text_file, CoreError, Distortion, Intrinsics};
 
 /// Written last into every dataset: without it a dataset is incomplete.
 pub const MANIFEST_FILE: &str = "rslam.json";
@@ -23,6 +23,9 @@ pub struct Manifest {
     pub format: Option<crate::dataset::DatasetFormat>,
     /// `None` for a folder of perturbed images.
     pub camera: Option<Intrinsics>,
+    /// The lens the frames were seen through; absent (not written) without one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distortion: Option<Distortion>,
     /// How the depth PNGs are compressed (the samples are the same either way). Manifests from
     /// before this field read as `fast`, which is what they wrote; folders of images hold none.
     #[serde(default)]

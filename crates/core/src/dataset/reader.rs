@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use crate::dataset::{DatasetFormat, Manifest, MANIFEST_FILE};
 use crate::limits::{MAX_IMAGE_SIDE, MAX_POSES};
 use crate::trajectory_io::{read_trajectory_with, ReadOptions, TrajectoryFormat};
-use crate::{nearest_time, read_text_file, CoreError, Intrinsics, Trajectory};
+use crate::{nearest_time, read_text_file, CoreError, Distortion, Intrinsics, Trajectory};
 
 /// Largest RGB–depth time difference when pairing TUM rgb.txt and depth.txt without associations.
 const TUM_PAIR_MAX_DIFF_S: f64 = 0.02;
@@ -33,6 +33,8 @@ pub struct SourceDataset {
     pub root: PathBuf,
     pub format: DatasetFormat,
     pub intrinsics: Intrinsics,
+    /// The lens the frames were seen through: the manifest's, else cam_params.json's.
+    pub distortion: Option<Distortion>,
     pub rate_hz: f64,
     pub frames: Vec<DatasetFrame>,
     /// traj.txt / groundtruth.txt, if the dataset has one.
@@ -77,8 +79,14 @@ fn sorted_with_prefix(dir: &Path, prefix: &str) -> Result<Vec<PathBuf>, CoreErro
     Ok(files)
 }
 
+/// The camera and lens of a cam_params.json.
+struct CamParams {
+    camera: Intrinsics,
+    distortion: Option<Distortion>,
+}
+
 /// cam_params.json in the dataset or its parent (Replica SLAM keeps one beside the scenes).
-fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
+fn replica_camera(root: &Path) -> Result<Option<CamParams>, CoreError> {
     let candidates = [
         root.join("cam_params.json"),
         root.join("../cam_params.json"),
@@ -119,7 +127,34 @@ fn replica_camera(root: &Path) -> Result<Option<Intrinsics>, CoreError> {
     camera
         .check()
         .map_err(|message| CoreError::bad_file(path, format!("camera.{message}")))?;
-    Ok(Some(camera))
+    Ok(Some(CamParams {
+        camera,
+        distortion: cam_params_lens(path, &json["camera"])?,
+    }))
+}
+
+/// `camera.distortion_model` and `camera.distortion` as rslam writes them, if there.
+fn cam_params_lens(
+    path: &Path,
+    camera: &serde_json::Value,
+) -> Result<Option<Distortion>, CoreError> {
+    let (model, coefficients) = (&camera["distortion_model"], &camera["distortion"]);
+    if model.is_null() && coefficients.is_null() {
+        return Ok(None);
+    }
+    let numbers: Option<Vec<f64>> = coefficients
+        .as_array()
+        .and_then(|a| a.iter().map(|v| v.as_f64()).collect());
+    let lens = match (model.as_str(), numbers.as_deref()) {
+        (Some(model), Some(&[a, b, c, d])) => Distortion::from_coefficients(model, [a, b, c, d]),
+        _ => None,
+    };
+    lens.map(Some).ok_or_else(|| {
+        CoreError::bad_file(
+            path,
+            "expected camera.distortion_model \"radtan\" or \"equidistant\" with camera.distortion holding its 4 coefficients",
+        )
+    })
 }
 
 fn no_camera(root: &Path, looked_in: &str) -> CoreError {
@@ -180,13 +215,18 @@ fn read_replica(
     } else {
         None
     };
-    let intrinsics = match overrides
+    let manifest_lens = manifest.as_ref().and_then(|m| m.distortion);
+    let (intrinsics, distortion) = match overrides
         .camera
         .or(manifest.as_ref().and_then(|m| m.camera))
     {
-        Some(camera) => camera,
-        None => replica_camera(root)?
-            .ok_or_else(|| no_camera(root, "no rslam.json, no cam_params.json here or one up"))?,
+        Some(camera) => (camera, manifest_lens),
+        None => {
+            let cam_params = replica_camera(root)?.ok_or_else(|| {
+                no_camera(root, "no rslam.json, no cam_params.json here or one up")
+            })?;
+            (cam_params.camera, cam_params.distortion)
+        }
     };
     let frames = rgb
         .into_iter()
@@ -202,6 +242,7 @@ fn read_replica(
         root: root.to_path_buf(),
         format: DatasetFormat::Replica,
         intrinsics,
+        distortion,
         rate_hz,
         frames,
         ground_truth,
@@ -308,6 +349,7 @@ fn read_tum(
         root: root.to_path_buf(),
         format: DatasetFormat::Tum,
         intrinsics,
+        distortion: manifest.as_ref().and_then(|m| m.distortion),
         rate_hz,
         frames,
         ground_truth,

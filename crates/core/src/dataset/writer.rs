@@ -5,7 +5,7 @@ use crate::dataset::{
     Manifest,
 };
 use crate::trajectory_io::{write_replica, write_tum};
-use crate::{CoreError, DepthImage, Intrinsics, RgbImage, Trajectory};
+use crate::{CoreError, DepthImage, Distortion, Intrinsics, RgbImage, Trajectory};
 
 /// JPEG quality of Replica-layout colour frames (formats.md: ≥ 95).
 pub const JPEG_QUALITY: u8 = 95;
@@ -33,6 +33,8 @@ pub struct DatasetWriter {
     content: ContentWriter,
     format: DatasetFormat,
     intrinsics: Intrinsics,
+    /// The lens the frames were taken through, written beside the intrinsics.
+    distortion: Option<Distortion>,
     depth_png: DepthPng,
 }
 
@@ -61,8 +63,15 @@ impl DatasetWriter {
             content: ContentWriter::new(root),
             format,
             intrinsics,
+            distortion: None,
             depth_png,
         })
+    }
+
+    /// Frames seen through `distortion`: the camera files (`cam_params.json`, `orbslam3.yaml`)
+    /// carry it so that consumers can undistort.
+    pub fn with_distortion(self, distortion: Option<Distortion>) -> Self {
+        Self { distortion, ..self }
     }
 
     /// The files output frame `index` is written to.
@@ -165,7 +174,11 @@ impl DatasetWriter {
                 self.write_text("associations.txt", &associations)?;
                 self.write_text(
                     "orbslam3.yaml",
-                    &orbslam3::settings(&self.intrinsics, manifest.rate_hz),
+                    &orbslam3::settings(
+                        &self.intrinsics,
+                        self.distortion.as_ref(),
+                        manifest.rate_hz,
+                    ),
                 )?;
             }
         }
@@ -179,13 +192,18 @@ impl DatasetWriter {
 
     fn cam_params_json(&self) -> String {
         let k = &self.intrinsics;
-        let json = serde_json::json!({
+        let mut json = serde_json::json!({
             "camera": {
                 "w": k.width, "h": k.height,
                 "fx": k.fx, "fy": k.fy, "cx": k.cx, "cy": k.cy,
                 "scale": self.format.depth_scale(),
             }
         });
+        if let Some(lens) = &self.distortion {
+            // OpenCV's order: [k1, k2, p1, p2] (cv::undistort) or [k1, k2, k3, k4] (cv::fisheye).
+            json["camera"]["distortion_model"] = lens.model().into();
+            json["camera"]["distortion"] = lens.coefficients().to_vec().into();
+        }
         format!("{json:#}\n")
     }
 }

@@ -9,7 +9,7 @@ use rslam_core::RgbImage;
 use rslam_gpu::{FrameTextures, GpuContext};
 
 use crate::image_f32::{linear_to_srgb, srgb_to_linear};
-use crate::perturbation::{bind_group_at, dispatch_workgroups, view, WORKGROUP};
+use crate::perturbation::{bind_group_at, dispatch_grid, view};
 use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
 use crate::PerturbError;
 
@@ -97,10 +97,11 @@ impl ShutterPass {
                 (2, self.params.as_entire_binding()),
             ],
         );
-        dispatch(
+        dispatch_grid(
             encoder,
             &self.accumulate,
             &bind_group,
+            SHADER,
             [self.width, rows.len() as u32],
         );
     }
@@ -122,24 +123,14 @@ impl ShutterPass {
                 (3, wgpu::BindingResource::TextureView(&output)),
             ],
         );
-        dispatch(
+        dispatch_grid(
             encoder,
             &self.resolve,
             &bind_group,
+            SHADER,
             [self.width, self.height],
         );
     }
-}
-
-/// One pass over a `width`×`height` grid of 8×8 workgroups.
-fn dispatch(
-    encoder: &mut wgpu::CommandEncoder,
-    pipeline: &wgpu::ComputePipeline,
-    bind_group: &wgpu::BindGroup,
-    [width, height]: [u32; 2],
-) {
-    let workgroups = [width.div_ceil(WORKGROUP), height.div_ceil(WORKGROUP), 1];
-    dispatch_workgroups(encoder, pipeline, bind_group, SHADER, workgroups);
 }
 
 /// One weighted sub-frame for [`twin`].

@@ -283,6 +283,7 @@ pub fn perturb_euroc(
         source_hash: String::new(),
         format: None,
         camera: Some(cam0.camera.intrinsics),
+        distortion: None,
         depth_png: DepthPng::default(),
         rate_hz: cam0.camera.rate_hz,
         seed: job.seed,

@@ -16,6 +16,7 @@ use rslam_core::hash::splitmix64;
 use rslam_core::{CoreError, SplineSe3};
 use rslam_gpu::GpuContext;
 use rslam_perturb::imu::{ImuOrigin, ImuReport};
+use rslam_perturb::sensor::distortion;
 use rslam_perturb::PerturbSpec;
 
 use super::calibration::{PerturbedRig, PER_FRAME_FILE};
@@ -84,7 +85,7 @@ pub fn imu_seed(seed: u64) -> u64 {
 }
 
 /// Refuses what a rig cannot do yet: items that change the frame plan (`fast`, `misalign`) or
-/// the path (`rot`, `trans`). Image and depth corruptions apply to every camera or the one named
+/// the path (`rot`, `trans`), and a lens (`distortion`). Image and depth corruptions apply to every camera or the one named
 /// (`cam1:fog:3`), the shutter (`exposure`, `rolling_shutter`) to every camera; EuRoC cameras
 /// have no depth, so depth items change nothing written. Calibration items and the sensors named
 /// are checked against the rig by [`PerturbedRig::new`].
@@ -95,10 +96,16 @@ pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
         ("rot", spec.rotation.is_some()),
         ("trans", spec.translation.is_some()),
     ];
-    match refused.iter().find(|(_, given)| *given) {
-        Some((name, _)) => Err(PipelineError::option(
+    if let Some((name, _)) = refused.iter().find(|(_, given)| *given) {
+        return Err(PipelineError::option(
             "--perturb",
             format!("'{name}': rigs do not support it yet (it changes the frame plan or the path); image, depth and shutter items work"),
+        ));
+    }
+    match &spec.distortion {
+        Some(lens) => Err(PipelineError::option(
+            "--perturb",
+            format!("'{}': rigs do not support it yet (their sensor.yaml and stereo settings describe undistorted, rectified cameras); image, depth and shutter items work", distortion::item(lens)),
         )),
         None => Ok(()),
     }
@@ -182,6 +189,7 @@ pub fn render_euroc(
         source_hash: resolved.scene.content_hash(),
         format: None,
         camera: Some(cam0.intrinsics),
+        distortion: None,
         depth_png: DepthPng::default(),
         rate_hz: cam0.rate_hz,
         seed: job.scene.seed,
@@ -223,7 +231,7 @@ pub fn render_euroc(
     for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
         let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
         let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
-        source.set_shutter(ctx, &run.spec, camera.rate_hz)?;
+        source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
         let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
         let times_ns = run
             .times_s

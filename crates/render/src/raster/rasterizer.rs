@@ -158,15 +158,7 @@ impl Rasterizer {
             }
             .into());
         }
-        let depth_buffer = ctx
-            .texture_2d(
-                "z-buffer",
-                DEPTH_BUFFER_FORMAT,
-                (intrinsics.width, intrinsics.height),
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-                &[],
-            )
-            .create_view(&Default::default());
+        let depth_buffer = z_buffer(ctx, &intrinsics);
         Ok(Self {
             intrinsics,
             pipeline,
@@ -181,6 +173,15 @@ impl Rasterizer {
 
     pub fn intrinsics(&self) -> &Intrinsics {
         &self.intrinsics
+    }
+
+    /// Draws with `intrinsics` from now on (frames of its size); the scene stays uploaded.
+    pub fn set_intrinsics(&mut self, ctx: &GpuContext, intrinsics: Intrinsics) {
+        if (intrinsics.width, intrinsics.height) != (self.intrinsics.width, self.intrinsics.height)
+        {
+            self.depth_buffer = z_buffer(ctx, &intrinsics);
+        }
+        self.intrinsics = intrinsics;
     }
 
     /// Records the render of the view from `world_from_camera` into `frame` (colour and z-depth;
@@ -236,4 +237,16 @@ impl Rasterizer {
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..self.index_count, 0, 0..1);
     }
+}
+
+/// The z-buffer for frames of the camera's size.
+fn z_buffer(ctx: &GpuContext, intrinsics: &Intrinsics) -> wgpu::TextureView {
+    ctx.texture_2d(
+        "z-buffer",
+        DEPTH_BUFFER_FORMAT,
+        (intrinsics.width, intrinsics.height),
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+        &[],
+    )
+    .create_view(&Default::default())
 }

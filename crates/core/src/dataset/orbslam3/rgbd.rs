@@ -1,24 +1,50 @@
 //! ORB-SLAM3 v1.0 RGB-D settings for a camera, with every key its loader and viewer read.
 
-use crate::Intrinsics;
+use crate::{Distortion, Intrinsics};
 
-/// `orbslam3.yaml` of the TUM layout: the camera without distortion, depth in 1/5000 m.
-pub fn settings(k: &Intrinsics, rate_hz: f64) -> String {
+/// `orbslam3.yaml` of the TUM layout: the camera with its lens distortion (`PinHole` with
+/// k1, k2, p1, p2 for radial-tangential, `KannalaBrandt8` with k1..k4 for equidistant), depth in
+/// 1/5000 m. Without distortion the file is the one rslam has always written.
+pub fn settings(k: &Intrinsics, distortion: Option<&Distortion>, rate_hz: f64) -> String {
+    let (described, camera_type, coefficients) = match distortion {
+        None => (
+            "no distortion".to_string(),
+            "PinHole",
+            "Camera1.k1: 0.0\nCamera1.k2: 0.0\nCamera1.p1: 0.0\nCamera1.p2: 0.0\nCamera1.k3: 0.0"
+                .to_string(),
+        ),
+        Some(lens) => {
+            let [a, b, c, d] = lens.coefficients();
+            let (camera_type, names) = match lens {
+                Distortion::Radtan { .. } => ("PinHole", ["k1", "k2", "p1", "p2"]),
+                Distortion::Equidistant { .. } => ("KannalaBrandt8", ["k1", "k2", "k3", "k4"]),
+            };
+            let mut lines: Vec<String> = names
+                .iter()
+                .zip([a, b, c, d])
+                .map(|(name, value)| format!("Camera1.{name}: {value:e}"))
+                .collect();
+            if camera_type == "PinHole" {
+                lines.push("Camera1.k3: 0.0".into());
+            }
+            (
+                format!("{} distortion", lens.model()),
+                camera_type,
+                lines.join("\n"),
+            )
+        }
+    };
     format!(
         r#"%YAML:1.0
-# ORB-SLAM3 RGB-D settings written by rslam for this dataset's camera (no distortion).
+# ORB-SLAM3 RGB-D settings written by rslam for this dataset's camera ({described}).
 File.version: "1.0"
 
-Camera.type: "PinHole"
+Camera.type: "{camera_type}"
 Camera1.fx: {fx:.6}
 Camera1.fy: {fy:.6}
 Camera1.cx: {cx:.6}
 Camera1.cy: {cy:.6}
-Camera1.k1: 0.0
-Camera1.k2: 0.0
-Camera1.p1: 0.0
-Camera1.p2: 0.0
-Camera1.k3: 0.0
+{coefficients}
 Camera.width: {w}
 Camera.height: {h}
 Camera.fps: {fps}
@@ -105,9 +131,44 @@ Viewer.ViewpointF: 500.0
 
     #[test]
     fn rgbd_settings_are_byte_identical_to_what_earlier_versions_wrote() {
-        assert_eq!(settings(&Intrinsics::REPLICA, 20.0), REPLICA_20_HZ);
+        assert_eq!(settings(&Intrinsics::REPLICA, None, 20.0), REPLICA_20_HZ);
         // FNV-1a 64 of the TUM preset's file, taken before the stereo settings were added.
-        let tum = settings(&Intrinsics::TUM, 30.0);
+        let tum = settings(&Intrinsics::TUM, None, 30.0);
         assert_eq!(fnv1a64(tum.as_bytes()), 0x8eb1_f531_8bd5_b75d, "{tum}");
+    }
+
+    /// The coefficients land under the keys ORB-SLAM3's `Settings::readCamera1` reads for each
+    /// camera type, exactly (the `{:e}` form round-trips an f64).
+    #[test]
+    fn distortion_is_written_under_the_keys_of_its_camera_type() {
+        let value = |text: &str, key: &str| -> String {
+            let line = text
+                .lines()
+                .find(|l| l.starts_with(&format!("{key}:")))
+                .unwrap_or_else(|| panic!("no {key} in\n{text}"));
+            line[key.len() + 1..].trim().to_string()
+        };
+        let radtan = Distortion::parse("radtan(-0.28,0.07,0.0002,-0.00003)").unwrap();
+        let text = settings(&Intrinsics::TUM, Some(&radtan), 30.0);
+        assert_eq!(value(&text, "Camera.type"), "\"PinHole\"");
+        for (key, want) in [
+            ("k1", -0.28),
+            ("k2", 0.07),
+            ("p1", 0.0002),
+            ("p2", -0.00003),
+            ("k3", 0.0),
+        ] {
+            let got: f64 = value(&text, &format!("Camera1.{key}")).parse().unwrap();
+            assert_eq!(got, want, "{key}");
+        }
+        let fisheye = Distortion::parse("equidistant(0.1,-0.02,0.003,-0.0004)").unwrap();
+        let text = settings(&Intrinsics::TUM, Some(&fisheye), 30.0);
+        assert_eq!(value(&text, "Camera.type"), "\"KannalaBrandt8\"");
+        for (key, want) in [("k1", 0.1), ("k2", -0.02), ("k3", 0.003), ("k4", -0.0004)] {
+            let got: f64 = value(&text, &format!("Camera1.{key}")).parse().unwrap();
+            assert_eq!(got, want, "{key}");
+        }
+        assert!(!text.contains("Camera1.p1"), "{text}");
+        assert_eq!(value(&text, "Camera1.fx"), "525.000000");
     }
 }

@@ -118,6 +118,7 @@ pub fn manifest() -> Manifest {
         source_hash: String::new(),
         format: None,
         camera: None,
+        distortion: None,
         depth_png: Default::default(),
         rate_hz: CAMERA_RATE_HZ,
         frame_count: FRAMES,
