@@ -6,8 +6,10 @@ import sys
 
 
 def fail(msg, code=2):
+    """Prints the error and exits at once: once started, ORB-SLAM3's threads can hang a normal exit."""
     print(f"{os.path.basename(sys.argv[0])}: {msg}", file=sys.stderr)
-    sys.exit(code)
+    sys.stderr.flush()
+    os._exit(code)
 
 
 def argument_parser(doc, layout):
