@@ -3,7 +3,8 @@
 # odometry (examples/methods/opencv_rgbd.toml, from PyPI) runs on every sequence beside three
 # methods that crash, hang past their timeout and write garbage; `rslam suite report` must show
 # the odometry tracking the clean sequence within CLEAN_ATE_BOUND, the strong perturbation
-# raising its ATE, and each bad method as F with its reason.
+# raising its ATE, and each bad method as F with its reason. Also the unit tests of the example
+# methods' Python helpers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 frames=${BENCH_TEST_FRAMES:-100}
@@ -23,6 +24,8 @@ venv=$PWD/target/methods-venv
 [ -x "$venv/bin/python3" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet -r examples/methods/requirements.txt
 export PATH=$venv/bin:$PATH
+# the example methods' own helpers (no ORB-SLAM3 needed)
+python3 -m unittest discover -s examples/methods -p 'test_*.py'
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

@@ -7,32 +7,16 @@ The vocabulary defaults to $ORBSLAM3_VOCABULARY: ORB-SLAM3's Vocabulary/ORBvoc.t
 ORBvoc.txt.tar.gz from the ORB-SLAM3 repository). Writes ORB-SLAM3's own TUM trajectory
 (SaveTrajectoryTUM), stamped with the rgb.txt times; frames it lost are not in it.
 """
-import argparse
 import os
-import sys
 
 import cv2
 import numpy as np
 
-
-def fail(msg, code=2):
-    print(f"orbslam3_rgbd: {msg}", file=sys.stderr)
-    sys.exit(code)
+from orbslam3_common import StateTally, argument_parser, fail, parse_arguments, shut_down_and_exit
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--dataset", required=True, help="dataset folder (TUM layout)")
-    ap.add_argument("--settings", required=True, help="ORB-SLAM3 settings (the dataset's orbslam3.yaml)")
-    ap.add_argument("--out", required=True, help="estimate to write (TUM trajectory)")
-    ap.add_argument("--vocabulary", default=os.environ.get("ORBSLAM3_VOCABULARY"),
-                    help="ORBvoc.txt (default: $ORBSLAM3_VOCABULARY)")
-    a = ap.parse_args()  # exits 2 on bad arguments
-
-    if not a.vocabulary or not os.path.isfile(a.vocabulary):
-        fail(f"no ORB vocabulary at {a.vocabulary!r}: set ORBSLAM3_VOCABULARY or --vocabulary to ORBvoc.txt")
-    if not os.path.isfile(a.settings):
-        fail(f"no settings file {a.settings}")
+    a = parse_arguments(argument_parser(__doc__, "TUM"))
     assoc = os.path.join(a.dataset, "associations.txt")
     if not os.path.isfile(assoc):
         fail(f"{a.dataset}: no associations.txt (this method reads the TUM layout)")
@@ -51,7 +35,7 @@ def main():
     import pyorbslam3
 
     slam = pyorbslam3.Slam(a.vocabulary, a.settings, pyorbslam3.Sensor.RGBD, use_viewer=False)
-    states = {}
+    states = StateTally()
     for t, rgb_path, depth_path in frames:
         bgr = cv2.imread(rgb_path, cv2.IMREAD_COLOR)
         depth = cv2.imread(depth_path, cv2.IMREAD_UNCHANGED)
@@ -59,14 +43,9 @@ def main():
             fail(f"cannot read {rgb_path} or {depth_path}", 1)
         image = cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB) if rgb_order else bgr
         # raw depth units as float32: ORB-SLAM3 divides by RGBD.DepthMapFactor itself
-        state = slam.track_rgbd(image, depth.astype(np.float32), t).state
-        states[state.name] = states.get(state.name, 0) + 1
-    slam.shutdown()
-    slam.save_trajectory_tum(a.out)
-    print(f"{len(frames)} frames, tracking states {states}", file=sys.stderr)
-    sys.stderr.flush()
-    # ORB-SLAM3's threads can hang at interpreter exit
-    os._exit(0)
+        states.add(slam.track_rgbd(image, depth.astype(np.float32), t))
+    states.report(len(frames))
+    shut_down_and_exit(slam, states, lambda: slam.save_trajectory_tum(a.out))
 
 
 if __name__ == "__main__":

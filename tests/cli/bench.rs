@@ -198,3 +198,53 @@ command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && printf 'ply\nformat 
         );
     }
 }
+
+/// A rig row is made in the EuRoC layout; a method that reads it gets the dataset and ORB-SLAM3's
+/// stereo settings as `{camera}`, and the report scores it against the body's ground truth.
+#[test]
+fn a_euroc_method_gets_the_rig_dataset_and_its_stereo_settings() {
+    let ws = Workspace::new();
+    ws.write(
+        "suite/suite.toml",
+        "[[sequence]]\nname = \"room0__stereo\"\nscene = \"room0\"\nframes = 6\n\
+         format = \"euroc\"\nrig = \"stereo-imu\"\n",
+    );
+    ws.rslam(&["suite", "run", "suite"]).success();
+    // Checks what it is given, then answers with the ground truth (ns, p, q w-first) as TUM.
+    let check_and_copy = r#"test "$2" = "$1/orbslam3_stereo.yaml" && grep -q Stereo.T_c1_c2 "$2" && test -s "$1/mav0/cam1/data.csv" && awk -F, '!/^#/ {{ printf "%.9f %s %s %s %s %s %s %s\n", $1 / 1e9, $2, $3, $4, $6, $7, $8, $5 }}' "$1/mav0/state_groundtruth_estimate0/data.csv" > "$3""#;
+    ws.write(
+        "oracle.toml",
+        &format!(
+            "name = \"oracle\"\nreads = \"euroc\"\ncommand = [\"sh\", \"-c\", '''{check_and_copy}''', \"sh\", \"{{dataset}}\", \"{{camera}}\", \"{{estimate}}\"]\ntimeout_s = 30\n"
+        ),
+    );
+    ws.write(
+        "replica.toml",
+        "name = \"vo\"\nreads = \"replica\"\ncommand = [\"true\"]\ntimeout_s = 5\n",
+    );
+    ws.rslam(&["suite", "bench", "suite", "--methods", "replica.toml"])
+        .fails_with(
+            2,
+            &[
+                "method 'vo' reads the replica layout but 1 sequence(s) of the suite are euroc",
+                "`rslam suite init --format replica`",
+            ],
+        );
+    let bench = ws.rslam(&["suite", "bench", "suite", "--methods", "oracle.toml"]);
+    bench.success();
+    assert!(
+        bench
+            .stderr()
+            .contains("1 runs succeeded, 0 failed now; 0 were done before"),
+        "{}",
+        bench.stderr()
+    );
+    ws.rslam(&["suite", "report", "suite"]).success();
+    let runs = report_runs(&ws);
+    assert_eq!(runs.len(), 1);
+    assert!(
+        runs[0]["failure"].is_null() && runs[0]["ate"].as_f64().unwrap() < 1e-6,
+        "{}",
+        runs[0]
+    );
+}

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use rslam_core::dataset::refuse_symlinks;
 use rslam_gpu::GpuContext;
-use rslam_pipeline::{render_dataset, FolderState, PipelineError, Progress};
+use rslam_pipeline::{FolderState, PipelineError, Progress};
 
 use crate::disk::{available_bytes, format_bytes};
 use crate::plan::plan;
@@ -149,34 +149,28 @@ fn make_one(
     let started = Instant::now();
     let sequence_progress = progress.sequence(&sequence.name);
     let force = matches!(state, SequenceState::Conflict(_));
-    let report = match render_dataset(
-        ctx,
-        &sequence.render_job(&suite.dir, force),
-        &*sequence_progress,
-    ) {
+    let (made, found) = match sequence.render(ctx, &suite.dir, force, &*sequence_progress) {
         // An unfinished run of another job (another GPU, an edited row) was never usable.
-        Err(PipelineError::OtherJob { .. }) if *state == SequenceState::Partial => render_dataset(
-            ctx,
-            &sequence.render_job(&suite.dir, true),
-            &*sequence_progress,
-        )?,
+        Err(PipelineError::OtherJob { .. }) if *state == SequenceState::Partial => {
+            sequence.render(ctx, &suite.dir, true, &*sequence_progress)?
+        }
         report => report?,
     };
     let seconds = started.elapsed().as_secs_f64();
-    if report.made > 0 {
+    if made > 0 {
         Timings::append(
             &suite.dir,
             &Timing {
                 sequence: sequence.name.clone(),
-                frames: report.made,
+                frames: made,
                 seconds,
                 adapter: ctx.describe(),
             },
         )?;
     }
     Ok(SequenceOutcome::Made {
-        frames: report.made,
-        found: report.found,
+        frames: made,
+        found,
         seconds,
     })
 }

@@ -1,5 +1,5 @@
 //! One row of a suite made concrete: the dataset `datasets/<name>/` that `rslam suite run` makes,
-//! as the `rslam render` job it is.
+//! as the `rslam render` job it is (one RGB-D camera, or a rig in the EuRoC layout).
 
 use std::path::{Path, PathBuf};
 
@@ -7,9 +7,15 @@ use rslam_core::dataset::{DatasetFormat, DepthPng};
 use rslam_core::hash::{fnv1a64, splitmix64};
 use rslam_core::trajectory_io::read_trajectory;
 use rslam_core::Intrinsics;
+use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{FramePlan, RenderJob, SceneJob};
+use rslam_pipeline::rig::rig_camera_frames;
+use rslam_pipeline::{
+    render_dataset, render_euroc, FolderState, FramePlan, PipelineError, Progress, RenderJob, Rig,
+    RigRenderJob, SceneJob,
+};
 
+use crate::layout::Layout;
 use crate::SuiteError;
 
 /// The folder of a suite that holds one dataset per sequence.
@@ -25,14 +31,27 @@ pub struct Sequence {
     pub seed: u64,
     /// Only the first N poses of the path; `None`: all of them.
     pub frames: Option<usize>,
-    pub format: DatasetFormat,
-    /// `replica`, `tum` or `W,H,FX,FY,CX,CY`, as written.
-    pub camera_text: String,
+    pub sensors: Sensors,
+    /// The camera, or a rig's cam0.
     pub camera: Intrinsics,
+    /// The rate of the path's poses (of the camera's frames without a rig).
     pub rate_hz: f64,
     /// Camera path file relative to the suite folder; `None`: the scene's own path.
     pub traj: Option<PathBuf>,
-    pub depth_png: DepthPng,
+}
+
+/// What sees the scene, which decides the layout.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Sensors {
+    /// One RGB-D camera in a core layout.
+    Camera {
+        format: DatasetFormat,
+        /// `replica`, `tum` or `W,H,FX,FY,CX,CY`, as written.
+        camera_text: String,
+        depth_png: DepthPng,
+    },
+    /// A rig preset (its `--rig` name is `Rig::name`), in the EuRoC layout.
+    Rig(Rig),
 }
 
 /// Frames of a sequence: drawn from the scene, and written (fewer under `fast`).
@@ -63,6 +82,13 @@ impl Sequence {
             .map_or(&self.name, |(scene, _)| scene)
     }
 
+    pub fn layout(&self) -> Layout {
+        match &self.sensors {
+            Sensors::Camera { format, .. } => Layout::Camera(*format),
+            Sensors::Rig(_) => Layout::Euroc,
+        }
+    }
+
     pub fn dir(&self, suite_dir: &Path) -> PathBuf {
         suite_dir.join(DATASETS_DIR).join(&self.name)
     }
@@ -83,11 +109,24 @@ impl Sequence {
         if let Some(frames) = self.frames {
             push("--frames", frames.to_string());
         }
-        push("--camera", self.camera_text.clone());
-        push("--rate", self.rate_hz.to_string());
-        push("--format", self.format.to_string());
-        if self.depth_png != DepthPng::default() {
-            push("--depth-png", self.depth_png.to_string());
+        match &self.sensors {
+            Sensors::Camera {
+                format,
+                camera_text,
+                depth_png,
+            } => {
+                push("--camera", camera_text.clone());
+                push("--rate", self.rate_hz.to_string());
+                push("--format", format.to_string());
+                if *depth_png != DepthPng::default() {
+                    push("--depth-png", depth_png.to_string());
+                }
+            }
+            Sensors::Rig(rig) => {
+                push("--rig", rig.name.clone());
+                push("--rate", self.rate_hz.to_string());
+                push("--format", Layout::Euroc.to_string());
+            }
         }
         push("--seed", self.seed.to_string());
         if !self.spec.is_empty() {
@@ -103,32 +142,76 @@ impl Sequence {
         args
     }
 
-    pub fn render_job(&self, suite_dir: &Path, force: bool) -> RenderJob {
-        RenderJob {
-            scene: SceneJob {
-                scene: self.scene_path(suite_dir),
-                trajectory: self.traj.as_ref().map(|t| suite_dir.join(t)),
-                frames: self.frames,
-                camera: self.camera,
-                rate_hz: self.rate_hz,
-                spec: self.spec.clone(),
-                seed: self.seed,
-                agent: None,
-            },
-            out: self.dir(suite_dir),
-            format: self.format,
-            depth_png: self.depth_png,
-            force,
-            command: self.command(),
+    /// Renders the sequence (`force`: replacing another job's output): the frames this run
+    /// made, and what the folder held before.
+    pub fn render(
+        &self,
+        ctx: &GpuContext,
+        suite_dir: &Path,
+        force: bool,
+        progress: &dyn Progress,
+    ) -> Result<(usize, FolderState), PipelineError> {
+        let scene = SceneJob {
+            scene: self.scene_path(suite_dir),
+            trajectory: self.traj.as_ref().map(|t| suite_dir.join(t)),
+            frames: self.frames,
+            camera: self.camera,
+            rate_hz: self.rate_hz,
+            spec: self.spec.clone(),
+            seed: self.seed,
+            agent: None,
+        };
+        let (out, command) = (self.dir(suite_dir), self.command());
+        match &self.sensors {
+            Sensors::Camera {
+                format, depth_png, ..
+            } => {
+                let job = RenderJob {
+                    scene,
+                    out,
+                    format: *format,
+                    depth_png: *depth_png,
+                    force,
+                    command,
+                };
+                let report = render_dataset(ctx, &job, progress)?;
+                Ok((report.made, report.found))
+            }
+            Sensors::Rig(rig) => {
+                let job = RigRenderJob {
+                    scene,
+                    rig: rig.clone(),
+                    out,
+                    force,
+                    command,
+                };
+                let report = render_euroc(ctx, &job, progress)?;
+                let made = match report.found {
+                    FolderState::Complete => 0,
+                    _ => report.cameras.iter().map(|c| c.frames).sum(),
+                };
+                Ok((made, report.found))
+            }
         }
     }
 
-    /// Frames drawn and written, from the plan, without loading the scene.
+    /// Frames drawn and written (by all of a rig's cameras), from the plan, without loading
+    /// the scene.
     pub fn frame_counts(&self, suite_dir: &Path) -> Result<FrameCounts, SuiteError> {
         let poses = match self.frames {
             Some(n) => n,
             None => self.path_length(suite_dir)?,
         };
+        if let Sensors::Rig(rig) = &self.sensors {
+            let frames = rig_camera_frames(rig, poses, self.rate_hz)?
+                .iter()
+                .map(|c| c.frames)
+                .sum();
+            return Ok(FrameCounts {
+                rendered: frames,
+                written: frames,
+            });
+        }
         let plan = FramePlan::rendered(poses, self.rate_hz, &self.spec, self.seed);
         Ok(FrameCounts {
             rendered: plan.needed_sources().len(),

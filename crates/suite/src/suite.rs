@@ -8,12 +8,18 @@ use rslam_core::limits::{MAX_POSES, MAX_SUITE_SEQUENCES};
 use rslam_core::trajectory_io::ReadOptions;
 use rslam_core::{read_text_file, Intrinsics};
 use rslam_perturb::PerturbSpec;
+use rslam_pipeline::rig::{check_rig_spec, RIG_NAMES};
+use rslam_pipeline::{PipelineError, Rig};
 
-use crate::sequence::{sequence_seed, Sequence};
+use crate::layout::Layout;
+use crate::sequence::{sequence_seed, Sensors, Sequence};
 use crate::shard::Shard;
 use crate::state::{inspect, SequenceState};
 use crate::suite_file::{line_of, SequenceFields, SuiteFile, SUITE_FILE};
 use crate::SuiteError;
+
+/// The camera of a row that names none.
+const DEFAULT_CAMERA: &str = "replica";
 
 #[derive(Clone, Debug)]
 pub struct Suite {
@@ -99,7 +105,7 @@ impl Suite {
         let mut rates = self
             .sequences
             .iter()
-            .filter(|s| s.format == DatasetFormat::Replica)
+            .filter(|s| s.layout() == Layout::Camera(DatasetFormat::Replica))
             .map(|s| (s.rate_hz, &s.name));
         let Some((rate, first)) = rates.next() else {
             return Ok(ReadOptions::DEFAULT_REPLICA_RATE_HZ);
@@ -129,23 +135,16 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
         None | Some("") => PerturbSpec::default(),
         Some(text) => PerturbSpec::parse(text).map_err(|e| in_row(format!("perturb: {e}")))?,
     };
-    let format: DatasetFormat = row
+    let layout: Layout = row
         .format
         .as_deref()
         .unwrap_or("replica")
         .parse()
         .map_err(|e| in_row(format!("format: {e}")))?;
-    let depth_png: DepthPng = match row.depth_png.as_deref() {
-        None => DepthPng::default(),
-        Some(text) => text
-            .parse()
-            .map_err(|e| in_row(format!("depth_png: {e}")))?,
-    };
-    let camera_text = row.camera.clone().unwrap_or_else(|| "replica".into());
-    let camera = Intrinsics::parse(&camera_text).map_err(|e| in_row(format!("camera: {e}")))?;
-    let rate_hz = row
-        .rate
-        .unwrap_or_else(|| Intrinsics::preset_rate_hz(&camera_text));
+    let (sensors, camera) = sensors(row, layout, &spec).map_err(in_row)?;
+    let rate_hz = row.rate.unwrap_or_else(|| {
+        Intrinsics::preset_rate_hz(row.camera.as_deref().unwrap_or(DEFAULT_CAMERA))
+    });
     if !(rate_hz.is_finite() && rate_hz > 0.0) {
         return Err(in_row(format!(
             "rate {rate_hz}: expected a positive number of Hz"
@@ -186,13 +185,71 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
         scene,
         spec,
         frames: row.frames,
-        format,
-        camera_text,
+        sensors,
         camera,
         rate_hz,
         traj: row.traj.clone(),
-        depth_png,
     })
+}
+
+/// One camera (`camera`, `depth_png`) in a core layout, or a `rig` in EuRoC's, with the camera
+/// (a rig's cam0).
+fn sensors(
+    row: &SequenceFields,
+    layout: Layout,
+    spec: &PerturbSpec,
+) -> Result<(Sensors, Intrinsics), String> {
+    match (layout, row.rig.as_deref()) {
+        (Layout::Camera(format), None) => {
+            let depth_png = match row.depth_png.as_deref() {
+                None => DepthPng::default(),
+                Some(text) => text.parse().map_err(|e| format!("depth_png: {e}"))?,
+            };
+            let camera_text = row.camera.clone().unwrap_or_else(|| DEFAULT_CAMERA.into());
+            let camera = Intrinsics::parse(&camera_text).map_err(|e| format!("camera: {e}"))?;
+            let sensors = Sensors::Camera {
+                format,
+                camera_text,
+                depth_png,
+            };
+            Ok((sensors, camera))
+        }
+        (Layout::Euroc, Some(name)) => {
+            let rig = Rig::preset(name).map_err(|_| {
+                format!(
+                    "rig '{}': expected one of {}",
+                    rslam_core::printable(name),
+                    RIG_NAMES.join(", ")
+                )
+            })?;
+            let given = [
+                ("camera", row.camera.is_some()),
+                ("depth_png", row.depth_png.is_some()),
+            ];
+            if let Some((key, _)) = given.iter().find(|(_, given)| *given) {
+                return Err(format!(
+                    "{key}: a rig has its own cameras (without depth); leave {key} out of its rows and [defaults]"
+                ));
+            }
+            check_rig_spec(spec).map_err(|e| match e {
+                PipelineError::Option { message, .. } => format!("perturb: {message}"),
+                other => other.to_string(),
+            })?;
+            let cam0 = rig
+                .cameras
+                .first()
+                .ok_or("the rig has no camera")?
+                .intrinsics;
+            Ok((Sensors::Rig(rig), cam0))
+        }
+        (Layout::Euroc, None) => Err(format!(
+            "format euroc: needs rig = one of {} (the EuRoC layout is for rigs)",
+            RIG_NAMES.join(", ")
+        )),
+        (Layout::Camera(format), Some(_)) => Err(format!(
+            "rig: needs format = \"euroc\" (a rig is written in the EuRoC layout), not {format}"
+        )),
+    }
 }
 
 /// `<scene>__<setting>`, usable as a folder name on every file system.
@@ -227,8 +284,8 @@ mod tests {
         let suite = open(two).unwrap();
         let (a, b) = (&suite.sequences[0], &suite.sequences[1]);
         assert_eq!(
-            (a.frames, a.format, a.rate_hz),
-            (Some(10), DatasetFormat::Tum, 30.0)
+            (a.frames, a.layout(), a.rate_hz),
+            (Some(10), Layout::Camera(DatasetFormat::Tum), 30.0)
         );
         assert_eq!(
             (b.frames, b.seed, b.spec.to_string()),
@@ -273,6 +330,66 @@ mod tests {
                 .contains("suite.toml:1: sequence 'room0__a': depth_png"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn a_rig_row_is_the_rig_render_in_the_euroc_layout() {
+        let suite = open(
+            "[[sequence]]\nname = \"room0__stereo\"\nscene = \"room0\"\nframes = 400\nseed = 2\n\
+             format = \"euroc\"\nrig = \"stereo-imu\"\nperturb = \"fog:3\"\n",
+        )
+        .unwrap();
+        let sequence = &suite.sequences[0];
+        assert_eq!(sequence.layout(), Layout::Euroc);
+        assert_eq!(
+            sequence.command().join(" "),
+            "rslam render --scene room0 --frames 400 --rig stereo-imu --rate 20 --format euroc \
+             --seed 2 --perturb fog:3 --out datasets/room0__stereo"
+        );
+        assert_eq!(sequence.camera.width, 752);
+        // both cameras' frames: 398 each from 400 poses at 20 Hz
+        let counts = sequence.frame_counts(Path::new(".")).unwrap();
+        assert_eq!((counts.rendered, counts.written), (796, 796));
+    }
+
+    #[test]
+    fn a_rig_row_needs_the_euroc_layout_and_nothing_of_one_camera() {
+        let row = |keys: &str| {
+            let text = format!("[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\n{keys}");
+            open(&text).unwrap_err().to_string()
+        };
+        for (keys, expected) in [
+            (
+                "format = \"euroc\"\n",
+                "sequence 'room0__a': format euroc: needs rig = one of stereo, stereo-imu",
+            ),
+            (
+                "rig = \"stereo\"\nformat = \"tum\"\n",
+                "sequence 'room0__a': rig: needs format = \"euroc\"",
+            ),
+            (
+                "format = \"euroc\"\nrig = \"trinocular\"\n",
+                "sequence 'room0__a': rig 'trinocular': expected one of stereo, stereo-imu",
+            ),
+            (
+                "format = \"euroc\"\nrig = \"stereo\"\ncamera = \"tum\"\n",
+                "sequence 'room0__a': camera: a rig has its own cameras",
+            ),
+            (
+                "format = \"euroc\"\nrig = \"stereo\"\ndepth_png = \"small\"\n",
+                "sequence 'room0__a': depth_png: a rig has its own cameras",
+            ),
+            (
+                "format = \"euroc\"\nrig = \"stereo\"\nperturb = \"fast:2\"\n",
+                "sequence 'room0__a': perturb: 'fast': rigs do not support it yet",
+            ),
+        ] {
+            let err = row(keys);
+            assert!(
+                err.contains(&format!("suite.toml:1: {expected}")),
+                "{keys}: {err}"
+            );
+        }
     }
 
     #[test]

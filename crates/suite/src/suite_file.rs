@@ -4,7 +4,7 @@
 //! ```toml
 //! seed = 0                      # every row without its own seed gets mix(seed, name)
 //! [defaults]
-//! frames = 2000                 # also: format, camera, rate, scene, traj, depth_png
+//! frames = 2000                 # also: format, camera, rig, rate, scene, traj, depth_png
 //! [[sequence]]
 //! name = "room0__fog-3"         # <scene>__<setting>, the folder under datasets/
 //! scene = "room0"               # built-in scene or mesh file (relative to this file)
@@ -49,6 +49,9 @@ pub struct SequenceFields {
     pub format: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub camera: Option<String>,
+    /// A rig preset (`stereo`, `stereo-imu`) instead of one camera; with `format = "euroc"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rig: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rate: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -73,6 +76,7 @@ impl SequenceFields {
             frames: self.frames.or(defaults.frames),
             format: self.format.clone().or_else(|| defaults.format.clone()),
             camera: self.camera.clone().or_else(|| defaults.camera.clone()),
+            rig: self.rig.clone().or_else(|| defaults.rig.clone()),
             rate: self.rate.or(defaults.rate),
             traj: self.traj.clone().or_else(|| defaults.traj.clone()),
             depth_png: self

@@ -1,5 +1,6 @@
 //! Finding the runs: `<runs>/<method>/<sequence>.txt` (or `<runs>/<method>/<sequence>/<repeat>.txt`)
-//! and each sequence's ground truth in `<datasets>/<sequence>/{traj.txt, groundtruth.txt}`.
+//! and each sequence's ground truth in `<datasets>/<sequence>/`: `traj.txt`, `groundtruth.txt` or
+//! EuRoC's `mav0/state_groundtruth_estimate0/data.csv` (the body's).
 //!
 //! A runner records a run that failed as `<repeat>.failed` (or `<sequence>.failed`) beside where
 //! the estimate would be: a text file whose first line is the reason. It wins over an estimate of
@@ -12,8 +13,12 @@ use std::path::{Path, PathBuf};
 use super::naming::scene_and_setting;
 use crate::EvalError;
 
-/// Ground-truth files looked for in a dataset folder, in this order (Replica, TUM layout).
-pub(crate) const GROUND_TRUTH_FILES: [&str; 2] = ["traj.txt", "groundtruth.txt"];
+/// Ground-truth files looked for in a dataset folder, in this order (Replica, TUM, EuRoC layout).
+pub(crate) const GROUND_TRUTH_FILES: [&str; 3] = [
+    "traj.txt",
+    "groundtruth.txt",
+    "mav0/state_groundtruth_estimate0/data.csv",
+];
 const ESTIMATE_EXTENSION: &str = "txt";
 const FAILED_EXTENSION: &str = "failed";
 /// The reason of a failed run whose `.failed` file gives none.
@@ -62,8 +67,9 @@ pub fn find_sequences(datasets: &Path) -> Result<Vec<Sequence>, EvalError> {
     if sequences.is_empty() {
         return Err(EvalError::BadRuns {
             path: datasets.to_path_buf(),
-            message: "no dataset folder holding traj.txt or groundtruth.txt; expected \
-                      <datasets>/<sequence>/traj.txt (Replica) or .../groundtruth.txt (TUM)"
+            message: "no dataset folder holding a ground truth; expected \
+                      <datasets>/<sequence>/traj.txt (Replica), .../groundtruth.txt (TUM) or \
+                      .../mav0/state_groundtruth_estimate0/data.csv (EuRoC)"
                 .to_string(),
         });
     }
@@ -191,6 +197,30 @@ mod tests {
     fn write(path: &Path, text: &str) {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
         std::fs::write(path, text).unwrap();
+    }
+
+    #[test]
+    fn each_layout_s_ground_truth_is_found_in_its_dataset_folder() {
+        let dir = tempfile::tempdir().unwrap();
+        let euroc_truth = "mav0/state_groundtruth_estimate0/data.csv";
+        write(&dir.path().join("room0__replica/traj.txt"), "x");
+        write(&dir.path().join("room0__tum/groundtruth.txt"), "x");
+        write(&dir.path().join("room0__euroc").join(euroc_truth), "x");
+        write(&dir.path().join("room0__none/mav0/imu0/data.csv"), "x");
+        let found: Vec<(String, PathBuf)> = find_sequences(dir.path())
+            .unwrap()
+            .into_iter()
+            .map(|s| (s.name, s.ground_truth))
+            .collect();
+        let at = |name: &str, file: &str| (name.to_string(), dir.path().join(name).join(file));
+        assert_eq!(
+            found,
+            [
+                at("room0__euroc", euroc_truth),
+                at("room0__replica", "traj.txt"),
+                at("room0__tum", "groundtruth.txt"),
+            ]
+        );
     }
 
     #[test]

@@ -13,7 +13,7 @@ use std::sync::Arc;
 use rslam_core::dataset::euroc::{EurocImu, EurocWriter, GroundTruthState, ImuSample as ImuRow};
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::hash::splitmix64;
-use rslam_core::{CoreError, SplineSe3};
+use rslam_core::{CoreError, Pose, SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
 use rslam_perturb::imu::{ImuOrigin, ImuReport};
 use rslam_perturb::sensor::distortion;
@@ -119,6 +119,36 @@ struct CameraRun {
     spec: PerturbSpec,
 }
 
+/// The body's motion through its path.
+fn motion_spline(body: &Trajectory) -> Result<SplineSe3, PipelineError> {
+    SplineSe3::from_trajectory(body).map_err(|e| match e {
+        CoreError::SplineTooShort { poses } => PipelineError::option(
+            "--frames",
+            format!("{poses} poses: a rig's motion spline needs at least 4"),
+        ),
+        other => other.into(),
+    })
+}
+
+/// The frames each camera of `rig` gets from a path of `poses` poses evenly spaced at
+/// `path_rate_hz`, as [`render_euroc`] samples them, without the scene (for a plan).
+pub fn rig_camera_frames(
+    rig: &Rig,
+    poses: usize,
+    path_rate_hz: f64,
+) -> Result<Vec<CameraFrames>, PipelineError> {
+    let times = (0..poses).map(|i| i as f64 / path_rate_hz).collect();
+    let spline = motion_spline(&Trajectory::new(times, vec![Pose::IDENTITY; poses]))?;
+    Ok(rig
+        .cameras
+        .iter()
+        .map(|camera| CameraFrames {
+            name: camera.name.clone(),
+            frames: sample_times(&spline, camera.rate_hz).len(),
+        })
+        .collect())
+}
+
 pub fn render_euroc(
     ctx: &GpuContext,
     job: &RigRenderJob,
@@ -130,14 +160,7 @@ pub fn render_euroc(
     };
     let perturbed = PerturbedRig::new(&job.rig, &job.scene.spec, job.scene.seed)?;
     let resolved = job.scene.resolve()?;
-    let body = body_path(&resolved.clean, &cam0.body_from_camera);
-    let spline = SplineSe3::from_trajectory(&body).map_err(|e| match e {
-        CoreError::SplineTooShort { poses } => PipelineError::option(
-            "--frames",
-            format!("{poses} poses: a rig's motion spline needs at least 4"),
-        ),
-        other => other.into(),
-    })?;
+    let spline = motion_spline(&body_path(&resolved.clean, &cam0.body_from_camera))?;
     let runs: Vec<CameraRun> = job
         .rig
         .cameras
@@ -337,6 +360,25 @@ mod tests {
             camera_seed(u64::MAX, 1),
             u64::MAX.wrapping_add(0x9e37_79b9_7f4a_7c15)
         );
+    }
+
+    #[test]
+    fn a_plan_counts_the_frames_a_render_samples() {
+        // 400 poses at 20 Hz: the spline is valid over 397 / 20 s, sampled at 20 Hz both ends
+        // included (the 398 frames per camera of `render --rig stereo-imu --frames 400`).
+        let frames = rig_camera_frames(&Rig::stereo_imu(), 400, 20.0).unwrap();
+        let counted: Vec<(&str, usize)> =
+            frames.iter().map(|c| (c.name.as_str(), c.frames)).collect();
+        assert_eq!(counted, [("cam0", 398), ("cam1", 398)]);
+        // the path's rate matters, not only its length: 400 poses at 40 Hz last half as long
+        assert_eq!(
+            rig_camera_frames(&Rig::stereo(), 400, 40.0).unwrap()[0].frames,
+            199
+        );
+        let err = rig_camera_frames(&Rig::stereo(), 3, 20.0)
+            .unwrap_err()
+            .to_string();
+        assert!(err.starts_with("--frames: 3 poses"), "{err}");
     }
 
     #[test]

@@ -38,7 +38,8 @@ pub mod preset;
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
 pub use euroc_render::{
-    camera_seed, check_rig_spec, imu_seed, render_euroc, CameraFrames, RigRenderJob, RigReport,
+    camera_seed, check_rig_spec, imu_seed, render_euroc, rig_camera_frames, CameraFrames,
+    RigRenderJob, RigReport,
 };
 pub use imu_items::refuse_imu_items;
 pub use preset::{Rig, EUROC_CAM0_INTRINSICS, RIG_NAMES, STEREO_BASELINE_M};

@@ -2,7 +2,7 @@
 //!
 //! ```toml
 //! name = "opencv_rgbd"              # its folder under runs/
-//! reads = "replica"                 # the dataset layout it reads: replica | tum
+//! reads = "replica"                 # the dataset layout it reads: replica | tum | euroc
 //! command = ["python3", "{method_dir}/odometry.py", "{dataset}", "{estimate}"]
 //! timeout_s = 900                   # per run
 //! repeats = 3                       # runs per sequence (default 1)
@@ -11,17 +11,17 @@
 //!
 //! Each argument may hold placeholders, replaced per run: `{dataset}` the dataset folder,
 //! `{estimate}` the TUM trajectory to write, `{camera}` the layout's camera file
-//! (`cam_params.json` or `orbslam3.yaml`), `{sequence}`, `{repeat}` (0-based), `{log}`,
+//! (`cam_params.json`, `orbslam3.yaml` or `orbslam3_stereo.yaml`), `{sequence}`, `{repeat}` (0-based), `{log}`,
 //! `{work}` an empty scratch folder, `{method_dir}` the method file's folder; `{{` and `}}` are
 //! literal braces. The command runs as a list, without a shell (write `sh -c` for one).
 
 use std::path::{Path, PathBuf};
 
-use rslam_core::dataset::DatasetFormat;
 use rslam_core::limits::MAX_REPEATS;
 use rslam_core::read_text_file;
 use serde::Deserialize;
 
+use crate::layout::Layout;
 use crate::suite_file::line_of;
 use crate::SuiteError;
 
@@ -55,7 +55,7 @@ fn one() -> usize {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Method {
     pub name: String,
-    pub reads: DatasetFormat,
+    pub reads: Layout,
     pub command: Vec<String>,
     pub timeout_s: f64,
     pub repeats: usize,
@@ -282,7 +282,19 @@ mod tests {
         );
         assert!(command[5].ends_with("/a") && command[5].starts_with('/'));
         assert_eq!(m.mesh_for(&places), Some(PathBuf::from("/w/m.ply")));
-        assert_eq!((m.repeats, m.reads), (1, DatasetFormat::Tum));
+        assert_eq!(
+            (m.repeats, m.reads),
+            (1, Layout::Camera(rslam_core::dataset::DatasetFormat::Tum))
+        );
+    }
+
+    #[test]
+    fn a_method_may_read_the_euroc_layout() {
+        let m = method(
+            "name = \"s\"\nreads = \"euroc\"\ncommand = [\"run\", \"{camera}\"]\ntimeout_s = 5\n",
+        )
+        .unwrap();
+        assert_eq!(m.reads, Layout::Euroc);
     }
 
     #[test]
@@ -296,7 +308,7 @@ mod tests {
             (
                 "name = \"a\"\nreads = \"kitti\"\ncommand = [\"x\"]\ntimeout_s = 1\n",
                 ":2",
-                "reads: unknown dataset format",
+                "reads: unknown dataset layout 'kitti': expected replica, tum or euroc",
             ),
             (
                 "name = \"a\"\nreads = \"tum\"\ncommand = []\ntimeout_s = 1\n",

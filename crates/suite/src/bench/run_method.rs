@@ -5,7 +5,7 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
-use rslam_core::dataset::{refuse_symlinks, DatasetFormat};
+use rslam_core::dataset::refuse_symlinks;
 use rslam_core::trajectory_io::{read_trajectory, TrajectoryFormat};
 
 use super::method::{Method, RunPlaces};
@@ -107,14 +107,14 @@ fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Result<(), Suit
     for method in methods {
         let other: Vec<&&Sequence> = sequences
             .iter()
-            .filter(|s| s.format != method.reads)
+            .filter(|s| s.layout() != method.reads)
             .collect();
         if let Some(first) = other.first() {
             return Err(SuiteError::option(
                 "--methods",
                 format!(
-                    "method '{}' reads the {} layout but {} sequence(s) of the suite are {} (e.g. {}): make the suite with --format {}",
-                    method.name, method.reads, other.len(), first.format, first.name, method.reads
+                    "method '{}' reads the {} layout but {} sequence(s) of the suite are {} (e.g. {}): make the suite with {}",
+                    method.name, method.reads, other.len(), first.layout(), first.name, method.reads.how_to_make()
                 ),
             ));
         }
@@ -143,7 +143,7 @@ fn run_once(
     let estimate = work.join("estimate.txt");
     let log = files.log();
     let log = std::path::absolute(&log).unwrap_or(log);
-    let camera = dataset.join(camera_file(sequence.format));
+    let camera = dataset.join(sequence.layout().camera_file());
     let places = RunPlaces {
         dataset: &dataset,
         estimate: &estimate,
@@ -249,11 +249,4 @@ fn check_estimate(estimate: &Path) -> Result<(), String> {
     read_trajectory(estimate, Some(TrajectoryFormat::Tum))
         .map(|_| ())
         .map_err(|e| format!("estimate unreadable: {e}"))
-}
-
-fn camera_file(format: DatasetFormat) -> &'static str {
-    match format {
-        DatasetFormat::Replica => "cam_params.json",
-        DatasetFormat::Tum => "orbslam3.yaml",
-    }
 }
