@@ -121,6 +121,20 @@ pub fn listing() -> Vec<ListEntry> {
     entries
 }
 
+/// Listing entries of items described by their syntax alone (sensor effects, IMU items).
+fn item_entries(group: &'static str, items: &'static [SensorEntry]) -> Vec<ListEntry> {
+    items
+        .iter()
+        .map(|e| ListEntry {
+            name: e.name,
+            group,
+            syntax: e.syntax.to_string(),
+            description: e.description.to_string(),
+            parameters: Vec::new(),
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -137,18 +151,4 @@ mod tests {
             .filter(|e| e.group == "image" || e.group == "depth")
             .all(|e| e.parameters.len() == 5));
     }
-}
-
-/// Listing entries of items described by their syntax alone (sensor effects, IMU items).
-fn item_entries(group: &'static str, items: &'static [SensorEntry]) -> Vec<ListEntry> {
-    items
-        .iter()
-        .map(|e| ListEntry {
-            name: e.name,
-            group,
-            syntax: e.syntax.to_string(),
-            description: e.description.to_string(),
-            parameters: Vec::new(),
-        })
-        .collect()
 }

@@ -35,20 +35,6 @@ impl DepthPass {
         kit.dispatch(encoder, &self.pipeline, &bind_group, self.label);
     }
 
-    /// Like [`DepthPass::encode`] with no extra resources, for a shader whose workgroups are not
-    /// 8×8 tiles of the frame (e.g. one invocation per row).
-    pub fn encode_workgroups<P: Pod>(
-        &self,
-        kit: &Kit,
-        encoder: &mut wgpu::CommandEncoder,
-        frame: &FrameTextures,
-        params: &P,
-        workgroups: [u32; 3],
-    ) {
-        let bind_group = self.bind(kit, frame, params, &[]);
-        kit.dispatch_workgroups(encoder, &self.pipeline, &bind_group, self.label, workgroups);
-    }
-
     fn bind<P: Pod>(
         &self,
         kit: &Kit,
