@@ -28,7 +28,7 @@ use crate::frames;
 ///         (w, h, fx, fy, cx, cy)) so the GPU work is built now and frames of another size are
 ///         refused. Without it, the corruptions are built for the first frame's size (and
 ///         rebuilt if a later frame has another size). ``depth_sensor`` needs it: its noise,
-///         quantisation and projector shadow follow from the focal length.
+///         quantisation, surface angles, edge moves and projector shadow follow from the camera.
 ///
 /// Frame ``i`` of a sequence gets exactly what ``rslam perturb --perturb SPEC --seed SEED``
 /// writes for frame ``i`` (image ``i`` of a folder in name order, or frame ``i`` of a dataset),

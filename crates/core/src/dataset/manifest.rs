@@ -80,6 +80,15 @@ impl Manifest {
         let text = read_text_file(&path, "an rslam manifest (JSON)")?;
         let manifest: Manifest = serde_json::from_str(&text)
             .map_err(|e| CoreError::bad_file(&path, format!("not an rslam manifest: {e}")))?;
+        if !(manifest.rate_hz.is_finite() && manifest.rate_hz > 0.0) {
+            return Err(CoreError::bad_file(
+                &path,
+                format!(
+                    "rate_hz {}: expected a positive frame rate in Hz",
+                    manifest.rate_hz
+                ),
+            ));
+        }
         if let Some(camera) = &manifest.camera {
             camera
                 .check()
@@ -170,6 +179,24 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         manifest.write(dir.path()).unwrap();
         assert_eq!(Manifest::read(dir.path()).unwrap(), manifest);
+    }
+
+    /// Found by the fuzzer: a negative rate passed the manifest and failed later without a file.
+    #[test]
+    fn a_rate_that_is_not_positive_is_refused_naming_the_manifest() {
+        let dir = tempfile::tempdir().unwrap();
+        for rate in ["-1", "0"] {
+            let text = format!(
+                r#"{{"tool": "rslam", "tool_version": "0.1.0", "command": [], "source": "room0",
+                "source_hash": "", "format": "replica", "camera": null, "rate_hz": {rate},
+                "frame_count": 0, "seed": 0, "perturbation": "", "perturbation_parsed": null,
+                "severities": [], "rgb_source": [], "depth_source": [], "extra": null}}"#
+            );
+            std::fs::write(dir.path().join(MANIFEST_FILE), text).unwrap();
+            let message = Manifest::read(dir.path()).unwrap_err().to_string();
+            assert!(message.contains(MANIFEST_FILE), "{message}");
+            assert!(message.contains("positive frame rate"), "{message}");
+        }
     }
 
     #[test]
