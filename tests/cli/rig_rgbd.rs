@@ -19,7 +19,7 @@ fn small_render(format: &str, extra: &[&str]) -> Vec<String> {
         "--scene",
         "room0",
         "--frames",
-        "6",
+        "7",
         "--camera",
         SMALL_CAMERA,
         "--rate",
@@ -117,8 +117,9 @@ fn rgbd_imu_writes_tum_frames_a_200_hz_imu_and_consistent_calibration() {
     run(&ws, &args).success();
     let root = ws.path("ds");
 
-    // The TUM layout as rslam reads it: the camera given, 6 path poses at 30 Hz → the spline's
-    // valid range holds 4 frames, 1/30 s apart from the second pose's time.
+    // The TUM layout as rslam reads it: the camera given, 7 path poses at 30 Hz → the spline is
+    // valid from the second pose's time for 4/30 s, which the IMU covers to 0.130 s: 4 frames,
+    // 1/30 s apart (the fifth, at 0.133 s, would come after the IMU's last sample).
     let dataset = read_dataset(&root, &DatasetOverrides::default()).unwrap();
     assert_eq!(dataset.format, DatasetFormat::Tum);
     assert_eq!(dataset.intrinsics, Intrinsics::parse(SMALL_CAMERA).unwrap());
@@ -141,9 +142,9 @@ fn rgbd_imu_writes_tum_frames_a_200_hz_imu_and_consistent_calibration() {
             row[0].parse().unwrap()
         })
         .collect();
-    assert_eq!(imu.len(), 21, "0.1 s at 200 Hz, both ends");
+    assert_eq!(imu.len(), 27, "0.13 s at 200 Hz, both ends");
     assert!(imu.windows(2).all(|w| w[1] - w[0] == 5_000_000), "{imu:?}");
-    let (first, last) = (imu[0] as f64 * 1e-9, imu[20] as f64 * 1e-9);
+    let (first, last) = (imu[0] as f64 * 1e-9, imu[26] as f64 * 1e-9);
     // (rgb.txt keeps 6 decimals)
     assert!(first <= stamps[0] + 1e-6 && last >= stamps[3] - 1e-6);
     let sensor = std::fs::read_to_string(root.join("imu0/sensor.yaml")).unwrap();

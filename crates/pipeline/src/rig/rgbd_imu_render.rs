@@ -6,8 +6,8 @@
 //!
 //! The motion is the EuRoC rig render's: the path (the scene's or `--traj`) is the camera's, the
 //! body follows it at `body_from_camera⁻¹` along a cubic B-spline, the camera samples it at its
-//! rate and the IMU at 200 Hz over the spline's valid range, both on one grid from its start (a
-//! camera frame every 1/rate s, an IMU sample every 5 ms). `groundtruth.txt` is the camera's
+//! rate and the IMU at 200 Hz over the spline's valid range, both from its start (a camera frame
+//! every 1/rate s, an IMU sample every 5 ms; no frame after the IMU's last sample). `groundtruth.txt` is the camera's
 //! pose at each frame's capture time; under `cam_imu_offset` the frames' stamps move and it does
 //! not (its clock is the IMU's, as the body's ground truth).
 
@@ -57,7 +57,15 @@ pub fn render_rgbd_imu(
     let perturbed = PerturbedRig::new(&rig, spec, scene.seed)?;
     let resolved = scene.resolve()?;
     let spline = motion_spline(&body_path(&resolved.clean, &camera.body_from_camera))?;
-    let times_s = sample_times(&spline, camera.rate_hz);
+    // Frames after the IMU's last sample would have no readings since the previous frame (at
+    // 30 Hz the camera's grid may run up to 5 ms past the IMU's): left out.
+    let imu_end = rig
+        .imu
+        .as_ref()
+        .and_then(|imu| sample_times(&spline, imu.rate_hz).last().copied())
+        .unwrap_or(f64::INFINITY);
+    let mut times_s = sample_times(&spline, camera.rate_hz);
+    times_s.retain(|&t| t <= imu_end + 1e-9);
     let streams = imu_and_ground_truth(
         scene,
         &rig.name,
