@@ -263,3 +263,21 @@ fn rgbd_rig_flags_fail_with_one_line_errors() {
     );
     assert!(!ws.path("x").exists(), "nothing written");
 }
+
+/// A killed `rgbd-imu` render resumes frame by frame to the bytes of an uninterrupted one, IMU
+/// files and settings included.
+#[test]
+fn a_killed_rgbd_imu_render_resumes_to_the_same_bytes() {
+    let mut args = small_render("tum", &RGBD_IMU);
+    args[4] = "300".into(); // --frames
+    args.extend(["--perturb", "gaussian_noise:2,imu_noise:2"].map(String::from));
+    let whole = Workspace::new();
+    run(&whole, &args).success();
+    let killed = Workspace::new();
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    crate::resume::kill_mid_run(&killed, &refs, "ds", "rgb", "");
+    let resumed = run(&killed, &args);
+    resumed.success();
+    assert!(resumed.stderr().contains("resumed"), "{}", resumed.stderr());
+    crate::dataset_check::assert_same_tree(&whole.path("ds"), &killed.path("ds"));
+}

@@ -38,8 +38,8 @@ pub struct RenderArgs {
     /// rigs need --format euroc. The scene's path (or --traj) is the (first) camera's.
     #[arg(long)]
     rig: Option<String>,
-    /// Frame rate in Hz (with --rig: the rate of the path's poses); default: 30 for the tum
-    /// camera, else 20.
+    /// Frame rate in Hz (with a stereo rig: the rate of the path's poses); default: 30 for the
+    /// tum camera, else 20.
     #[arg(long)]
     rate: Option<f64>,
     /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM), tum (ORB-SLAM3; with
