@@ -69,21 +69,25 @@ def imu_samples(mav_dir):
     return np.array(samples)
 
 
-def imu_between_frames(frame_times_s, imu):
+def imu_between_frames(frame_times_s, imu, tolerance_s=0.0):
     """The IMU rows given with each frame, as ORB-SLAM3's stereo_inertial_euroc example gives
     them: none with the first frame; with each later frame, the rows not given yet up to its
-    time, starting from the last row at or before the first frame."""
+    time, starting from the last row at or before the first frame. A row within `tolerance_s`
+    after a frame counts as at its time (TUM frame stamps keep 6 decimals, the IMU's whole
+    nanoseconds)."""
     times = imu[:, 0]
-    if len(frame_times_s) and (times[0] > frame_times_s[0] or times[-1] < frame_times_s[-1]):
+    if len(frame_times_s) and (times[0] > frame_times_s[0] + tolerance_s
+                               or times[-1] < frame_times_s[-1] - tolerance_s):
         raise LayoutError(
             f"imu0 covers {times[0]:.3f}-{times[-1]:.3f} s, the frames {frame_times_s[0]:.3f}-{frame_times_s[-1]:.3f} s")
-    first = max(int(np.searchsorted(times, frame_times_s[0], side="right")) - 1, 0) if len(frame_times_s) else 0
+    first = (max(int(np.searchsorted(times, frame_times_s[0] + tolerance_s, side="right")) - 1, 0)
+             if len(frame_times_s) else 0)
     batches = []
     for i, t in enumerate(frame_times_s):
         if i == 0:
             batches.append(imu[:0])
             continue
-        end = int(np.searchsorted(times, t, side="right"))
+        end = int(np.searchsorted(times, t + tolerance_s, side="right"))
         batches.append(imu[first:end])
         first = max(first, end)
     return batches

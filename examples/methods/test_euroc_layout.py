@@ -24,6 +24,15 @@ class ImuBetweenFrames(unittest.TestCase):
         # none with the first frame; from the last sample at or before it up to each frame's time
         self.assertEqual(times, [[], [0.050, 0.055, 0.100], [0.105, 0.150]])
 
+    def test_a_tolerance_takes_a_row_just_after_a_rounded_frame_stamp_as_at_it(self):
+        # TUM stamps keep 6 decimals: frames at 1/30 s multiples, IMU rows at whole nanoseconds
+        imu = np.array([[t, 0, 0, 0, 0, 0, 9.81] for t in (0.0333333, 0.0383333, 0.0666667)])
+        frames = [0.033333, 0.066667]
+        with self.assertRaises(LayoutError):
+            imu_between_frames(frames, imu)
+        batches = imu_between_frames(frames, imu, tolerance_s=1e-6)
+        self.assertEqual([list(b[:, 0]) for b in batches], [[], [0.0333333, 0.0383333, 0.0666667]])
+
     def test_an_imu_that_does_not_cover_the_frames_is_refused(self):
         imu = np.array([[t, 0, 0, 0, 0, 0, 9.81] for t in (0.06, 0.07, 0.2)])
         with self.assertRaisesRegex(LayoutError, "imu0 covers 0.060-0.200 s, the frames 0.050-0.100 s"):

@@ -40,6 +40,9 @@ pub struct DatasetOutput<'a> {
     /// The job's manifest, without the content digest; its `depth_png` is how depth is encoded,
     /// its `distortion` the lens the camera files carry.
     pub manifest: Manifest,
+    /// Files of other sensors beside the frames (relative path, text), written before the
+    /// checksums: the `rgbd-imu` rig's IMU.
+    pub sensor_files: Vec<(String, String)>,
 }
 
 pub fn write_dataset<S: FrameSource>(
@@ -78,7 +81,7 @@ pub fn write_dataset<S: FrameSource>(
     progress.start(sources.len(), what);
     pipeline.run(ctx, &sources, progress, &mut sink)?;
     progress.finish();
-    let manifest = sink.finish(target.ground_truth, target.manifest)?;
+    let manifest = sink.finish(target.ground_truth, &target.sensor_files, target.manifest)?;
     output_folder::finish(target.out)?;
     Ok(RunReport {
         frames: plan.len(),

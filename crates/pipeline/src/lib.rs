@@ -55,7 +55,10 @@ pub use pipeline::Pipeline;
 pub use plan::{FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
 pub use render::{render_dataset, RenderJob};
-pub use rig::{perturb_euroc, render_euroc, PerturbEurocJob, Rig, RigRenderJob, RigReport};
+pub use rig::{
+    perturb_euroc, render_euroc, render_rgbd_imu, PerturbEurocJob, Rig, RigPreset, RigRenderJob,
+    RigReport,
+};
 pub use scene_job::{ResolvedScene, SceneJob};
 pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;

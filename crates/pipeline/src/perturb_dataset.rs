@@ -113,6 +113,7 @@ pub fn perturb_dataset(
         plan: &plan,
         ground_truth: &ground_truth,
         manifest,
+        sensor_files: Vec::new(),
     };
     write_dataset(ctx, &mut pipeline, output, progress, "perturbing")
 }

@@ -62,6 +62,7 @@ pub fn render_dataset(
         plan: &resolved.plan,
         ground_truth: &ground_truth,
         manifest,
+        sensor_files: Vec::new(),
     };
     write_dataset(ctx, &mut pipeline, output, progress, "rendering")
 }

@@ -26,7 +26,7 @@ const HEADINGS: [(&str, &str); 7] = [
     ("stream", "Stream operations"),
     ("sensor", "Sensor effects (the image formed from the camera's motion during capture; need a scene)"),
     ("calibration", "Calibration of a rig (--rig, or a EuRoC input with @calibration); image and depth items also take a camera: cam1:fog:3"),
-    ("imu", "IMU items (need an IMU: `render --rig stereo-imu --format euroc`, or a EuRoC dataset with imu0/)"),
+    ("imu", "IMU items (need an IMU: `render --rig stereo-imu --format euroc` or `--rig rgbd-imu --format tum`, or a EuRoC dataset with imu0/)"),
 ];
 
 fn text(entries: &[ListEntry]) -> String {

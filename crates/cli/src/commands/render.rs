@@ -7,8 +7,8 @@ use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::{
-    agent_folders, agent_scene_job, render_dataset, render_euroc, RenderJob, Rig, RigRenderJob,
-    SceneJob,
+    agent_folders, agent_scene_job, render_dataset, render_euroc, render_rgbd_imu, RenderJob,
+    RigPreset, RigRenderJob, SceneJob,
 };
 
 use super::run_summary::{print_rig_summary, print_summary};
@@ -28,20 +28,22 @@ pub struct RenderArgs {
     /// Render only the first N poses.
     #[arg(long)]
     frames: Option<usize>,
-    /// `replica` (1200x680, f=600, 20 Hz), `tum` (640x480, f=525, 30 Hz) or W,H,FX,FY,CX,CY.
-    #[arg(long, default_value = "replica", conflicts_with = "rig")]
-    camera: String,
-    /// A multi-sensor rig instead of one RGB-D camera: `stereo` (two 752x480 grey cameras,
-    /// 0.11 m apart, 20 Hz) or `stereo-imu` (the same and a 200 Hz IMU); needs --format euroc.
-    /// The scene's path (or --traj) is cam0's.
+    /// `replica` (1200x680, f=600, 20 Hz), `tum` (640x480, f=525, 30 Hz) or W,H,FX,FY,CX,CY
+    /// [default: replica]; the RGB-D camera of --rig rgbd and rgbd-imu (stereo rigs have their own).
+    #[arg(long)]
+    camera: Option<String>,
+    /// Sensors: `rgbd` (one RGB-D camera, the default), `rgbd-imu` (that camera at a RealSense
+    /// D435i's colour-camera pose and its 200 Hz IMU; needs --format tum), `stereo` (two 752x480
+    /// grey cameras, 0.11 m apart, 20 Hz) or `stereo-imu` (the same and a 200 Hz IMU); the stereo
+    /// rigs need --format euroc. The scene's path (or --traj) is the (first) camera's.
     #[arg(long)]
     rig: Option<String>,
-    /// Frame rate in Hz (with --rig: the rate of the path's poses); default: 30 for the tum
-    /// camera, else 20.
+    /// Frame rate in Hz (with a stereo rig: the rate of the path's poses); default: 30 for the
+    /// tum camera, else 20.
     #[arg(long)]
     rate: Option<f64>,
-    /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM), tum (ORB-SLAM3) or euroc
-    /// (stereo and IMU rigs; needs --rig).
+    /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM), tum (ORB-SLAM3; with
+    /// --rig rgbd-imu plus imu0/) or euroc (the stereo rigs; needs --rig).
     #[arg(long, value_enum, default_value = "replica")]
     format: OutputFormat,
     /// Depth PNG compression: `fast`, or `small` (about a third of the size for 2–3× the
@@ -77,11 +79,16 @@ enum OutputFormat {
     Euroc,
 }
 
-/// What the arguments ask for: one camera in a core layout, or a rig in EuRoC's.
+/// What the arguments ask for: one camera in a core layout, that camera with an IMU in the TUM
+/// layout, or a rig in EuRoC's.
 enum Job {
     Camera(RenderJob),
+    RgbdImu(RenderJob),
     Rig(RigRenderJob),
 }
+
+/// `--camera` when not given.
+const DEFAULT_CAMERA: &str = "replica";
 
 pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
     let jobs = jobs(&args)?;
@@ -94,6 +101,10 @@ pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
         match job {
             Job::Camera(job) => {
                 let report = render_dataset(&ctx, &job, &progress)?;
+                print_summary(&report, &job.out, &progress)?;
+            }
+            Job::RgbdImu(job) => {
+                let report = render_rgbd_imu(&ctx, &job, &progress)?;
                 print_summary(&report, &job.out, &progress)?;
             }
             Job::Rig(job) => {
@@ -125,15 +136,14 @@ fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
         Some(text) => PerturbSpec::parse(text).context("--perturb")?,
         None => PerturbSpec::default(),
     };
-    let camera = Intrinsics::parse(&args.camera).context("--camera")?;
+    let camera_text = args.camera.as_deref().unwrap_or(DEFAULT_CAMERA);
+    let camera = Intrinsics::parse(camera_text).context("--camera")?;
     Ok(SceneJob {
         scene: args.scene.clone(),
         trajectory: args.traj.clone(),
         frames: args.frames,
         camera,
-        rate_hz: args
-            .rate
-            .unwrap_or(Intrinsics::preset_rate_hz(&args.camera)),
+        rate_hz: args.rate.unwrap_or(Intrinsics::preset_rate_hz(camera_text)),
         spec,
         seed: args.seed,
         agent: None,
@@ -141,24 +151,45 @@ fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
 }
 
 fn job(args: &RenderArgs, scene: SceneJob, out: PathBuf) -> anyhow::Result<Job> {
-    let format = match (args.format, &args.rig) {
-        (OutputFormat::Euroc, Some(name)) => {
+    let preset = args.rig.as_deref().map(RigPreset::by_name).transpose()?;
+    let format = match (args.format, preset) {
+        (OutputFormat::Euroc, Some(RigPreset::Euroc(rig))) => {
+            if args.camera.is_some() {
+                anyhow::bail!(
+                    "--camera: the '{}' rig has its own cameras; leave --camera out with --rig {0}",
+                    rig.name
+                );
+            }
             return Ok(Job::Rig(RigRenderJob {
                 scene,
-                rig: Rig::preset(name)?,
+                rig,
                 out,
+                force: args.force,
+                command: super::typed_command(),
+            }));
+        }
+        (OutputFormat::Euroc, _) => anyhow::bail!(
+            "--format euroc: needs --rig stereo|stereo-imu (the EuRoC layout is for those rigs)"
+        ),
+        (_, Some(RigPreset::Euroc(rig))) => anyhow::bail!(
+            "--rig {}: needs --format euroc (the stereo rigs are written in the EuRoC layout)",
+            rig.name
+        ),
+        (OutputFormat::Replica, Some(RigPreset::RgbdImu)) => anyhow::bail!(
+            "--rig rgbd-imu: needs --format tum (the TUM layout with imu0/ beside it)"
+        ),
+        (OutputFormat::Tum, Some(RigPreset::RgbdImu)) => {
+            return Ok(Job::RgbdImu(RenderJob {
+                scene,
+                out,
+                format: DatasetFormat::Tum,
+                depth_png: args.depth_png,
                 force: args.force,
                 command: super::typed_command(),
             }))
         }
-        (OutputFormat::Euroc, None) => anyhow::bail!(
-            "--format euroc: needs --rig stereo|stereo-imu (the EuRoC layout is for rigs)"
-        ),
-        (_, Some(_)) => {
-            anyhow::bail!("--rig: needs --format euroc (a rig is written in the EuRoC layout)")
-        }
-        (OutputFormat::Replica, None) => DatasetFormat::Replica,
-        (OutputFormat::Tum, None) => DatasetFormat::Tum,
+        (OutputFormat::Replica, None | Some(RigPreset::Rgbd)) => DatasetFormat::Replica,
+        (OutputFormat::Tum, None | Some(RigPreset::Rgbd)) => DatasetFormat::Tum,
     };
     Ok(Job::Camera(RenderJob {
         scene,

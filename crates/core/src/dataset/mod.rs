@@ -29,6 +29,7 @@ pub use depth_png::DepthPng;
 pub use layout::DatasetFormat;
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
 pub use no_symlinks::refuse_symlinks;
+pub use orbslam3::rgbd_inertial_settings;
 pub use reader::{read_dataset, DatasetFrame, DatasetOverrides, SourceDataset};
 pub use verify::{verify_output, Verification};
 pub use writer::{DatasetWriter, FrameFiles, OutputFrame};

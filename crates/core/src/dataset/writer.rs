@@ -185,8 +185,12 @@ impl DatasetWriter {
         self.content.finish(manifest)
     }
 
-    /// A text file of the dataset at `rel` (written whole, counted in its checksums).
+    /// A text file of the dataset at `rel` (written whole, counted in its checksums), its folder
+    /// made if need be.
     pub fn write_text(&self, rel: &str, text: &str) -> Result<(), CoreError> {
+        if let Some(dir) = self.root().join(rel).parent() {
+            std::fs::create_dir_all(dir).map_err(|e| CoreError::io(dir, e))?;
+        }
         self.content.write(rel, text.as_bytes())
     }
 

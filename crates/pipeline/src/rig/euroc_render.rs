@@ -120,7 +120,7 @@ struct CameraRun {
 }
 
 /// The body's motion through its path.
-fn motion_spline(body: &Trajectory) -> Result<SplineSe3, PipelineError> {
+pub(super) fn motion_spline(body: &Trajectory) -> Result<SplineSe3, PipelineError> {
     SplineSe3::from_trajectory(body).map_err(|e| match e {
         CoreError::SplineTooShort { poses } => PipelineError::option(
             "--frames",
@@ -180,10 +180,10 @@ pub fn render_euroc(
     );
     let imu_seed = imu_seed(job.scene.seed);
     let streams = imu_and_ground_truth(
-        job,
+        &job.scene,
+        &job.rig.name,
         perturbed.actual.imu.as_ref(),
         &spline,
-        imu_seed,
         &runs[0].times_s,
     )?;
     let mut extra = serde_json::json!({
@@ -294,27 +294,28 @@ pub fn render_euroc(
 }
 
 /// The rows of imu0/data.csv and of the ground truth, IMU items applied.
-struct Streams {
-    imu: Vec<ImuRow>,
-    ground_truth: Vec<GroundTruthState>,
+pub(super) struct Streams {
+    pub imu: Vec<ImuRow>,
+    pub ground_truth: Vec<GroundTruthState>,
     /// What the IMU items drew, for the manifest.
-    report: Option<ImuReport>,
+    pub report: Option<ImuReport>,
 }
 
-/// `imu` (the rig's IMU as mounted) synthesised along the spline (its noise scaled by
-/// `imu_noise`), the ground truth at its samples (at `cam0_times` without an IMU), then the other
-/// IMU items, drawn from the job's seed. The IMU is cheap beside the frames: made before them so
-/// that the manifest can say what was drawn.
-fn imu_and_ground_truth(
-    job: &RigRenderJob,
+/// `imu` (the IMU of rig `rig_name` as mounted) synthesised along the spline with
+/// [`imu_seed`]`(scene.seed)` (its noise scaled by `imu_noise`), the ground truth at its samples
+/// (at `cam0_times` without an IMU), then the other IMU items, drawn from the job's seed. The
+/// IMU is cheap beside the frames: made before them so that the manifest can say what was drawn.
+pub(super) fn imu_and_ground_truth(
+    scene: &SceneJob,
+    rig_name: &str,
     imu: Option<&EurocImu>,
     spline: &SplineSe3,
-    imu_seed: u64,
     cam0_times: &[f64],
 ) -> Result<Streams, PipelineError> {
-    let spec = &job.scene.spec;
+    let spec = &scene.spec;
+    let imu_seed = imu_seed(scene.seed);
     let Some(imu) = imu else {
-        refuse_imu_items(spec, &format!("the '{}' rig", job.rig.name))?;
+        refuse_imu_items(spec, &format!("the '{rig_name}' rig"))?;
         return Ok(Streams {
             imu: Vec::new(),
             ground_truth: ground_truth_rows(spline, &[], cam0_times)?,
@@ -337,7 +338,7 @@ fn imu_and_ground_truth(
         &ground_truth,
         imu.rate_hz,
         ImuOrigin::Synthesised,
-        job.scene.seed,
+        scene.seed,
     )?;
     Ok(Streams {
         imu: perturbed.samples,

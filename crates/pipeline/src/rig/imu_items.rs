@@ -14,7 +14,7 @@ pub fn refuse_imu_items(spec: &PerturbSpec, what: &str) -> Result<(), PipelineEr
     match spec.imu.items().first() {
         Some(item) => Err(PipelineError::option(
             "--perturb",
-            format!("'{item}': IMU items need an IMU, and {what} has none; use `rslam render --rig stereo-imu --format euroc` or a EuRoC dataset with imu0/ as --input"),
+            format!("'{item}': IMU items need an IMU, and {what} has none; use `rslam render --rig stereo-imu --format euroc` or `--rig rgbd-imu --format tum`, or a EuRoC dataset with imu0/ as --input"),
         )),
         None => Ok(()),
     }

@@ -8,8 +8,12 @@
 //! frames with seed [`camera_seed`]`(seed, i)` (cam0: the job's seed), the IMU draws its noise
 //! with [`imu_seed`]`(seed)`.
 //!
-//! - [`preset`]: the `--rig` presets ([`Rig::stereo`], [`Rig::stereo_imu`]).
-//! - [`euroc_render`]: [`render_euroc`], the run.
+//! - [`preset`]: the `--rig` presets ([`RigPreset`]): `rgbd` (the one RGB-D camera of a render
+//!   without `--rig`), `rgbd-imu` ([`Rig::rgbd_imu`]), `stereo` and `stereo-imu` ([`Rig::stereo`],
+//!   [`Rig::stereo_imu`]).
+//! - [`euroc_render`]: [`render_euroc`], the run of a rig in the EuRoC layout.
+//! - [`rgbd_imu_render`]: [`render_rgbd_imu`], the `rgbd-imu` run: the TUM layout plus the IMU's
+//!   files as EuRoC has them and ORB-SLAM3's RGB-D-inertial settings.
 //! - [`euroc_perturb`]: [`perturb_euroc`], a recorded EuRoC dataset (MH_01_easy, …) copied with
 //!   every camera's frames corrupted (image corruptions) and its IMU perturbed (IMU items).
 //!
@@ -22,8 +26,8 @@
 //! Image and depth items reach every camera, or only the one they name (`cam1:fog:3`,
 //! [`rslam_perturb::PerturbSpec::for_camera`]).
 //!
-//! Not built yet: `rgbd` and `rgbd-imu` presets, frame-by-frame resume (an unfinished rig output
-//! is started over).
+//! Not built yet: frame-by-frame resume of a EuRoC rig output (an unfinished one is started
+//! over; an `rgbd-imu` output resumes as a one-camera render does).
 
 pub mod calibration;
 mod camera_sink;
@@ -34,6 +38,7 @@ mod imu_items;
 mod motion;
 mod output;
 pub mod preset;
+pub mod rgbd_imu_render;
 
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
@@ -42,4 +47,7 @@ pub use euroc_render::{
     RigRenderJob, RigReport,
 };
 pub use imu_items::refuse_imu_items;
-pub use preset::{Rig, EUROC_CAM0_INTRINSICS, RIG_NAMES, STEREO_BASELINE_M};
+pub use preset::{
+    d435i_imu, Rig, RigPreset, EUROC_CAM0_INTRINSICS, PRESET_NAMES, RIG_NAMES, STEREO_BASELINE_M,
+};
+pub use rgbd_imu_render::{render_rgbd_imu, ORBSLAM3_RGBD_INERTIAL_FILE};

@@ -49,10 +49,12 @@ impl<'a> DatasetSink<'a> {
         rgb.chain(depth).all(|name| root.join(name).is_file())
     }
 
-    /// Waits for the encoders, then writes trajectory, index files, checksums and the manifest.
+    /// Waits for the encoders, then writes `sensor_files` (relative path, text), trajectory,
+    /// index files, checksums and the manifest.
     pub fn finish(
         self,
         ground_truth: &Trajectory,
+        sensor_files: &[(String, String)],
         manifest: Manifest,
     ) -> Result<Manifest, PipelineError> {
         self.pool.finish()?;
@@ -60,6 +62,9 @@ impl<'a> DatasetSink<'a> {
             .map_err(|_| PipelineError::Worker("dataset writer still shared".into()))?;
         if let Some(table) = &self.state {
             writer.write_text(STATE_FILE, &state_csv(table, self.plan))?;
+        }
+        for (relative, text) in sensor_files {
+            writer.write_text(relative, text)?;
         }
         Ok(writer.finish(&self.plan.frames, ground_truth, manifest)?)
     }

@@ -36,6 +36,6 @@ pub use samples::{nanoseconds_from_seconds, EurocFrame, GroundTruthState, ImuSam
 pub use sensor_yaml::{CAMERA_YAML_FIRST_LINE, IMU_YAML_FIRST_LINE};
 pub use sensors::{CameraColour, EurocCamera, EurocImu, RadialTangential};
 pub use writer::{
-    EurocWriter, GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR, ORBSLAM3_STEREO_FILE,
+    inertial_files, EurocWriter, GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR, ORBSLAM3_STEREO_FILE,
     ORBSLAM3_STEREO_INERTIAL_FILE,
 };

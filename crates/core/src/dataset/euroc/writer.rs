@@ -113,6 +113,29 @@ fn check_imu(imu: &EurocImu, root: &Path) -> Result<(), CoreError> {
     }
 }
 
+/// The IMU's and the ground truth's files as the EuRoC layout has them under `mav0/`, paths
+/// relative to the folder that holds the sensors: `imu0/data.csv` and `imu0/sensor.yaml` when
+/// there is an IMU, `state_groundtruth_estimate0/data.csv` when there are states. The `rgbd-imu`
+/// rig writes them beside a TUM dataset the same way.
+pub fn inertial_files(
+    imu: Option<&EurocImu>,
+    samples: &[ImuSample],
+    states: &[GroundTruthState],
+) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    if let Some(imu) = imu {
+        files.push((format!("{IMU_DIR}/data.csv"), imu_csv(samples)));
+        files.push((format!("{IMU_DIR}/sensor.yaml"), imu_yaml(imu)));
+    }
+    if !states.is_empty() {
+        files.push((
+            format!("{GROUND_TRUTH_DIR}/data.csv"),
+            ground_truth_csv(states),
+        ));
+    }
+    files
+}
+
 /// Refuses a row of `stream` at `t_ns` that does not come after `previous`.
 fn not_after(path: PathBuf, stream: &str, what: &str, t_ns: u64, previous: u64) -> CoreError {
     CoreError::bad_file(
@@ -398,25 +421,21 @@ impl EurocWriter {
                 &camera_yaml(&stream.camera),
             )?;
         }
-        if let Some(imu) = &self.imu {
-            let rows = self.imu_rows.rows.lock().unwrap_or_else(|p| p.into_inner());
-            self.write_text(&format!("{MAV_DIR}/{IMU_DIR}/data.csv"), &imu_csv(&rows))?;
-            self.write_text(&format!("{MAV_DIR}/{IMU_DIR}/sensor.yaml"), &imu_yaml(imu))?;
-        }
+        let imu_rows = self.imu_rows.rows.lock().unwrap_or_else(|p| p.into_inner());
         let states = self
             .ground_truth
             .rows
             .lock()
             .unwrap_or_else(|p| p.into_inner());
-        if !states.is_empty() {
-            let dir = self.root().join(MAV_DIR).join(GROUND_TRUTH_DIR);
-            std::fs::create_dir_all(&dir).map_err(|e| CoreError::io(&dir, e))?;
-            self.write_text(
-                &format!("{MAV_DIR}/{GROUND_TRUTH_DIR}/data.csv"),
-                &ground_truth_csv(&states),
-            )?;
+        for (relative, text) in inertial_files(self.imu.as_ref(), &imu_rows, &states) {
+            let relative = format!("{MAV_DIR}/{relative}");
+            let path = self.root().join(&relative);
+            if let Some(dir) = path.parent() {
+                std::fs::create_dir_all(dir).map_err(|e| CoreError::io(dir, e))?;
+            }
+            self.write_text(&relative, &text)?;
         }
-        drop(states);
+        drop((imu_rows, states));
         if let [left, right, ..] = self.cameras.as_slice() {
             let (left, right) = (&left.camera, &right.camera);
             self.write_text(ORBSLAM3_STEREO_FILE, &stereo_settings(left, right))?;

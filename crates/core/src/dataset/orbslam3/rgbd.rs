@@ -1,6 +1,8 @@
 //! ORB-SLAM3 v1.0 RGB-D settings for a camera, with every key its loader and viewer read.
 
-use crate::{Distortion, Intrinsics};
+use super::imu::imu_part;
+use crate::dataset::euroc::EurocImu;
+use crate::{Distortion, Intrinsics, Pose};
 
 /// `orbslam3.yaml` of the TUM layout: the camera with its lens distortion (`PinHole` with
 /// k1, k2, p1, p2 for radial-tangential, `KannalaBrandt8` with k1..k4 for equidistant), depth in
@@ -81,6 +83,24 @@ Viewer.ViewpointF: 500.0
     )
 }
 
+/// `orbslam3_rgbd_inertial.yaml` of the `rgbd-imu` rig (ORB-SLAM3's `IMU_RGBD` sensor): the
+/// undistorted camera's [`settings`] plus `IMU.T_b_c1` (the camera's pose in the IMU frame, from
+/// its `body_from_camera` and the IMU's), the IMU's noise densities and rate, and
+/// `IMU.InsertKFsWhenLost: 0`, the keys of ORB-SLAM3 v1.0's
+/// `Examples/RGB-D-Inertial/RealSense_D435i.yaml`.
+pub fn rgbd_inertial_settings(
+    k: &Intrinsics,
+    rate_hz: f64,
+    body_from_camera: &Pose,
+    imu: &EurocImu,
+) -> String {
+    format!(
+        "{camera}\n{imu}\n# Do not insert keyframes when recently lost, as ORB-SLAM3's D435i example.\nIMU.InsertKFsWhenLost: 0\n",
+        camera = settings(k, None, rate_hz),
+        imu = imu_part("cam0", body_from_camera, imu),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -135,6 +155,48 @@ Viewer.ViewpointF: 500.0
         // FNV-1a 64 of the TUM preset's file, taken before the stereo settings were added.
         let tum = settings(&Intrinsics::TUM, None, 30.0);
         assert_eq!(fnv1a64(tum.as_bytes()), 0x8eb1_f531_8bd5_b75d, "{tum}");
+    }
+
+    /// The RGB-D file, then every IMU key of ORB-SLAM3's RealSense_D435i.yaml once, `IMU.T_b_c1`
+    /// the camera's pose in the IMU's frame (here an IMU off the body's origin).
+    #[test]
+    fn rgbd_inertial_settings_are_the_rgbd_ones_plus_the_d435i_example_imu_keys() {
+        use glam::{DQuat, DVec3};
+        let imu = EurocImu {
+            body_from_imu: Pose::new(DQuat::from_rotation_y(0.2), DVec3::new(0.1, 0.0, 0.0)),
+            ..EurocImu::adis16448()
+        };
+        let body_from_camera =
+            Pose::new(DQuat::from_rotation_z(0.01), DVec3::new(-0.02, 0.005, 0.01));
+        let text = rgbd_inertial_settings(&Intrinsics::TUM, 30.0, &body_from_camera, &imu);
+        assert!(text.starts_with(&settings(&Intrinsics::TUM, None, 30.0)));
+        let value = |key: &str| -> String {
+            let found: Vec<&str> = text
+                .lines()
+                .filter(|l| l.starts_with(&format!("{key}:")))
+                .collect();
+            assert_eq!(found.len(), 1, "{key} in\n{text}");
+            found[0][key.len() + 1..].trim().to_string()
+        };
+        for (key, want) in [
+            ("IMU.NoiseGyro", "0.00016968"),
+            ("IMU.NoiseAcc", "0.002"),
+            ("IMU.GyroWalk", "0.000019393"),
+            ("IMU.AccWalk", "0.003"),
+            ("IMU.Frequency", "200.0"),
+            ("IMU.InsertKFsWhenLost", "0"),
+        ] {
+            assert_eq!(value(key), want, "{key}");
+        }
+        assert_eq!(value("IMU.T_b_c1"), "!!opencv-matrix");
+        let at = text.find("IMU.T_b_c1:").unwrap();
+        let data =
+            &text[at + text[at..].find('[').unwrap() + 1..at + text[at..].find(']').unwrap()];
+        let numbers: Vec<f64> = data.split(',').map(|v| v.trim().parse().unwrap()).collect();
+        let written = Pose::from_row_major(&numbers.try_into().unwrap());
+        let want = imu.body_from_imu.inverse().compose(&body_from_camera);
+        assert!((written.translation - want.translation).length() < 1e-12);
+        assert!(written.rotation.angle_between(want.rotation) < 1e-9);
     }
 
     /// The coefficients land under the keys ORB-SLAM3's `Settings::readCamera1` reads for each

@@ -13,6 +13,7 @@
 //!   itself when the body frame is the IMU's (imu0's `T_BS` the identity, as in EuRoC and in
 //!   what rslam writes).
 
+use super::imu::imu_part;
 use crate::dataset::euroc::{CameraColour, EurocCamera, EurocImu};
 use crate::Pose;
 
@@ -25,7 +26,7 @@ const FEATURES: u32 = 1200;
 /// A number as OpenCV's `FileStorage` reads a real: ORB-SLAM3's `Settings` refuses a float key
 /// whose node is not `isReal()`, so `200` must be written `200.0`. Rust's shortest round-trip
 /// digits, never an exponent, always a decimal point.
-fn real(v: f64) -> String {
+pub(super) fn real(v: f64) -> String {
     let text = format!("{v}");
     if text.contains('.') {
         text
@@ -37,7 +38,7 @@ fn real(v: f64) -> String {
 /// `name: !!opencv-matrix` of a rigid transform, 4×4 row-major, single precision (`dt: f`), laid
 /// out as the examples lay out `Stereo.T_c1_c2`. Entries under 1e-12, rounding left over from
 /// composing transforms and far below single precision, are written as 0.0.
-fn opencv_matrix(name: &str, pose: &Pose) -> String {
+pub(super) fn opencv_matrix(name: &str, pose: &Pose) -> String {
     let entry = |v: f64| real(if v.abs() < 1e-12 { 0.0 } else { v });
     let rows: Vec<String> = pose
         .to_row_major()
@@ -162,28 +163,10 @@ pub fn stereo_settings(left: &EurocCamera, right: &EurocCamera) -> String {
 /// keeps 2.0e-3, 1.9393e-5 and 3.0e-3. `IMU.InsertKFsWhenLost` is left out, as in that
 /// example.
 pub fn stereo_inertial_settings(left: &EurocCamera, right: &EurocCamera, imu: &EurocImu) -> String {
-    let imu_from_cam0 = imu.body_from_imu.inverse().compose(&left.body_from_camera);
     format!(
-        "{cameras}\n\
-         # {left_name}'s pose in the IMU (body) frame: inverse(T_BS imu0) * T_BS {left_name}.\n\
-         {t_b_c1}\
-         \n\
-         # {comment}: continuous-time densities, as in imu0/sensor.yaml.\n\
-         IMU.NoiseGyro: {noise_gyro}\n\
-         IMU.NoiseAcc: {noise_acc}\n\
-         IMU.GyroWalk: {gyro_walk}\n\
-         IMU.AccWalk: {acc_walk}\n\
-         IMU.Frequency: {rate}\n\
-         {tracking}",
+        "{cameras}\n{imu}{tracking}",
         cameras = cameras_part(left, right, "stereo-inertial"),
-        left_name = left.name,
-        t_b_c1 = opencv_matrix("IMU.T_b_c1", &imu_from_cam0),
-        comment = crate::printable(&imu.comment),
-        noise_gyro = real(imu.gyroscope_noise_density),
-        noise_acc = real(imu.accelerometer_noise_density),
-        gyro_walk = real(imu.gyroscope_random_walk),
-        acc_walk = real(imu.accelerometer_random_walk),
-        rate = real(imu.rate_hz),
+        imu = imu_part(&left.name, &left.body_from_camera, imu),
         tracking = tracking_part(),
     )
 }

@@ -1,0 +1,158 @@
+//! `rslam render --rig rgbd-imu --format tum`: one RGB-D camera (`--camera`, at the path's
+//! rate) on a RealSense D435i-like body with its IMU, written in the TUM layout as a one-camera
+//! render writes it, plus the IMU and the body's ground truth as the EuRoC layout has them
+//! (`imu0/data.csv`, `imu0/sensor.yaml`, `state_groundtruth_estimate0/data.csv`) and ORB-SLAM3's
+//! RGB-D-inertial settings (`orbslam3_rgbd_inertial.yaml`).
+//!
+//! The motion is the EuRoC rig render's: the path (the scene's or `--traj`) is the camera's, the
+//! body follows it at `body_from_camera⁻¹` along a cubic B-spline, the camera samples it at its
+//! rate and the IMU at 200 Hz over the spline's valid range, both from its start (a camera frame
+//! every 1/rate s, an IMU sample every 5 ms; no frame after the IMU's last sample). `groundtruth.txt` is the camera's
+//! pose at each frame's capture time; under `cam_imu_offset` the frames' stamps move and it does
+//! not (its clock is the IMU's, as the body's ground truth).
+
+use rslam_core::dataset::euroc::inertial_files;
+use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat};
+use rslam_core::Trajectory;
+use rslam_gpu::GpuContext;
+
+use super::calibration::PerturbedRig;
+use super::euroc_render::{check_rig_spec, imu_and_ground_truth, imu_seed, motion_spline};
+use super::imu_items::{camera_stamps, with_imu_report};
+use super::motion::{body_path, camera_poses, nanoseconds, sample_times};
+use super::preset::Rig;
+use crate::agents::record_agent;
+use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
+use crate::manifest::ManifestParts;
+use crate::pipeline::Pipeline;
+use crate::plan::{FramePlan, SourceTiming};
+use crate::progress::Progress;
+use crate::render::RenderJob;
+use crate::source::SceneSource;
+use crate::PipelineError;
+
+/// ORB-SLAM3 v1.0 RGB-D-inertial settings of the `rgbd-imu` rig, in the dataset root.
+pub const ORBSLAM3_RGBD_INERTIAL_FILE: &str = "orbslam3_rgbd_inertial.yaml";
+
+/// Renders `job` (its format must be TUM) with [`Rig::rgbd_imu`] of its camera and rate. Items
+/// are those of a rig ([`check_rig_spec`]); IMU items, `cam_imu_offset` and the calibration
+/// items of `cam0` and `imu0` apply. An unfinished output of the same job is resumed frame by
+/// frame, as a one-camera render is.
+pub fn render_rgbd_imu(
+    ctx: &GpuContext,
+    job: &RenderJob,
+    progress: &dyn Progress,
+) -> Result<RunReport, PipelineError> {
+    if job.format != DatasetFormat::Tum {
+        return Err(PipelineError::option(
+            "--rig",
+            "'rgbd-imu': needs --format tum (the TUM layout with imu0/ beside it)",
+        ));
+    }
+    let scene = &job.scene;
+    let spec = &scene.spec;
+    check_rig_spec(spec)?;
+    let rig = Rig::rgbd_imu(scene.camera, scene.rate_hz);
+    let camera = &rig.cameras[0];
+    let perturbed = PerturbedRig::new(&rig, spec, scene.seed)?;
+    let resolved = scene.resolve()?;
+    let spline = motion_spline(&body_path(&resolved.clean, &camera.body_from_camera))?;
+    // Frames after the IMU's last sample would have no readings since the previous frame (at
+    // 30 Hz the camera's grid may run up to 5 ms past the IMU's): left out.
+    let imu_end = rig
+        .imu
+        .as_ref()
+        .and_then(|imu| sample_times(&spline, imu.rate_hz).last().copied())
+        .unwrap_or(f64::INFINITY);
+    let mut times_s = sample_times(&spline, camera.rate_hz);
+    times_s.retain(|&t| t <= imu_end + 1e-9);
+    let streams = imu_and_ground_truth(
+        scene,
+        &rig.name,
+        perturbed.actual.imu.as_ref(),
+        &spline,
+        &times_s,
+    )?;
+    let times_ns = times_s
+        .iter()
+        .map(|&t| nanoseconds(t))
+        .collect::<Result<Vec<_>, _>>()?;
+    let stamps_s: Vec<f64> = camera_stamps(spec, &camera.name, &times_ns)?
+        .iter()
+        .map(|&t| t as f64 * 1e-9)
+        .collect();
+    let plan = FramePlan::recorded(
+        &SourceTiming {
+            rgb_times: &stamps_s,
+            depth_offsets: &vec![0.0; stamps_s.len()],
+            rate_hz: camera.rate_hz,
+        },
+        spec,
+        scene.seed,
+    );
+    let poses = camera_poses(&spline, |k| perturbed.body_from_camera(0, k), &times_s)?;
+    let ground_truth = Trajectory::new(
+        times_ns.iter().map(|&t| t as f64 * 1e-9).collect(),
+        poses.clone(),
+    );
+
+    let mut extra = serde_json::json!({
+        "adapter": ctx.describe(),
+        "rig": rig.name,
+        "path_rate_hz": scene.rate_hz,
+        "imu": rig.imu.as_ref().map(|imu| serde_json::json!({
+            "rate_hz": imu.rate_hz,
+            "seed": imu_seed(scene.seed),
+        })),
+    });
+    record_agent(&mut extra, scene);
+    if !spec.calibration.is_empty() {
+        extra["calibration"] = perturbed.record(&rig);
+    }
+    let manifest = ManifestParts {
+        command: &job.command,
+        source: resolved.scene.name.clone(),
+        source_hash: resolved.scene.content_hash(),
+        format: Some(DatasetFormat::Tum),
+        camera: Some(camera.intrinsics),
+        distortion: None,
+        depth_png: job.depth_png,
+        rate_hz: camera.rate_hz,
+        seed: scene.seed,
+        spec,
+        plan: &plan,
+        extra,
+    }
+    .build()?;
+    let manifest = with_imu_report(manifest, streams.report.as_ref())?;
+
+    let written_camera = &perturbed.written.cameras[0];
+    let written_imu = perturbed.written.imu.as_ref();
+    let mut sensor_files = inertial_files(written_imu, &streams.imu, &streams.ground_truth);
+    if let Some(imu) = written_imu {
+        sensor_files.push((
+            ORBSLAM3_RGBD_INERTIAL_FILE.into(),
+            rgbd_inertial_settings(
+                &written_camera.intrinsics,
+                camera.rate_hz,
+                &written_camera.body_from_camera,
+                imu,
+            ),
+        ));
+    }
+
+    let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
+    source.set_sensor(ctx, spec, camera.rate_hz)?;
+    let mut pipeline = Pipeline::new(ctx, source, spec, scene.seed)?;
+    let output = DatasetOutput {
+        out: &job.out,
+        format: DatasetFormat::Tum,
+        camera: camera.intrinsics,
+        force: job.force,
+        plan: &plan,
+        ground_truth: &ground_truth,
+        manifest,
+        sensor_files,
+    };
+    write_dataset(ctx, &mut pipeline, output, progress, "rendering")
+}
