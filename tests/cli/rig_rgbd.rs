@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use rslam_core::dataset::euroc::{GROUND_TRUTH_HEADER, IMU_HEADER};
-use rslam_core::dataset::{read_dataset, DatasetFormat, DatasetOverrides};
+use rslam_core::dataset::{read_dataset, Checksums, DatasetFormat, DatasetOverrides};
 use rslam_core::trajectory_io::{read_trajectory, TrajectoryFormat};
 use rslam_core::{Intrinsics, Pose};
 
@@ -226,6 +226,47 @@ fn cam_imu_offset_moves_the_frame_stamps_of_rgbd_imu_only() {
         let read = |ws: &Workspace| std::fs::read(ws.path("ds").join(file)).unwrap();
         assert!(read(&clean) == read(&shifted), "{file}");
     }
+}
+
+/// `rslam perturb --input` of an `rgbd-imu` output keeps it RGB-D-inertial: its frames are
+/// corrupted, its IMU, body ground truth and settings copied byte for byte and listed in the
+/// checksums; `fast` (it re-stamps the frames) and IMU items are refused naming imu0/.
+#[test]
+fn perturbing_an_rgbd_imu_output_keeps_its_inertial_files() {
+    let ws = Workspace::new();
+    run(&ws, &small_render("tum", &RGBD_IMU)).success();
+    let perturb = |out: &str, spec: &str| {
+        ws.rslam(&["perturb", "--input", "ds", "--out", out, "--perturb", spec])
+    };
+    perturb("fog", "fog:2,misalign:1").success();
+    let listed: Vec<String> = Checksums::read(&ws.path("fog"))
+        .unwrap()
+        .paths()
+        .map(str::to_string)
+        .collect();
+    for file in [
+        "imu0/data.csv",
+        "imu0/sensor.yaml",
+        "state_groundtruth_estimate0/data.csv",
+        "orbslam3_rgbd_inertial.yaml",
+    ] {
+        let read = |dir: &str| std::fs::read(ws.path(dir).join(file)).unwrap();
+        assert!(read("ds") == read("fog"), "{file}");
+        assert!(listed.iter().any(|p| p == file), "{file} not in {listed:?}");
+    }
+    assert_eq!(
+        lines(&ws.path("ds/rgb.txt")),
+        lines(&ws.path("fog/rgb.txt")),
+        "frames keep their stamps, so the IMU still matches them"
+    );
+    ws.rslam(&["verify", "fog"]).success();
+
+    for (spec, item) in [("fast:2", "'fast:2'"), ("imu_noise:2", "'imu_noise:2'")] {
+        let err = perturb("refused", spec).fails_with(2, &[item, "imu0/"]);
+        let said: Vec<&str> = err.lines().filter(|l| !l.starts_with("adapter:")).collect();
+        assert!(said.len() == 1 && said[0].starts_with("error:"), "{err}");
+    }
+    assert!(!ws.path("refused").exists(), "nothing written");
 }
 
 #[test]

@@ -65,8 +65,9 @@ pub struct PerturbSpec {
     /// `baseline`, `extrinsic_rot`, `extrinsic_trans`: a rig's calibration, in the order written.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub calibration: Vec<CalibrationItem>,
-    /// `distortion:MODEL(…)`: the lens the frames are seen through.
-    #[serde(default)]
+    /// `distortion:MODEL(…)`: the lens the frames are seen through. Left out without one, so a
+    /// job of an rslam without lenses is the same job.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub distortion: Option<Distortion>,
 }
 

@@ -194,6 +194,8 @@ fn imu_items_go_to_their_own_field_print_last_and_round_trip() {
     // Specs without IMU items serialise as before (manifests of earlier runs stay the same).
     let plain = serde_json::to_string(&PerturbSpec::parse("fog:2").unwrap()).unwrap();
     assert!(!plain.contains("imu"), "{plain}");
+    assert!(!plain.contains("distortion"), "{plain}");
+    assert!(!plain.contains("calibration"), "{plain}");
     let e = err("imu_saturation:2");
     assert!(
         e.starts_with("--perturb item 'imu_saturation:2': '2': expected GYRO/ACC"),

@@ -95,7 +95,8 @@ fn other_job(root: &Path, earlier: &Manifest, job: &Manifest, what: &str) -> Pip
     }
 }
 
-/// The manifest fields (`extra.adapter` and the like one level down) in which two jobs differ.
+/// The manifest fields (`extra.adapter` and the like one level down) in which two jobs differ,
+/// fields only one of them has included (a job of an older rslam lacks the newer ones).
 fn differing_fields(a: &Manifest, b: &Manifest) -> Vec<String> {
     let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
         (serde_json::to_value(a), serde_json::to_value(b))
@@ -103,21 +104,28 @@ fn differing_fields(a: &Manifest, b: &Manifest) -> Vec<String> {
         return Vec::new();
     };
     let mut fields = Vec::new();
-    for (key, value) in &a {
-        match (value, b.get(key)) {
-            (serde_json::Value::Object(inner), Some(serde_json::Value::Object(other))) => {
+    for key in union_of_keys(&a, &b) {
+        match (a.get(key), b.get(key)) {
+            (Some(serde_json::Value::Object(inner)), Some(serde_json::Value::Object(other))) => {
                 fields.extend(
-                    inner
-                        .iter()
-                        .filter(|(k, v)| other.get(*k) != Some(*v))
-                        .map(|(k, _)| format!("{key}.{k}")),
+                    union_of_keys(inner, other)
+                        .filter(|k| inner.get(*k) != other.get(*k))
+                        .map(|k| format!("{key}.{k}")),
                 );
             }
-            (value, other) if other != Some(value) => fields.push(key.clone()),
+            (value, other) if value != other => fields.push(key.clone()),
             _ => {}
         }
     }
     fields
+}
+
+/// The keys of `a`, then those only `b` has.
+fn union_of_keys<'a>(
+    a: &'a serde_json::Map<String, serde_json::Value>,
+    b: &'a serde_json::Map<String, serde_json::Value>,
+) -> impl Iterator<Item = &'a String> {
+    a.keys().chain(b.keys().filter(|k| !a.contains_key(*k)))
 }
 
 fn is_empty(root: &Path) -> Result<bool, PipelineError> {
@@ -194,5 +202,19 @@ mod tests {
         }
         assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
         assert_eq!(std::fs::read_dir(elsewhere.path()).unwrap().count(), 1);
+    }
+
+    /// An output of an older rslam lacked fields the job has now; the refusal said "differs in )".
+    #[test]
+    fn fields_only_one_job_has_are_named_as_differing() {
+        let mut older = serde_json::to_value(job()).unwrap();
+        older["extra"] = serde_json::json!({"adapter": "a"});
+        let mut newer = older.clone();
+        newer["extra"]["rig"] = "rgbd-imu".into();
+        let older: Manifest = serde_json::from_value(older).unwrap();
+        let newer: Manifest = serde_json::from_value(newer).unwrap();
+        assert_eq!(differing_fields(&older, &newer), ["extra.rig"]);
+        assert_eq!(differing_fields(&newer, &older), ["extra.rig"]);
+        assert!(differing_fields(&newer, &newer).is_empty());
     }
 }

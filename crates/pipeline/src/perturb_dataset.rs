@@ -1,5 +1,6 @@
 //! `rslam perturb` on a dataset (Replica or TUM layout): its frames decoded, perturbed and
-//! written in the same layout, with `fast` and `misalign` re-planning the streams.
+//! written in the same layout, with `fast` and `misalign` re-planning the streams; an `rgbd-imu`
+//! output keeps its inertial files ([`crate::rig::rgbd_imu_perturb`]).
 
 use std::path::PathBuf;
 
@@ -14,6 +15,7 @@ use crate::output_folder;
 use crate::pipeline::Pipeline;
 use crate::plan::{FramePlan, SourceTiming};
 use crate::progress::Progress;
+use crate::rig::rgbd_imu_perturb::recorded_inertial_files;
 use crate::source::DatasetSource;
 use crate::PipelineError;
 
@@ -53,18 +55,23 @@ pub fn dataset_plan(dataset: &SourceDataset, spec: &PerturbSpec, seed: u64) -> F
     )
 }
 
-/// Refuses what cannot be applied to recorded frames.
+/// Refuses what cannot be applied to recorded frames of a dataset without an IMU.
 pub fn check_dataset_spec(
     dataset: &SourceDataset,
     spec: &PerturbSpec,
 ) -> Result<(), PipelineError> {
+    check_frame_items(dataset, spec)?;
+    crate::rig::refuse_imu_items(spec, "an RGB-D dataset")
+}
+
+/// Refuses frame items that cannot be applied to recorded frames.
+fn check_frame_items(dataset: &SourceDataset, spec: &PerturbSpec) -> Result<(), PipelineError> {
     if let Some(item) = spec.scene_items().first() {
         return Err(PipelineError::option(
             "--perturb",
             format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter, distortion) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
         ));
     }
-    crate::rig::refuse_imu_items(spec, "an RGB-D dataset")?;
     if !spec.depth.is_empty() {
         if let Some(frame) = dataset.frames.iter().find(|f| f.depth.is_none()) {
             return Err(PipelineError::option(
@@ -86,7 +93,12 @@ pub fn perturb_dataset(
 ) -> Result<RunReport, PipelineError> {
     output_folder::check_not_input(&job.out, &job.input)?;
     let dataset = read_dataset(&job.input, &job.overrides)?;
-    check_dataset_spec(&dataset, &job.spec)?;
+    let inertial_files = recorded_inertial_files(&job.input, &job.spec)?;
+    if inertial_files.is_empty() {
+        check_dataset_spec(&dataset, &job.spec)?;
+    } else {
+        check_frame_items(&dataset, &job.spec)?;
+    }
     let plan = dataset_plan(&dataset, &job.spec, job.seed);
     let ground_truth = output_ground_truth(&dataset, &plan, job.spec.fast.is_some());
     let manifest = ManifestParts {
@@ -113,7 +125,7 @@ pub fn perturb_dataset(
         plan: &plan,
         ground_truth: &ground_truth,
         manifest,
-        sensor_files: Vec::new(),
+        sensor_files: inertial_files,
     };
     write_dataset(ctx, &mut pipeline, output, progress, "perturbing")
 }

@@ -14,6 +14,7 @@
 //! - [`euroc_render`]: [`render_euroc`], the run of a rig in the EuRoC layout.
 //! - [`rgbd_imu_render`]: [`render_rgbd_imu`], the `rgbd-imu` run: the TUM layout plus the IMU's
 //!   files as EuRoC has them and ORB-SLAM3's RGB-D-inertial settings.
+//! - [`rgbd_imu_perturb`]: the inertial files an `rgbd-imu` output's perturbed copy keeps.
 //! - [`euroc_perturb`]: [`perturb_euroc`], a recorded EuRoC dataset (MH_01_easy, …) copied with
 //!   every camera's frames corrupted (image corruptions) and its IMU perturbed (IMU items).
 //!
@@ -38,6 +39,7 @@ mod imu_items;
 mod motion;
 mod output;
 pub mod preset;
+pub mod rgbd_imu_perturb;
 pub mod rgbd_imu_render;
 
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
