@@ -13,6 +13,8 @@ use rslam_core::printable;
 use super::{Mesh, Texture, Vertex};
 use crate::RenderError;
 
+mod face_indices;
+
 /// Reads the triangles, colours and diffuse textures of an .obj file and its .mtl.
 pub fn read_obj(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
     let options = tobj::LoadOptions {
@@ -22,6 +24,7 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
     };
     let dir = path.parent().unwrap_or(Path::new("."));
     let bytes = read_mesh_bytes(path)?;
+    face_indices::check_face_indices(path, &String::from_utf8_lossy(&bytes))?;
     let library = RefCell::new(PathBuf::new());
     let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |mtl| {
         library.replace(dir.join(mtl));
