@@ -75,14 +75,16 @@ impl LineRef<'_> {
         for (i, (value, text)) in values.iter_mut().zip(&fields).enumerate() {
             let parsed: f64 = text.parse().map_err(|_| {
                 self.error(format!(
-                    "field {} '{text}' is not a number (expected {layout})",
-                    i + 1
+                    "field {} '{}' is not a number (expected {layout})",
+                    i + 1,
+                    printable(text)
                 ))
             })?;
             if !parsed.is_finite() {
                 return Err(self.error(format!(
-                    "field {} is '{text}'; expected a finite number",
-                    i + 1
+                    "field {} is '{}'; expected a finite number",
+                    i + 1,
+                    printable(text)
                 )));
             }
             *value = parsed;

@@ -19,6 +19,7 @@ use crate::RenderError;
 /// Reads the meshes and base-colour textures of a .gltf or .glb file.
 pub fn read_gltf(path: &Path) -> Result<(Mesh, Vec<Texture>), RenderError> {
     let bytes = read_mesh_bytes(path)?;
+    check_glb_length(path, &bytes)?;
     check_attribute_accessors(path, &bytes)?;
     // The gltf crate (1.4) still panics on some inconsistent files, e.g. a buffer view whose
     // offset + length overflows (found by fuzzing); such a file is refused like any other.
@@ -68,6 +69,28 @@ fn read_document(path: &Path, bytes: &[u8]) -> Result<(Mesh, Vec<Texture>), Rend
         out.node(&node, Mat4::IDENTITY, &mut visited)?;
     }
     Ok((out.mesh, out.textures))
+}
+
+/// Bytes of a GLB header: magic, version, total length.
+const GLB_HEADER_BYTES: u32 = 12;
+
+/// gltf 1.4's `Glb::from_slice` subtracts the header's size from the total length a GLB states,
+/// unchecked (found by fuzzing): a GLB stating less than its own header is refused first.
+fn check_glb_length(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
+    let Some(length) = bytes
+        .strip_prefix(b"glTF")
+        .and_then(|rest| rest.get(4..8))
+        .map(|field| u32::from_le_bytes([field[0], field[1], field[2], field[3]]))
+    else {
+        return Ok(());
+    };
+    if length < GLB_HEADER_BYTES {
+        return Err(RenderError::bad_mesh(
+            path,
+            format!("GLB header states a length of {length} bytes; expected at least its own {GLB_HEADER_BYTES}"),
+        ));
+    }
+    Ok(())
 }
 
 /// gltf-json 1.4's validation indexes the accessor list with a primitive's POSITION accessor

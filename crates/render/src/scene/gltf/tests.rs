@@ -119,6 +119,17 @@ fn reads_glb_with_embedded_buffer_and_texture() {
         err.starts_with(cut.to_str().unwrap()) && !err.contains('\n'),
         "{err}"
     );
+
+    // Found by fuzzing: a stated length under the header's 12 bytes panicked in the gltf crate.
+    let short = dir.path().join("short.glb");
+    let mut stated_short = glb.clone();
+    stated_short[8..12].copy_from_slice(&4u32.to_le_bytes());
+    std::fs::write(&short, &stated_short).unwrap();
+    let err = load_scene(short.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.starts_with(short.to_str().unwrap()) && err.contains("length of 4 bytes"),
+        "{err}"
+    );
 }
 
 #[test]

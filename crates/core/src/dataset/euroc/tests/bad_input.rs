@@ -43,6 +43,13 @@ fn bad_files_are_named_with_the_line_and_what_was_expected() {
             "imu0/data.csv:3: field 3 '0.14O32' is not a number",
         ),
         (
+            // Found by the fuzzer: a carriage return inside a number broke the error in two.
+            "mav0/imu0/data.csv",
+            "0.14032447186034408",
+            "0.14\r032",
+            "imu0/data.csv:3: field 3 '0.14\\r032' is not a number",
+        ),
+        (
             "mav0/imu0/data.csv",
             "1403636579763555584,",
             "1403636579763555584.5,",
