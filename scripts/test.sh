@@ -11,7 +11,7 @@ set +e
 cargo test --workspace --all-targets "$@" 2>&1 | tee "$log"
 status=${PIPESTATUS[0]}
 set -e
-passed=$(grep -E '^test result:' "$log" | grep -Eo '[0-9]+ passed' | awk '{s += $1} END {print s + 0}')
-failed=$(grep -E '^test result:' "$log" | grep -Eo '[0-9]+ failed' | awk '{s += $1} END {print s + 0}')
+passed=$(grep -aE '^test result:' "$log" | grep -aEo '[0-9]+ passed' | awk '{s += $1} END {print s + 0}')
+failed=$(grep -aE '^test result:' "$log" | grep -aEo '[0-9]+ failed' | awk '{s += $1} END {print s + 0}')
 echo "tests: $passed passed, $failed failed"
 exit "$status"
