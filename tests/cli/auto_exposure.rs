@@ -40,10 +40,7 @@ fn state_rows(path: &std::path::Path) -> (String, Vec<Vec<f64>>) {
 fn render_and_perturb_input_expose_alike_and_settle_at_18_percent_grey() {
     let ws = Workspace::new();
     let render = |out: &str, spec: Option<&str>| {
-        let mut args = vec![
-            "render",
-            "--scene",
-            "room0",
+        let args = [
             "--camera",
             SMALL_CAMERA,
             "--frames",
@@ -52,13 +49,8 @@ fn render_and_perturb_input_expose_alike_and_settle_at_18_percent_grey() {
             "tum",
             "--seed",
             "3",
-            "--out",
-            out,
         ];
-        if let Some(spec) = spec {
-            args.extend(["--perturb", spec]);
-        }
-        ws.rslam(&args).success();
+        ws.render_room0(out, &args, spec)
     };
     render("clean", None);
     render("direct", Some("auto_exposure:1"));

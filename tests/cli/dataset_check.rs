@@ -95,3 +95,11 @@ pub fn assert_same_tree(a: &Path, b: &Path) {
         assert!(bytes == &b[name], "{name} differs");
     }
 }
+
+/// Each of `files` (relative paths) has the same bytes under `a` and `b`.
+pub fn assert_same_files(a: &Path, b: &Path, files: &[&str]) {
+    for file in files {
+        let read = |root: &Path| std::fs::read(root.join(file)).unwrap();
+        assert!(read(a) == read(b), "{file}: not the same bytes");
+    }
+}

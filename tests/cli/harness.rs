@@ -27,6 +27,14 @@ impl Workspace {
         p
     }
 
+    /// `rslam render --scene room0 --out OUT ARGS [--perturb SPEC]`, which must succeed.
+    pub fn render_room0(&self, out: &str, args: &[&str], spec: Option<&str>) {
+        let mut all = vec!["render", "--scene", "room0", "--out", out];
+        all.extend(args);
+        all.extend(spec.iter().flat_map(|s| ["--perturb", s]));
+        self.rslam(&all).success();
+    }
+
     /// Runs `rslam ARGS` inside the workspace.
     pub fn rslam(&self, args: &[&str]) -> Run {
         let output = Command::new(env!("CARGO_BIN_EXE_rslam"))

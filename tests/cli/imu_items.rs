@@ -250,23 +250,8 @@ fn a_euroc_sequence_loses_and_jitters_imu_samples() {
 fn a_rendered_rig_carries_the_bias_step_in_its_ground_truth_and_the_offset_in_its_stamps() {
     let ws = Workspace::new();
     let render = |out: &str, spec: Option<&str>| {
-        let mut args = vec![
-            "render",
-            "--scene",
-            "room0",
-            "--frames",
-            "5",
-            "--rig",
-            "stereo-imu",
-            "--format",
-            "euroc",
-            "--out",
-            out,
-        ];
-        if let Some(spec) = spec {
-            args.extend(["--perturb", spec]);
-        }
-        ws.rslam(&args).success();
+        let args = ["--frames", "5", "--rig", "stereo-imu", "--format", "euroc"];
+        ws.render_room0(out, &args, spec)
     };
     render("clean", None);
     render("moved", Some("imu_bias_step:0.05/0.5,cam_imu_offset:-10"));

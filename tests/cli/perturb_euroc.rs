@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use crate::dataset_check::assert_same_files;
 use crate::harness::Workspace;
 
 /// MH_01_easy's first two cam0 stamps (multiples of 256 ns, as published) and one of any
@@ -215,17 +216,15 @@ fn a_euroc_sequence_is_copied_with_its_frames_corrupted() {
             "frame {j}: same noise in cam0 and cam1"
         );
     }
-    for file in [
-        "imu0/data.csv",
-        "imu0/sensor.yaml",
-        "state_groundtruth_estimate0/data.csv",
-    ] {
-        assert_eq!(
-            std::fs::read(out.join(file)).unwrap(),
-            std::fs::read(input.join(file)).unwrap(),
-            "{file}: copied unchanged"
-        );
-    }
+    assert_same_files(
+        &input,
+        &out,
+        &[
+            "imu0/data.csv",
+            "imu0/sensor.yaml",
+            "state_groundtruth_estimate0/data.csv",
+        ],
+    );
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(ws.path("out/rslam.json")).unwrap()).unwrap();
     assert_eq!(manifest["source"], "MH_01_easy");
@@ -329,17 +328,15 @@ fn calibration_items_rewrite_the_written_calibration_and_per_camera_items_one_ca
             assert_eq!(after == frame(c, j).into_raw(), c == 0, "{cam} frame {j}");
         }
     }
-    for file in [
-        "cam0/sensor.yaml",
-        "imu0/data.csv",
-        "state_groundtruth_estimate0/data.csv",
-    ] {
-        assert_eq!(
-            std::fs::read(out.join(file)).unwrap(),
-            std::fs::read(input.join(file)).unwrap(),
-            "{file}: copied unchanged"
-        );
-    }
+    assert_same_files(
+        &input,
+        &out,
+        &[
+            "cam0/sensor.yaml",
+            "imu0/data.csv",
+            "state_groundtruth_estimate0/data.csv",
+        ],
+    );
 
     let recorded = rslam_core::dataset::euroc::read_euroc(&ws.path("MH_01_easy")).unwrap();
     let written = rslam_core::dataset::euroc::read_euroc(&ws.path("out")).unwrap();

@@ -17,14 +17,11 @@ const BASELINE_SIGMA: &str = "0.03";
 const RATIO_TOLERANCE: f64 = 0.02;
 
 fn render(ws: &Workspace, out: &str, rig: &str, perturb: Option<&str>) {
-    let mut args = vec![
-        "render", "--scene", "room0", "--frames", "4", "--rig", rig, "--format", "euroc", "--out",
+    ws.render_room0(
         out,
-    ];
-    if let Some(spec) = perturb {
-        args.extend(["--perturb", spec]);
-    }
-    ws.rslam(&args).success();
+        &["--frames", "4", "--rig", rig, "--format", "euroc"],
+        perturb,
+    );
 }
 
 /// The frames of one camera, in time order (`<t_ns>.png`).

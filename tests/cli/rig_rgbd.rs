@@ -9,7 +9,9 @@ use rslam_core::dataset::{read_dataset, Checksums, DatasetFormat, DatasetOverrid
 use rslam_core::trajectory_io::{read_trajectory, TrajectoryFormat};
 use rslam_core::{Intrinsics, Pose};
 
-use crate::dataset_check::{assert_poses_close, lines, manifest, tree, tum_trajectory};
+use crate::dataset_check::{
+    assert_poses_close, assert_same_files, lines, manifest, tree, tum_trajectory,
+};
 use crate::harness::Workspace;
 use crate::render::SMALL_CAMERA;
 
@@ -222,10 +224,11 @@ fn cam_imu_offset_moves_the_frame_stamps_of_rgbd_imu_only() {
         stamps(&clean, "groundtruth.txt"),
         stamps(&shifted, "groundtruth.txt")
     );
-    for file in ["imu0/data.csv", "state_groundtruth_estimate0/data.csv"] {
-        let read = |ws: &Workspace| std::fs::read(ws.path("ds").join(file)).unwrap();
-        assert!(read(&clean) == read(&shifted), "{file}");
-    }
+    assert_same_files(
+        &clean.path("ds"),
+        &shifted.path("ds"),
+        &["imu0/data.csv", "state_groundtruth_estimate0/data.csv"],
+    );
 }
 
 /// `rslam perturb --input` of an `rgbd-imu` output keeps it RGB-D-inertial: its frames are
@@ -244,14 +247,14 @@ fn perturbing_an_rgbd_imu_output_keeps_its_inertial_files() {
         .paths()
         .map(str::to_string)
         .collect();
-    for file in [
+    let inertial = [
         "imu0/data.csv",
         "imu0/sensor.yaml",
         "state_groundtruth_estimate0/data.csv",
         "orbslam3_rgbd_inertial.yaml",
-    ] {
-        let read = |dir: &str| std::fs::read(ws.path(dir).join(file)).unwrap();
-        assert!(read("ds") == read("fog"), "{file}");
+    ];
+    assert_same_files(&ws.path("ds"), &ws.path("fog"), &inertial);
+    for file in inertial {
         assert!(listed.iter().any(|p| p == file), "{file} not in {listed:?}");
     }
     assert_eq!(

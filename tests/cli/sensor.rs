@@ -10,21 +10,7 @@ use crate::render::SMALL_CAMERA;
 fn render_blurs_along_the_path_and_perturb_refuses_sensor_items() {
     let ws = Workspace::new();
     let render = |out: &str, spec: Option<&str>| {
-        let mut args = vec![
-            "render",
-            "--scene",
-            "room0",
-            "--out",
-            out,
-            "--camera",
-            SMALL_CAMERA,
-            "--frames",
-            "3",
-        ];
-        if let Some(spec) = spec {
-            args.extend(["--perturb", spec]);
-        }
-        ws.rslam(&args).success();
+        ws.render_room0(out, &["--camera", SMALL_CAMERA, "--frames", "3"], spec)
     };
     render("clean", None);
     render("sensor", Some("rolling_shutter:30,exposure:40,fog:1"));
@@ -68,12 +54,7 @@ fn render_through_a_lens_writes_it_into_the_camera_files() {
     let ws = Workspace::new();
     let lens = "distortion:equidistant(0.08,-0.03,0.01,-0.002)";
     let render = |out: &str, format: &str, spec: Option<&str>| {
-        let mut args = vec![
-            "render",
-            "--scene",
-            "room0",
-            "--out",
-            out,
+        let args = [
             "--camera",
             SMALL_CAMERA,
             "--frames",
@@ -81,8 +62,7 @@ fn render_through_a_lens_writes_it_into_the_camera_files() {
             "--format",
             format,
         ];
-        args.extend(spec.iter().flat_map(|s| ["--perturb", s]));
-        ws.rslam(&args).success();
+        ws.render_room0(out, &args, spec)
     };
     render("clean", "replica", None);
     render("lens", "replica", Some(lens));
