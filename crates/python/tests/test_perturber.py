@@ -82,14 +82,20 @@ def read_tum_frames(root):
     return colors, depths
 
 
-def test_tum_dataset_with_depth(tmp_path, rslam_bin):
-    spec, seed = "motion_blur:2,shot_noise:3@dynamic,depth_noise:2,depth_missing:3", 11
-    colors, depths = frames(3)
+def perturbed_by_the_cli(tmp_path, rslam_bin, spec, seed, count):
+    """`count` TUM frames written to tmp_path/ds and `rslam perturb` of them into tmp_path/out,
+    each read back: (input colours, input depths), (written colours, written depths)."""
+    colors, depths = frames(count)
     write_tum(tmp_path / "ds", colors, depths)
     run_cli(rslam_bin, "perturb", "--input", tmp_path / "ds", "--out", tmp_path / "out",
             "--perturb", spec, "--seed", seed, "--camera", CAMERA)
-    inputs_rgb, inputs_depth = read_tum_frames(tmp_path / "ds")
-    written_rgb, written_depth = read_tum_frames(tmp_path / "out")
+    return read_tum_frames(tmp_path / "ds"), read_tum_frames(tmp_path / "out")
+
+
+def test_tum_dataset_with_depth(tmp_path, rslam_bin):
+    spec, seed = "motion_blur:2,shot_noise:3@dynamic,depth_noise:2,depth_missing:3", 11
+    (inputs_rgb, inputs_depth), (written_rgb, written_depth) = perturbed_by_the_cli(
+        tmp_path, rslam_bin, spec, seed, 3)
     assert len(written_rgb) == 3 and len(written_depth) == 3
 
     perturber = rslam.Perturber(spec, seed=seed, camera=CAMERA)
@@ -116,12 +122,8 @@ def test_tum_dataset_with_depth(tmp_path, rslam_bin):
 
 def test_depth_sensor_takes_the_camera_and_gives_what_the_cli_writes(tmp_path, rslam_bin):
     spec, seed = "depth_sensor:kinect", 2
-    colors, depths = frames(2)
-    write_tum(tmp_path / "ds", colors, depths)
-    run_cli(rslam_bin, "perturb", "--input", tmp_path / "ds", "--out", tmp_path / "out",
-            "--perturb", spec, "--seed", seed, "--camera", CAMERA)
-    inputs_rgb, inputs_depth = read_tum_frames(tmp_path / "ds")
-    _, written_depth = read_tum_frames(tmp_path / "out")
+    (inputs_rgb, inputs_depth), (_, written_depth) = perturbed_by_the_cli(
+        tmp_path, rslam_bin, spec, seed, 2)
 
     perturber = rslam.Perturber(spec, seed=seed, camera=CAMERA)
     for i in range(2):
