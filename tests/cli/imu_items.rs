@@ -15,7 +15,7 @@ const IMU_START_NS: u64 = 1_403_636_579_758_555_392;
 const IMU_SAMPLES: u64 = 2000;
 
 /// The rows of a EuRoC data.csv: the stamp, then the numbers.
-fn rows(path: &Path) -> Vec<(u64, Vec<f64>)> {
+pub(crate) fn rows(path: &Path) -> Vec<(u64, Vec<f64>)> {
     std::fs::read_to_string(path)
         .unwrap()
         .lines()
@@ -29,11 +29,11 @@ fn rows(path: &Path) -> Vec<(u64, Vec<f64>)> {
         .collect()
 }
 
-fn manifest(dir: &Path) -> serde_json::Value {
+pub(crate) fn manifest(dir: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("rslam.json")).unwrap()).unwrap()
 }
 
-fn vector(value: &serde_json::Value) -> [f64; 3] {
+pub(crate) fn vector(value: &serde_json::Value) -> [f64; 3] {
     std::array::from_fn(|i| value[i].as_f64().unwrap())
 }
 

@@ -86,11 +86,12 @@ fn rig_flags_fail_with_one_line_errors_naming_the_flag() {
         "--format",
         "euroc",
         "--perturb",
-        "fog:2,fast:2",
+        "fog:2,misalign:2",
     ])
     .fails_with(2, &[]);
     assert!(
-        error_line(&err).contains("--perturb: 'fast': rigs do not support it yet"),
+        error_line(&err)
+            .contains("--perturb: 'misalign:2': the rig's cameras have no depth stream"),
         "{err}"
     );
     assert!(!ws.path("x").exists());

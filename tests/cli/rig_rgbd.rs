@@ -13,6 +13,7 @@ use crate::dataset_check::{
     assert_poses_close, assert_same_files, lines, manifest, tree, tum_trajectory,
 };
 use crate::harness::Workspace;
+use crate::imu_items;
 use crate::render::SMALL_CAMERA;
 
 fn small_render(format: &str, extra: &[&str]) -> Vec<String> {
@@ -233,7 +234,7 @@ fn cam_imu_offset_moves_the_frame_stamps_of_rgbd_imu_only() {
 
 /// `rslam perturb --input` of an `rgbd-imu` output keeps it RGB-D-inertial: its frames are
 /// corrupted, its IMU, body ground truth and settings copied byte for byte and listed in the
-/// checksums; `fast` (it re-stamps the frames) and IMU items are refused naming imu0/.
+/// checksums; `fast` and `cam_imu_offset` (they re-stamp the frames) are refused naming imu0/.
 #[test]
 fn perturbing_an_rgbd_imu_output_keeps_its_inertial_files() {
     let ws = Workspace::new();
@@ -264,12 +265,75 @@ fn perturbing_an_rgbd_imu_output_keeps_its_inertial_files() {
     );
     ws.rslam(&["verify", "fog"]).success();
 
-    for (spec, item) in [("fast:2", "'fast:2'"), ("imu_noise:2", "'imu_noise:2'")] {
+    for (spec, item) in [
+        ("fast:2", "'fast:2'"),
+        ("imu_noise:2,cam_imu_offset:3", "'cam_imu_offset:3'"),
+    ] {
         let err = perturb("refused", spec).fails_with(2, &[item, "imu0/"]);
         let said: Vec<&str> = err.lines().filter(|l| !l.starts_with("adapter:")).collect();
         assert!(said.len() == 1 && said[0].starts_with("error:"), "{err}");
     }
     assert!(!ws.path("refused").exists(), "nothing written");
+}
+
+/// The IMU stream items reach an `rgbd-imu` output's recorded IMU as they reach a EuRoC one:
+/// a bias step shows in the readings and in the ground truth's true biases from the recorded
+/// time on, by the recorded vectors; the calibration files and the frames' stamps stay.
+#[test]
+fn a_bias_step_reaches_the_imu_and_true_biases_of_an_rgbd_imu_output() {
+    let ws = Workspace::new();
+    let mut args = small_render("tum", &RGBD_IMU);
+    args[4] = "40".into(); // --frames
+    run(&ws, &args).success();
+    ws.rslam(&[
+        "perturb",
+        "--input",
+        "ds",
+        "--out",
+        "step",
+        "--perturb",
+        "imu_bias_step:0.02/0.3",
+    ])
+    .success();
+    let (input, out) = (ws.path("ds"), ws.path("step"));
+    assert_same_files(
+        &input,
+        &out,
+        &["imu0/sensor.yaml", "orbslam3_rgbd_inertial.yaml"],
+    );
+    assert_eq!(lines(&input.join("rgb.txt")), lines(&out.join("rgb.txt")));
+    ws.rslam(&["verify", "step"]).success();
+
+    let step = &imu_items::manifest(&out)["extra"]["imu_perturbation"]["bias_step"];
+    let at_ns = step["at_ns"].as_u64().unwrap();
+    let (gyro, accel) = (
+        imu_items::vector(&step["gyroscope"]),
+        imu_items::vector(&step["accelerometer"]),
+    );
+    // (stamp, first column of the three gyroscope and three accelerometer values)
+    for (file, gyro_column) in [
+        ("imu0/data.csv", 0),
+        ("state_groundtruth_estimate0/data.csv", 10),
+    ] {
+        let (before, after) = (
+            imu_items::rows(&input.join(file)),
+            imu_items::rows(&out.join(file)),
+        );
+        assert_eq!(before.len(), after.len(), "{file}");
+        let mut stepped = 0;
+        for ((t, b), (t_out, a)) in before.iter().zip(&after) {
+            assert_eq!(t, t_out, "{file}: stamps stay");
+            let on = *t >= at_ns;
+            stepped += usize::from(on);
+            for axis in 0..3 {
+                let (g, c) = (gyro_column + axis, gyro_column + 3 + axis);
+                let want = |v: [f64; 3]| if on { v[axis] } else { 0.0 };
+                assert!((a[g] - b[g] - want(gyro)).abs() < 1e-9, "{file} {t}");
+                assert!((a[c] - b[c] - want(accel)).abs() < 1e-9, "{file} {t}");
+            }
+        }
+        assert!(stepped > 0 && stepped < before.len(), "{file}: {stepped}");
+    }
 }
 
 #[test]
@@ -297,9 +361,9 @@ fn rgbd_rig_flags_fail_with_one_line_errors() {
             "--format",
             "tum",
             "--perturb",
-            "fast:2",
+            "distortion:equidistant(0.08,-0.03,0.01,-0.002)",
         ],
-        &["'fast'"],
+        &["'distortion:equidistant", "rigs do not support it yet"],
     );
     fail(
         &["--rig", "rgbd", "--perturb", "imu_noise:2"],

@@ -16,6 +16,7 @@ use crate::pipeline::Pipeline;
 use crate::plan::{FramePlan, SourceTiming};
 use crate::progress::Progress;
 use crate::rig::rgbd_imu_perturb::recorded_inertial_files;
+use crate::rig::with_imu_report;
 use crate::source::DatasetSource;
 use crate::PipelineError;
 
@@ -93,8 +94,8 @@ pub fn perturb_dataset(
 ) -> Result<RunReport, PipelineError> {
     output_folder::check_not_input(&job.out, &job.input)?;
     let dataset = read_dataset(&job.input, &job.overrides)?;
-    let inertial_files = recorded_inertial_files(&job.input, &job.spec)?;
-    if inertial_files.is_empty() {
+    let inertial = recorded_inertial_files(&job.input, &job.spec, job.seed)?;
+    if inertial.files.is_empty() {
         check_dataset_spec(&dataset, &job.spec)?;
     } else {
         check_frame_items(&dataset, &job.spec)?;
@@ -116,6 +117,7 @@ pub fn perturb_dataset(
         extra: serde_json::json!({ "adapter": ctx.describe() }),
     }
     .build()?;
+    let manifest = with_imu_report(manifest, inertial.report.as_ref())?;
     let mut pipeline = Pipeline::new(ctx, DatasetSource::new(&dataset), &job.spec, job.seed)?;
     let output = DatasetOutput {
         out: &job.out,
@@ -125,7 +127,7 @@ pub fn perturb_dataset(
         plan: &plan,
         ground_truth: &ground_truth,
         manifest,
-        sensor_files: inertial_files,
+        sensor_files: inertial.files,
     };
     write_dataset(ctx, &mut pipeline, output, progress, "perturbing")
 }

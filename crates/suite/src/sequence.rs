@@ -203,7 +203,7 @@ impl Sequence {
             None => self.path_length(suite_dir)?,
         };
         if let Sensors::Rig(rig) = &self.sensors {
-            let frames = rig_camera_frames(rig, poses, self.rate_hz)?
+            let frames = rig_camera_frames(rig, poses, self.rate_hz, self.spec.fast)?
                 .iter()
                 .map(|c| c.frames)
                 .sum();

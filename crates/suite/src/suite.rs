@@ -231,7 +231,7 @@ fn sensors(
                     "{key}: a rig has its own cameras (without depth); leave {key} out of its rows and [defaults]"
                 ));
             }
-            check_rig_spec(spec).map_err(|e| match e {
+            check_rig_spec(spec, false).map_err(|e| match e {
                 PipelineError::Option { message, .. } => format!("perturb: {message}"),
                 other => other.to_string(),
             })?;
@@ -380,8 +380,8 @@ mod tests {
                 "sequence 'room0__a': depth_png: a rig has its own cameras",
             ),
             (
-                "format = \"euroc\"\nrig = \"stereo\"\nperturb = \"fast:2\"\n",
-                "sequence 'room0__a': perturb: 'fast': rigs do not support it yet",
+                "format = \"euroc\"\nrig = \"stereo\"\nperturb = \"misalign:2\"\n",
+                "sequence 'room0__a': perturb: 'misalign:2': the rig's cameras have no depth stream",
             ),
         ] {
             let err = row(keys);

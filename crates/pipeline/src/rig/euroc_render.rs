@@ -84,22 +84,16 @@ pub fn imu_seed(seed: u64) -> u64 {
     splitmix64(seed ^ 0x494d_5530)
 }
 
-/// Refuses what a rig cannot do yet: items that change the frame plan (`fast`, `misalign`) or
-/// the path (`rot`, `trans`), and a lens (`distortion`). Image and depth corruptions apply to every camera or the one named
-/// (`cam1:fog:3`), the shutter (`exposure`, `rolling_shutter`) to every camera; EuRoC cameras
-/// have no depth, so depth items change nothing written. Calibration items and the sensors named
-/// are checked against the rig by [`PerturbedRig::new`].
-pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
-    let refused = [
-        ("fast", spec.fast.is_some()),
-        ("misalign", spec.misalign.is_some()),
-        ("rot", spec.rotation.is_some()),
-        ("trans", spec.translation.is_some()),
-    ];
-    if let Some((name, _)) = refused.iter().find(|(_, given)| *given) {
+/// Refuses what a rig cannot do: `misalign` on a rig whose cameras have no depth (`with_depth`
+/// false: EuRoC's), and a lens (`distortion`). Image and depth corruptions apply to every camera
+/// or the one named (`cam1:fog:3`), the shutter (`exposure`, `rolling_shutter`) to every camera,
+/// `rot`/`trans`/`fast` to the rig's motion ([`body_path`]). Calibration items and the sensors
+/// named are checked against the rig by [`PerturbedRig::new`].
+pub fn check_rig_spec(spec: &PerturbSpec, with_depth: bool) -> Result<(), PipelineError> {
+    if let (Some(misalign), false) = (spec.misalign, with_depth) {
         return Err(PipelineError::option(
             "--perturb",
-            format!("'{name}': rigs do not support it yet (it changes the frame plan or the path); image, depth and shutter items work"),
+            format!("'misalign:{}': the rig's cameras have no depth stream to delay (for a time offset between sensors: cam_imu_offset)", misalign.frames),
         ));
     }
     match &spec.distortion {
@@ -108,6 +102,15 @@ pub fn check_rig_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
             format!("'{}': rigs do not support it yet (their sensor.yaml and stereo settings describe undistorted, rectified cameras); image, depth and shutter items work", distortion::item(lens)),
         )),
         None => Ok(()),
+    }
+}
+
+/// The spec as camera `name`'s frames take it: its items ([`PerturbSpec::for_camera`]) without
+/// `fast`, which the rig's motion has taken already ([`body_path`]).
+pub(super) fn camera_frame_spec(spec: &PerturbSpec, name: &str) -> PerturbSpec {
+    PerturbSpec {
+        fast: None,
+        ..spec.for_camera(name)
     }
 }
 
@@ -131,14 +134,17 @@ pub(super) fn motion_spline(body: &Trajectory) -> Result<SplineSe3, PipelineErro
 }
 
 /// The frames each camera of `rig` gets from a path of `poses` poses evenly spaced at
-/// `path_rate_hz`, as [`render_euroc`] samples them, without the scene (for a plan).
+/// `path_rate_hz`, played `fast` times faster, as [`render_euroc`] samples them, without the
+/// scene (for a plan).
 pub fn rig_camera_frames(
     rig: &Rig,
     poses: usize,
     path_rate_hz: f64,
+    fast: Option<u32>,
 ) -> Result<Vec<CameraFrames>, PipelineError> {
-    let times = (0..poses).map(|i| i as f64 / path_rate_hz).collect();
-    let spline = motion_spline(&Trajectory::new(times, vec![Pose::IDENTITY; poses]))?;
+    let times: Vec<f64> = (0..poses).map(|i| i as f64 / path_rate_hz).collect();
+    let path = vec![Pose::IDENTITY; poses];
+    let spline = motion_spline(&body_path(&times, &path, fast, &Pose::IDENTITY))?;
     Ok(rig
         .cameras
         .iter()
@@ -154,13 +160,18 @@ pub fn render_euroc(
     job: &RigRenderJob,
     progress: &dyn Progress,
 ) -> Result<RigReport, PipelineError> {
-    check_rig_spec(&job.scene.spec)?;
+    check_rig_spec(&job.scene.spec, false)?;
     let Some(cam0) = job.rig.cameras.first() else {
         return Err(PipelineError::option("--rig", "the rig has no camera"));
     };
     let perturbed = PerturbedRig::new(&job.rig, &job.scene.spec, job.scene.seed)?;
     let resolved = job.scene.resolve()?;
-    let spline = motion_spline(&body_path(&resolved.clean, &cam0.body_from_camera))?;
+    let spline = motion_spline(&body_path(
+        &resolved.clean.timestamps,
+        &resolved.poses,
+        job.scene.spec.fast,
+        &cam0.body_from_camera,
+    ))?;
     let runs: Vec<CameraRun> = job
         .rig
         .cameras
@@ -169,7 +180,7 @@ pub fn render_euroc(
         .map(|(i, camera)| CameraRun {
             times_s: sample_times(&spline, camera.rate_hz),
             seed: camera_seed(job.scene.seed, i),
-            spec: job.scene.spec.for_camera(&camera.name),
+            spec: camera_frame_spec(&job.scene.spec, &camera.name),
         })
         .collect();
     let cam0_plan = FramePlan::rendered(
@@ -367,38 +378,45 @@ mod tests {
     fn a_plan_counts_the_frames_a_render_samples() {
         // 400 poses at 20 Hz: the spline is valid over 397 / 20 s, sampled at 20 Hz both ends
         // included (the 398 frames per camera of `render --rig stereo-imu --frames 400`).
-        let frames = rig_camera_frames(&Rig::stereo_imu(), 400, 20.0).unwrap();
+        let frames = rig_camera_frames(&Rig::stereo_imu(), 400, 20.0, None).unwrap();
         let counted: Vec<(&str, usize)> =
             frames.iter().map(|c| (c.name.as_str(), c.frames)).collect();
         assert_eq!(counted, [("cam0", 398), ("cam1", 398)]);
         // the path's rate matters, not only its length: 400 poses at 40 Hz last half as long
         assert_eq!(
-            rig_camera_frames(&Rig::stereo(), 400, 40.0).unwrap()[0].frames,
+            rig_camera_frames(&Rig::stereo(), 400, 40.0, None).unwrap()[0].frames,
             199
         );
-        let err = rig_camera_frames(&Rig::stereo(), 3, 20.0)
+        let err = rig_camera_frames(&Rig::stereo(), 3, 20.0, None)
             .unwrap_err()
             .to_string();
         assert!(err.starts_with("--frames: 3 poses"), "{err}");
     }
 
     #[test]
-    fn items_that_change_the_plan_or_the_path_are_refused_by_name() {
-        for (text, name) in [
-            ("fast:2", "fast"),
-            ("misalign:1", "misalign"),
-            ("rot:1", "rot"),
-            ("trans:0.01", "trans"),
-        ] {
-            let spec = PerturbSpec::parse(&format!("fog:2,{text}")).unwrap();
-            let err = check_rig_spec(&spec).unwrap_err().to_string();
-            assert!(
-                err.starts_with(&format!("--perturb: '{name}': rigs do not support it yet")),
-                "{err}"
-            );
-            assert!(!err.contains('\n'), "{err}");
-        }
-        let fine = PerturbSpec::parse("fog:2,depth_missing:3,exposure:10").unwrap();
-        check_rig_spec(&fine).unwrap();
+    fn misalign_needs_a_depth_stream_and_motion_items_are_the_rigs() {
+        let spec = PerturbSpec::parse("fog:2,misalign:3").unwrap();
+        let err = check_rig_spec(&spec, false).unwrap_err().to_string();
+        assert!(
+            err.starts_with("--perturb: 'misalign:3': the rig's cameras have no depth stream"),
+            "{err}"
+        );
+        assert!(!err.contains('\n'), "{err}");
+        check_rig_spec(&spec, true).unwrap();
+        let motion =
+            PerturbSpec::parse("fog:2,rot:1,trans:0.01@smooth,fast:2,exposure:10").unwrap();
+        check_rig_spec(&motion, false).unwrap();
+        let frame_spec = camera_frame_spec(&motion, "cam0");
+        assert_eq!(frame_spec.fast, None, "the motion has taken fast already");
+        assert_eq!(frame_spec.rotation, motion.rotation);
+    }
+
+    #[test]
+    fn fast_plays_the_path_faster_so_each_camera_gets_fewer_frames() {
+        // 400 poses at 20 Hz played twice as fast: a spline valid over 397 / 40 s, sampled at
+        // 20 Hz both ends included.
+        let frames = rig_camera_frames(&Rig::stereo(), 400, 20.0, Some(2)).unwrap();
+        assert_eq!(frames[0].frames, 199);
+        assert_eq!(frames[1].frames, 199);
     }
 }

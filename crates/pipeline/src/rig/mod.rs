@@ -48,7 +48,7 @@ pub use euroc_render::{
     camera_seed, check_rig_spec, imu_seed, render_euroc, rig_camera_frames, CameraFrames,
     RigRenderJob, RigReport,
 };
-pub use imu_items::refuse_imu_items;
+pub use imu_items::{refuse_imu_items, with_imu_report};
 pub use preset::{
     d435i_imu, Rig, RigPreset, EUROC_CAM0_INTRINSICS, PRESET_NAMES, RIG_NAMES, STEREO_BASELINE_M,
 };

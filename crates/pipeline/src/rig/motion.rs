@@ -1,5 +1,12 @@
 //! The rig's motion: the body's path from cam0's, its spline, when each sensor samples it, and
 //! the IMU and ground-truth rows of the EuRoC layout.
+//!
+//! The spec's motion items act on the path before the spline: `rot`/`trans` deviate cam0's path
+//! (the deviated path is the new ground truth, as for one camera), `fast:K` plays it K times
+//! faster (its stamps divided by K). Every sensor then samples the changed motion at its own
+//! rate, so the IMU feels what the cameras see: under `fast:K` a camera at the path's rate gets
+//! the path's frames 0, K, 2K, … (perturbations.md §6) and the IMU K× the angular velocity and
+//! K² the acceleration.
 
 use rslam_core::dataset::euroc::{
     nanoseconds_from_seconds, EurocImu, GroundTruthState, ImuSample as ImuRow,
@@ -9,15 +16,20 @@ use rslam_core::{Pose, SplineSe3, Trajectory};
 
 use crate::PipelineError;
 
-/// The body's path when `cam0_path` is the path of a camera at `body_from_cam0`:
-/// `world_from_body = world_from_cam0 ∘ body_from_cam0⁻¹`, at the same times.
-pub fn body_path(cam0_path: &Trajectory, body_from_cam0: &Pose) -> Trajectory {
+/// The path the body follows in a rig render: cam0's `path` (the deviated one, stamped at the
+/// job's rate as `stamps`) played `fast` times faster, carried to the body:
+/// `world_from_body = world_from_cam0 ∘ body_from_cam0⁻¹`.
+pub fn body_path(
+    stamps: &[f64],
+    path: &[Pose],
+    fast: Option<u32>,
+    body_from_cam0: &Pose,
+) -> Trajectory {
+    let speed_up = f64::from(fast.unwrap_or(1));
     let cam0_from_body = body_from_cam0.inverse();
     Trajectory::new(
-        cam0_path.timestamps.clone(),
-        cam0_path
-            .poses
-            .iter()
+        stamps.iter().map(|t| t / speed_up).collect(),
+        path.iter()
             .map(|world_from_cam0| world_from_cam0.compose(&cam0_from_body))
             .collect(),
     )

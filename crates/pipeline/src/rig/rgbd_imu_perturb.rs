@@ -1,55 +1,95 @@
 //! `rslam perturb --input` of an `rgbd-imu` output (a TUM dataset with `imu0/` beside it): its
 //! frames go through the dataset path like any TUM input, and its inertial files
 //! (`imu0/data.csv`, `imu0/sensor.yaml`, `state_groundtruth_estimate0/data.csv`,
-//! `orbslam3_rgbd_inertial.yaml`) are copied unchanged, so the copy is still an RGB-D-inertial
-//! dataset. The frames keep their capture times, so the IMU still matches them; `fast`, which
-//! re-stamps the frames, and IMU items (not built for this layout yet) are refused.
+//! `orbslam3_rgbd_inertial.yaml`) go with them, so the copy is still an RGB-D-inertial dataset.
+//! The frames keep their capture times, so the IMU still matches them. The IMU items that act on
+//! the IMU stream apply to `imu0/data.csv` (and the true biases of the ground truth) as for a
+//! recorded EuRoC IMU; every other inertial file is copied byte for byte. `fast`, which
+//! re-stamps the frames K times faster than a recorded IMU can follow, and `cam_imu_offset`,
+//! which re-stamps the frames, are refused.
 
 use std::path::Path;
 
-use rslam_core::dataset::euroc::{GROUND_TRUTH_DIR, IMU_DIR};
+use rslam_core::dataset::euroc::{
+    ground_truth_csv, imu_csv, read_inertial, GROUND_TRUTH_DIR, IMU_DIR,
+};
 use rslam_core::read_text_file;
+use rslam_perturb::imu::{ImuOrigin, ImuReport};
 use rslam_perturb::PerturbSpec;
 
+use super::imu_items::perturb_imu_stream;
 use super::rgbd_imu_render::ORBSLAM3_RGBD_INERTIAL_FILE;
 use crate::PipelineError;
 
-/// The inertial files of the `rgbd-imu` dataset at `root` (relative path, text) for its
-/// perturbed copy; empty when it has no `imu0/data.csv`.
+/// The inertial files of a perturbed copy, and what the IMU items drew.
+#[derive(Debug, Default)]
+pub struct RecordedInertial {
+    /// Relative path and text of each file.
+    pub files: Vec<(String, String)>,
+    /// `None` without IMU items.
+    pub report: Option<ImuReport>,
+}
+
+/// The inertial files of the `rgbd-imu` dataset at `root` for its perturbed copy, the spec's IMU
+/// items applied (draws keyed by `seed`); empty when it has no `imu0/`.
 pub fn recorded_inertial_files(
     root: &Path,
     spec: &PerturbSpec,
-) -> Result<Vec<(String, String)>, PipelineError> {
-    let imu_csv = format!("{IMU_DIR}/data.csv");
-    if !root.join(&imu_csv).is_file() {
-        return Ok(Vec::new());
-    }
-    let refused = spec
-        .fast
-        .map(|k| format!("fast:{k}"))
-        .or_else(|| spec.imu.items().first().map(|item| item.to_string()));
+    seed: u64,
+) -> Result<RecordedInertial, PipelineError> {
+    let (Some(imu), ground_truth) = read_inertial(root)? else {
+        return Ok(RecordedInertial::default());
+    };
+    let refused = spec.fast.map(|k| format!("fast:{k}")).or_else(|| {
+        spec.imu
+            .cam_imu_offset_ns()
+            .map(|ns| format!("cam_imu_offset:{}", ns as f64 / 1e6))
+    });
     if let Some(item) = refused {
         return Err(PipelineError::option(
             "--perturb",
             format!(
-                "'{item}': {} has an IMU (imu0/); on this layout only frame corruptions and misalign keep the copy consistent with it (fast re-stamps the frames; IMU items need a EuRoC input or `rslam render --rig rgbd-imu`)",
+                "'{item}': {} has an IMU (imu0/) that cannot follow re-stamped frames; on this layout frame corruptions, misalign and the IMU stream items (imu_noise, imu_bias_step, imu_saturation, imu_drop, imu_jitter) apply",
                 root.display()
             ),
         ));
     }
-    let relatives = [
-        imu_csv,
+    let imu_file = format!("{IMU_DIR}/data.csv");
+    let truth_file = format!("{GROUND_TRUTH_DIR}/data.csv");
+    let mut files = Vec::new();
+    let mut report = None;
+    if !spec.imu.is_empty() {
+        let perturbed = perturb_imu_stream(
+            spec,
+            &imu.samples,
+            ground_truth.as_deref().unwrap_or_default(),
+            imu.imu.rate_hz,
+            ImuOrigin::Recorded(imu.imu.noise()),
+            seed,
+        )?;
+        if perturbed.samples_changed {
+            files.push((imu_file.clone(), imu_csv(&perturbed.samples)));
+        }
+        if perturbed.ground_truth_changed {
+            files.push((
+                truth_file.clone(),
+                ground_truth_csv(&perturbed.ground_truth),
+            ));
+        }
+        report = Some(perturbed.report);
+    }
+    let copied = [
+        imu_file,
         format!("{IMU_DIR}/sensor.yaml"),
-        format!("{GROUND_TRUTH_DIR}/data.csv"),
+        truth_file,
         ORBSLAM3_RGBD_INERTIAL_FILE.to_string(),
     ];
-    let mut files = Vec::new();
-    for relative in relatives {
+    for relative in copied {
         let path = root.join(&relative);
-        if path.is_file() {
+        if path.is_file() && !files.iter().any(|(written, _)| *written == relative) {
             let text = read_text_file(&path, "a file of the rgbd-imu layout")?;
             files.push((relative, text));
         }
     }
-    Ok(files)
+    Ok(RecordedInertial { files, report })
 }

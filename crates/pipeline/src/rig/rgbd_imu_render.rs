@@ -17,7 +17,9 @@ use rslam_core::Trajectory;
 use rslam_gpu::GpuContext;
 
 use super::calibration::PerturbedRig;
-use super::euroc_render::{check_rig_spec, imu_and_ground_truth, imu_seed, motion_spline};
+use super::euroc_render::{
+    camera_frame_spec, check_rig_spec, imu_and_ground_truth, imu_seed, motion_spline,
+};
 use super::imu_items::{camera_stamps, with_imu_report};
 use super::motion::{body_path, camera_poses, nanoseconds, sample_times};
 use super::preset::Rig;
@@ -51,12 +53,18 @@ pub fn render_rgbd_imu(
     }
     let scene = &job.scene;
     let spec = &scene.spec;
-    check_rig_spec(spec)?;
+    check_rig_spec(spec, true)?;
     let rig = Rig::rgbd_imu(scene.camera, scene.rate_hz);
     let camera = &rig.cameras[0];
+    let frame_spec = camera_frame_spec(spec, &camera.name);
     let perturbed = PerturbedRig::new(&rig, spec, scene.seed)?;
     let resolved = scene.resolve()?;
-    let spline = motion_spline(&body_path(&resolved.clean, &camera.body_from_camera))?;
+    let spline = motion_spline(&body_path(
+        &resolved.clean.timestamps,
+        &resolved.poses,
+        spec.fast,
+        &camera.body_from_camera,
+    ))?;
     // Frames after the IMU's last sample would have no readings since the previous frame (at
     // 30 Hz the camera's grid may run up to 5 ms past the IMU's): left out.
     let imu_end = rig
@@ -87,7 +95,7 @@ pub fn render_rgbd_imu(
             depth_offsets: &vec![0.0; stamps_s.len()],
             rate_hz: camera.rate_hz,
         },
-        spec,
+        &frame_spec,
         scene.seed,
     );
     let poses = camera_poses(&spline, |k| perturbed.body_from_camera(0, k), &times_s)?;
@@ -142,8 +150,8 @@ pub fn render_rgbd_imu(
     }
 
     let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
-    source.set_sensor(ctx, spec, camera.rate_hz)?;
-    let mut pipeline = Pipeline::new(ctx, source, spec, scene.seed)?;
+    source.set_sensor(ctx, &frame_spec, camera.rate_hz)?;
+    let mut pipeline = Pipeline::new(ctx, source, &frame_spec, scene.seed)?;
     let output = DatasetOutput {
         out: &job.out,
         format: DatasetFormat::Tum,

@@ -30,8 +30,8 @@ mod writer;
 #[cfg(test)]
 mod tests;
 
-pub use csv::{CAMERA_HEADER, GROUND_TRUTH_HEADER, IMU_HEADER};
-pub use reader::{read_euroc, EurocCameraFrames, EurocDataset, EurocImuSamples};
+pub use csv::{ground_truth_csv, imu_csv, CAMERA_HEADER, GROUND_TRUTH_HEADER, IMU_HEADER};
+pub use reader::{read_euroc, read_inertial, EurocCameraFrames, EurocDataset, EurocImuSamples};
 pub use samples::{nanoseconds_from_seconds, EurocFrame, GroundTruthState, ImuSample};
 pub use sensor_yaml::{CAMERA_YAML_FIRST_LINE, IMU_YAML_FIRST_LINE};
 pub use sensors::{CameraColour, EurocCamera, EurocImu, RadialTangential};

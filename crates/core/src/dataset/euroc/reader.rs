@@ -84,21 +84,7 @@ pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
         .iter()
         .map(|(_, name)| read_camera(&mav_dir, name))
         .collect::<Result<Vec<_>, _>>()?;
-    let imu_dir = mav_dir.join(IMU_DIR);
-    let imu = if imu_dir.is_dir() {
-        Some(EurocImuSamples {
-            imu: read_imu_yaml(&imu_dir.join("sensor.yaml"))?,
-            samples: read_imu_csv(&imu_dir.join("data.csv"))?,
-        })
-    } else {
-        None
-    };
-    let gt_csv = mav_dir.join(GROUND_TRUTH_DIR).join("data.csv");
-    let ground_truth = if gt_csv.is_file() {
-        Some(read_ground_truth_csv(&gt_csv)?)
-    } else {
-        None
-    };
+    let (imu, ground_truth) = read_inertial(&mav_dir)?;
     if cameras.is_empty() && imu.is_none() {
         return Err(CoreError::bad_file(
             &mav_dir,
@@ -111,6 +97,30 @@ pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
         imu,
         ground_truth,
     })
+}
+
+/// The IMU (`imu0/`, when that folder exists) and the ground truth
+/// (`state_groundtruth_estimate0/data.csv`, when that file exists) under `dir`: `mav0/` of a
+/// EuRoC dataset, or the root of an `rgbd-imu` one, which has them beside its TUM files.
+pub fn read_inertial(
+    dir: &Path,
+) -> Result<(Option<EurocImuSamples>, Option<Vec<GroundTruthState>>), CoreError> {
+    let imu_dir = dir.join(IMU_DIR);
+    let imu = if imu_dir.is_dir() {
+        Some(EurocImuSamples {
+            imu: read_imu_yaml(&imu_dir.join("sensor.yaml"))?,
+            samples: read_imu_csv(&imu_dir.join("data.csv"))?,
+        })
+    } else {
+        None
+    };
+    let gt_csv = dir.join(GROUND_TRUTH_DIR).join("data.csv");
+    let ground_truth = if gt_csv.is_file() {
+        Some(read_ground_truth_csv(&gt_csv)?)
+    } else {
+        None
+    };
+    Ok((imu, ground_truth))
 }
 
 fn read_camera(mav_dir: &Path, name: &str) -> Result<EurocCameraFrames, CoreError> {
