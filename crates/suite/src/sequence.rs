@@ -186,11 +186,7 @@ impl Sequence {
                     command,
                 };
                 let report = render_euroc(ctx, &job, progress)?;
-                let made = match report.found {
-                    FolderState::Complete => 0,
-                    _ => report.cameras.iter().map(|c| c.frames).sum(),
-                };
-                Ok((made, report.found))
+                Ok((report.made, report.found))
             }
         }
     }

@@ -60,8 +60,12 @@ pub fn print_rig_summary(
         FolderState::Complete => eprintln!(
             "{out} is already complete ({streams}, same job); nothing to do (--force redoes it)"
         ),
+        FolderState::Resume if report.made == report.cameras.iter().map(|c| c.frames).sum::<usize>() => {
+            eprintln!("started {out} over: wrote {streams} in the EuRoC layout{rate}: {size}")
+        }
         FolderState::Resume => eprintln!(
-            "started {out} over (a EuRoC output does not resume yet): wrote {streams} in the EuRoC layout{rate}: {size}"
+            "resumed {out}: {} frames made now{rate}, the rest kept; {streams} in the EuRoC layout: {size}",
+            report.made
         ),
         FolderState::Fresh => {
             eprintln!("wrote {streams} to {out} in the EuRoC layout{rate}: {size}")

@@ -308,6 +308,7 @@ pub fn perturb_euroc(
             cameras,
             imu_samples,
             found,
+            made: 0,
             manifest: Manifest::read(&job.out)?,
         });
     }
@@ -340,10 +341,12 @@ pub fn perturb_euroc(
         .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
     let manifest = writer.finish(manifest)?;
     output_folder::finish(&job.out)?;
+    let made = cameras.iter().map(|c| c.frames).sum();
     Ok(RigReport {
         cameras,
         imu_samples,
         found,
+        made,
         manifest,
     })
 }

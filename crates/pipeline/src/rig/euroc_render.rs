@@ -25,7 +25,6 @@ use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with
 use super::motion::{
     body_path, camera_poses, ground_truth_rows, imu_rows, imu_samples, nanoseconds, sample_times,
 };
-use super::output;
 use super::preset::Rig;
 use crate::agents::record_agent;
 use crate::manifest::ManifestParts;
@@ -64,9 +63,11 @@ pub struct RigReport {
     pub cameras: Vec<CameraFrames>,
     /// IMU samples written (0 without an IMU).
     pub imu_samples: usize,
-    /// What the output folder held when the run began. An unfinished run of the same job
-    /// (`Resume`) is started over: every frame is rendered again.
+    /// What the output folder held when the run began.
     pub found: FolderState,
+    /// Frames made by this run, all cameras together (fewer than written when it resumed an
+    /// unfinished one, none when the folder was complete).
+    pub made: usize,
     /// The manifest as written (as found, when the folder was complete already).
     pub manifest: Manifest,
 }
@@ -244,12 +245,13 @@ pub fn render_euroc(
         })
         .collect();
 
-    let found = output::prepare(&job.out, &manifest, job.force)?;
+    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
     if found == FolderState::Complete {
         return Ok(RigReport {
             cameras,
             imu_samples: streams.imu.len(),
             found,
+            made: 0,
             manifest: Manifest::read(&job.out)?,
         });
     }
@@ -259,27 +261,44 @@ pub fn render_euroc(
         perturbed.written.imu.clone(),
     )?);
 
-    let total = runs.iter().map(|r| r.times_s.len()).sum();
-    progress.start(total, "rendering");
-    let mut sinks = Vec::new();
+    // A resumed run keeps each camera's frames up to the first one missing; an item that
+    // carries a state from frame to frame (auto_exposure) needs every frame made again.
+    let resume = found == FolderState::Resume && job.scene.spec.stateful_item().is_none();
+    let mut stamps = Vec::new();
+    let mut kept = Vec::new();
     for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
-        let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
-        let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
-        source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
-        let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
         let times_ns = run
             .times_s
             .iter()
             .map(|&t| nanoseconds(t))
             .collect::<Result<Vec<_>, _>>()?;
         let times_ns = camera_stamps(&job.scene.spec, &camera.name, &times_ns)?;
+        kept.push(match resume {
+            true => writer.keep_written_frames(i, &times_ns)?,
+            false => 0,
+        });
+        stamps.push(times_ns);
+    }
+    let made: usize = runs
+        .iter()
+        .zip(&kept)
+        .map(|(r, k)| r.times_s.len() - k)
+        .sum();
+    progress.start(made, "rendering");
+    let mut sinks = Vec::new();
+    for (i, ((camera, run), times_ns)) in job.rig.cameras.iter().zip(&runs).zip(stamps).enumerate()
+    {
+        let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
+        let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
+        source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
+        let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
         if i == 1 {
             if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
                 writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
             }
         }
         let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
-        let sources: Vec<usize> = (0..run.times_s.len()).collect();
+        let sources: Vec<usize> = (kept[i]..run.times_s.len()).collect();
         pipeline.run(ctx, &sources, progress, &mut sink)?;
         sinks.push(sink);
     }
@@ -300,6 +319,7 @@ pub fn render_euroc(
         cameras,
         imu_samples: streams.imu.len(),
         found,
+        made,
         manifest,
     })
 }

@@ -27,8 +27,8 @@
 //! Image and depth items reach every camera, or only the one they name (`cam1:fog:3`,
 //! [`rslam_perturb::PerturbSpec::for_camera`]).
 //!
-//! Not built yet: frame-by-frame resume of a EuRoC rig output (an unfinished one is started
-//! over; an `rgbd-imu` output resumes as a one-camera render does).
+//! An unfinished rig render resumes frame by frame (each camera from its first missing frame),
+//! as a one-camera render does; an unfinished EuRoC perturb is started over.
 
 pub mod calibration;
 mod camera_sink;

@@ -1,4 +1,4 @@
-//! The output folder of a EuRoC run, rig render or recorded-data perturb alike.
+//! The output folder of a recorded EuRoC dataset's perturbed copy.
 
 use std::path::Path;
 

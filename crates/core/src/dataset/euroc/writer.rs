@@ -286,6 +286,28 @@ impl EurocWriter {
             .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), png)
     }
 
+    /// Keeps the frames an interrupted run of the same job wrote for camera `camera`: the longest
+    /// run of `times_ns` from the first whose `<t_ns>.png` is there (frames are written in time
+    /// order, each whole through a rename), recorded as written. Returns how many; frames after
+    /// them are to be written again.
+    pub fn keep_written_frames(&self, camera: usize, times_ns: &[u64]) -> Result<usize, CoreError> {
+        let stream = self.camera(camera)?;
+        let data = self
+            .root()
+            .join(MAV_DIR)
+            .join(&stream.camera.name)
+            .join("data");
+        let mut kept = 0;
+        for &t_ns in times_ns {
+            if !data.join(format!("{t_ns}.png")).is_file() {
+                break;
+            }
+            self.take_stamp(stream, t_ns)?;
+            kept += 1;
+        }
+        Ok(kept)
+    }
+
     /// Records a frame of `stream` at `t_ns`, refusing one not after the previous.
     fn take_stamp(&self, stream: &CameraStream, t_ns: u64) -> Result<(), CoreError> {
         let mut times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
