@@ -18,6 +18,7 @@ mod render;
 mod resume;
 mod rig;
 mod rig_calibration;
+mod rig_file;
 mod rig_motion;
 mod rig_rgbd;
 mod scene;

@@ -72,7 +72,7 @@ fn rig_flags_fail_with_one_line_errors_naming_the_flag() {
     assert_eq!(err.lines().count(), 1, "{err}");
     let err = run(&["--rig", "bogus", "--format", "euroc"]).fails_with(
         2,
-        &["--rig: 'bogus': expected one of rgbd, rgbd-imu, stereo, stereo-imu"],
+        &["--rig: 'bogus': expected one of rgbd, rgbd-imu, stereo, stereo-imu, a rig file (FILE.toml)"],
     );
     assert_eq!(err.lines().count(), 1, "{err}");
     let err = run(&["--format", "euroc"]).fails_with(2, &["--format euroc", "--rig"]);

@@ -25,7 +25,7 @@ fn render(ws: &Workspace, out: &str, rig: &str, perturb: Option<&str>) {
 }
 
 /// The frames of one camera, in time order (`<t_ns>.png`).
-fn frames(root: &Path, camera: &str) -> Vec<PathBuf> {
+pub(crate) fn frames(root: &Path, camera: &str) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("mav0").join(camera).join("data"))
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -55,7 +55,7 @@ fn baseline_of(cam0: &Pose, cam1: &Pose) -> f64 {
     cam0.inverse().compose(cam1).translation.x
 }
 
-fn grey(path: &Path) -> image::GrayImage {
+pub(crate) fn grey(path: &Path) -> image::GrayImage {
     image::open(path).unwrap().to_luma8()
 }
 
@@ -109,7 +109,7 @@ fn disparity(left: &image::GrayImage, right: &image::GrayImage, x: u32, y: u32) 
 
 /// Median over textured pixels of disparity(left, moved) / disparity(left, nominal): for a
 /// rectified pair it is (b + δ) / b at every depth. Returns it and the pixels used.
-fn median_disparity_ratio(
+pub(crate) fn median_disparity_ratio(
     left: &image::GrayImage,
     nominal_right: &image::GrayImage,
     moved_right: &image::GrayImage,

@@ -9,6 +9,7 @@ use rslam_core::dataset::euroc::{read_euroc, EurocDataset, GroundTruthState};
 use crate::dataset_check::lines;
 use crate::harness::Workspace;
 use crate::render::SMALL_CAMERA;
+use crate::rig_calibration::grey;
 
 const GRAVITY_W: DVec3 = DVec3::new(0.0, 0.0, -9.81);
 
@@ -25,10 +26,6 @@ fn render_rig(
     ];
     ws.render_room0(out, &args, spec);
     read_euroc(&ws.path(out)).unwrap()
-}
-
-fn grey(path: &std::path::Path) -> image::GrayImage {
-    image::open(path).unwrap().to_luma8()
 }
 
 fn mean_abs_difference(a: &image::GrayImage, b: &image::GrayImage) -> f64 {

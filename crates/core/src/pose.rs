@@ -1,6 +1,13 @@
 use glam::{DMat3, DMat4, DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
+/// Largest |RᵀR − I| entry accepted for a rotation block read from a matrix: files printed with
+/// 6 significant digits (KITTI) or from float32 stay far below it, a scaled (Sim(3)) or sheared
+/// matrix does not.
+const ORTHONORMAL_TOLERANCE: f64 = 1e-4;
+/// Largest deviation of a 4×4 matrix's last row from `0 0 0 1`.
+const LAST_ROW_TOLERANCE: f64 = 1e-6;
+
 /// A rigid transform `world_from_camera` (camera-to-world), camera axes OpenCV (x right, y down,
 /// z forward).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -56,6 +63,52 @@ impl Pose {
     pub fn to_row_major(&self) -> [f64; 16] {
         let cols = self.to_mat4().to_cols_array_2d();
         std::array::from_fn(|i| cols[i % 4][i / 4])
+    }
+
+    /// A pose from a row-major rigid matrix read from a file: `[R | t]` (12 numbers) or 4×4 (16,
+    /// its last row `0 0 0 1`). Anything else, or a rotation block that is not a rotation
+    /// (scaled, sheared, mirrored), is refused with the reason.
+    pub fn rigid_from_rows(rows: &[f64]) -> Result<Self, String> {
+        if rows.len() != 12 && rows.len() != 16 {
+            return Err(format!(
+                "{} numbers: expected 12 ([R | t], row-major) or 16 (4x4)",
+                rows.len()
+            ));
+        }
+        if let Some(last) = rows.get(12..16) {
+            let expected = [0.0, 0.0, 0.0, 1.0];
+            if last
+                .iter()
+                .zip(expected)
+                .any(|(v, e)| (v - e).abs() > LAST_ROW_TOLERANCE)
+            {
+                return Err(format!(
+                    "last matrix row is {last:?}; expected 0 0 0 1 (a rigid 4x4 transform)"
+                ));
+            }
+        }
+        let r = DMat3::from_cols_array(&[
+            rows[0], rows[4], rows[8], rows[1], rows[5], rows[9], rows[2], rows[6], rows[10],
+        ]);
+        let gram = r.transpose() * r - DMat3::IDENTITY;
+        let deviation = gram
+            .to_cols_array()
+            .iter()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        if !(deviation <= ORTHONORMAL_TOLERANCE && r.determinant() > 0.0) {
+            return Err(format!(
+                "rotation block is not a rotation (max |RᵀR − I| = {deviation:.2e}, det = {:.6}); \
+                 expected a rigid transform",
+                r.determinant()
+            ));
+        }
+        let translation = DVec3::new(rows[3], rows[7], rows[11]);
+        if !translation.is_finite() {
+            return Err(format!(
+                "translation {translation}: expected finite numbers"
+            ));
+        }
+        Ok(Self::new(DQuat::from_mat3(&r), translation))
     }
 
     pub fn from_row_major(v: &[f64; 16]) -> Self {

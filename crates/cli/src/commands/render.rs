@@ -34,8 +34,9 @@ pub struct RenderArgs {
     camera: Option<String>,
     /// Sensors: `rgbd` (one RGB-D camera, the default), `rgbd-imu` (that camera at a RealSense
     /// D435i's colour-camera pose and its 200 Hz IMU; needs --format tum), `stereo` (two 752x480
-    /// grey cameras, 0.11 m apart, 20 Hz) or `stereo-imu` (the same and a 200 Hz IMU); the stereo
-    /// rigs need --format euroc. The scene's path (or --traj) is the (first) camera's.
+    /// grey cameras, 0.11 m apart, 20 Hz), `stereo-imu` (the same and a 200 Hz IMU) or a rig file
+    /// FILE.toml (cameras and an IMU of your own, see the README); the stereo rigs and rig files
+    /// need --format euroc. The scene's path (or --traj) is the (first) camera's.
     #[arg(long)]
     rig: Option<String>,
     /// Frame rate in Hz (with a stereo rig: the rate of the path's poses); default: 30 for the
@@ -169,10 +170,10 @@ fn job(args: &RenderArgs, scene: SceneJob, out: PathBuf) -> anyhow::Result<Job> 
             }));
         }
         (OutputFormat::Euroc, _) => anyhow::bail!(
-            "--format euroc: needs --rig stereo|stereo-imu (the EuRoC layout is for those rigs)"
+            "--format euroc: needs --rig stereo|stereo-imu|FILE.toml (the EuRoC layout is for those rigs)"
         ),
         (_, Some(RigPreset::Euroc(rig))) => anyhow::bail!(
-            "--rig {}: needs --format euroc (the stereo rigs are written in the EuRoC layout)",
+            "--rig {}: needs --format euroc (the stereo rigs and rig files are written in the EuRoC layout)",
             rig.name
         ),
         (OutputFormat::Replica, Some(RigPreset::RgbdImu)) => anyhow::bail!(

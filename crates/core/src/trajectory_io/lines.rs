@@ -2,17 +2,10 @@
 
 use std::path::Path;
 
-use glam::{DMat3, DQuat, DVec3};
+use glam::DQuat;
 
 use crate::limits::MAX_POSES;
 use crate::{printable, CoreError, Pose};
-
-/// Largest |RᵀR − I| entry accepted for a rotation block read from a matrix: files printed with
-/// 6 significant digits (KITTI) or from float32 stay far below it, a scaled (Sim(3)) or sheared
-/// matrix does not.
-const ORTHONORMAL_TOLERANCE: f64 = 1e-4;
-/// Largest deviation of a 4×4 matrix's last row from `0 0 0 1`.
-const LAST_ROW_TOLERANCE: f64 = 1e-6;
 
 /// The data lines of a text file, as (1-based line number, trimmed text): a UTF-8 byte order
 /// mark, blank lines and lines starting with `#` are skipped.
@@ -127,39 +120,9 @@ impl LineRef<'_> {
         Ok(unit)
     }
 
-    /// A pose from the first three rows of a row-major rigid matrix `[R | t]`.
+    /// A pose from a row-major rigid matrix: `[R | t]` (12 numbers) or 4×4 with its last row
+    /// `0 0 0 1` (16), see [`Pose::rigid_from_rows`].
     pub fn pose_from_rows(&self, rows: &[f64]) -> Result<Pose, CoreError> {
-        let r = DMat3::from_cols_array(&[
-            rows[0], rows[4], rows[8], rows[1], rows[5], rows[9], rows[2], rows[6], rows[10],
-        ]);
-        let gram = r.transpose() * r - DMat3::IDENTITY;
-        let deviation = gram
-            .to_cols_array()
-            .iter()
-            .fold(0.0_f64, |m, v| m.max(v.abs()));
-        if deviation > ORTHONORMAL_TOLERANCE || r.determinant() <= 0.0 {
-            return Err(self.error(format!(
-                "rotation block is not a rotation (max |RᵀR − I| = {deviation:.2e}, det = {:.6}); \
-                 expected a rigid camera-to-world pose",
-                r.determinant()
-            )));
-        }
-        let translation = DVec3::new(rows[3], rows[7], rows[11]);
-        Ok(Pose::new(DQuat::from_mat3(&r), translation))
-    }
-
-    /// Checks the last row of a 4×4 matrix is `0 0 0 1`.
-    pub fn check_last_row(&self, row: &[f64]) -> Result<(), CoreError> {
-        let expected = [0.0, 0.0, 0.0, 1.0];
-        if row
-            .iter()
-            .zip(expected)
-            .any(|(v, e)| (v - e).abs() > LAST_ROW_TOLERANCE)
-        {
-            return Err(self.error(format!(
-                "last matrix row is {row:?}; expected 0 0 0 1 (a rigid 4x4 transform)"
-            )));
-        }
-        Ok(())
+        Pose::rigid_from_rows(rows).map_err(|message| self.error(message))
     }
 }

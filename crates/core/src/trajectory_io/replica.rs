@@ -13,8 +13,7 @@ pub(super) fn parse(path: &Path, text: &str, rate_hz: f64) -> Result<Trajectory,
     for (line, content) in data_lines(text) {
         let at = LineRef { path, line };
         let m: [f64; 16] = at.numbers(content.split_whitespace(), true, layout)?;
-        at.check_last_row(&m[12..])?;
-        poses.push(at.pose_from_rows(&m[..12])?);
+        poses.push(at.pose_from_rows(&m)?);
     }
     Ok(Trajectory::from_poses_at_rate(poses, rate_hz))
 }

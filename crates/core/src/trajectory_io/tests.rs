@@ -228,7 +228,7 @@ fn replica_rejects_a_bad_last_row_and_a_scaled_rotation() {
     assert_eq!(
         error_of(scaled, None),
         "F:1: rotation block is not a rotation (max |RᵀR − I| = 3.00e0, det = 8.000000); \
-         expected a rigid camera-to-world pose"
+         expected a rigid transform"
     );
     let mirrored = "-1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n";
     assert!(error_of(mirrored, None).contains("det = -1.000000"));

@@ -223,6 +223,7 @@ pub fn perturb_euroc(
     let recorded = Rig {
         name: "recorded".into(),
         cameras: dataset.cameras.iter().map(|c| c.camera.clone()).collect(),
+        time_offsets_ns: vec![0; dataset.cameras.len()],
         imu: dataset.imu.as_ref().map(|imu| imu.imu.clone()),
     };
     let perturbed = PerturbedRig::new(&recorded, &job.spec, job.seed)?;

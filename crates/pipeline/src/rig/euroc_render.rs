@@ -15,7 +15,7 @@ use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::hash::splitmix64;
 use rslam_core::{CoreError, Pose, SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
-use rslam_perturb::imu::{ImuOrigin, ImuReport};
+use rslam_perturb::imu::{shift_stamp, ImuOrigin, ImuReport};
 use rslam_perturb::sensor::distortion;
 use rslam_perturb::PerturbSpec;
 
@@ -203,12 +203,18 @@ pub fn render_euroc(
         "layout": "euroc",
         "rig": job.rig.name,
         "path_rate_hz": job.scene.rate_hz,
-        "cameras": job.rig.cameras.iter().zip(&runs).map(|(c, r)| serde_json::json!({
-            "name": c.name,
-            "frames": r.times_s.len(),
-            "rate_hz": c.rate_hz,
-            "seed": r.seed,
-        })).collect::<Vec<_>>(),
+        "cameras": job.rig.cameras.iter().zip(&runs).zip(&job.rig.time_offsets_ns).map(|((c, r), &offset_ns)| {
+            let mut camera = serde_json::json!({
+                "name": c.name,
+                "frames": r.times_s.len(),
+                "rate_hz": c.rate_hz,
+                "seed": r.seed,
+            });
+            if offset_ns != 0 {
+                camera["time_offset_ns"] = offset_ns.into();
+            }
+            camera
+        }).collect::<Vec<_>>(),
         "imu": job.rig.imu.as_ref().map(|imu| serde_json::json!({
             "rate_hz": imu.rate_hz,
             "seed": imu_seed,
@@ -267,11 +273,7 @@ pub fn render_euroc(
     let mut stamps = Vec::new();
     let mut kept = Vec::new();
     for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
-        let times_ns = run
-            .times_s
-            .iter()
-            .map(|&t| nanoseconds(t))
-            .collect::<Result<Vec<_>, _>>()?;
+        let times_ns = clock_stamps(&job.rig, i, &run.times_s)?;
         let times_ns = camera_stamps(&job.scene.spec, &camera.name, &times_ns)?;
         kept.push(match resume {
             true => writer.keep_written_frames(i, &times_ns)?,
@@ -322,6 +324,28 @@ pub fn render_euroc(
         made,
         manifest,
     })
+}
+
+/// Camera `index`'s stamps of frames captured at `times_s`: on its own clock, which runs ahead of
+/// the body's by the rig's time offset for it.
+fn clock_stamps(rig: &Rig, index: usize, times_s: &[f64]) -> Result<Vec<u64>, PipelineError> {
+    let offset_ns = rig.time_offsets_ns.get(index).copied().unwrap_or(0);
+    times_s
+        .iter()
+        .map(|&t| {
+            let t_ns = nanoseconds(t)?;
+            shift_stamp(t_ns, offset_ns).ok_or_else(|| {
+                PipelineError::option(
+                    "--rig",
+                    format!(
+                        "{}: time_offset_ms {} puts its frame at {t_ns} ns before 0 ns",
+                        rig.cameras[index].name,
+                        offset_ns as f64 / 1e6
+                    ),
+                )
+            })
+        })
+        .collect()
 }
 
 /// The rows of imu0/data.csv and of the ground truth, IMU items applied.

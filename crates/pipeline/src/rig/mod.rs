@@ -8,6 +8,7 @@
 //! frames with seed [`camera_seed`]`(seed, i)` (cam0: the job's seed), the IMU draws its noise
 //! with [`imu_seed`]`(seed)`.
 //!
+//! - [`rig_file`]: `--rig FILE.toml`, a rig of the user's own in the EuRoC layout.
 //! - [`preset`]: the `--rig` presets ([`RigPreset`]): `rgbd` (the one RGB-D camera of a render
 //!   without `--rig`), `rgbd-imu` ([`Rig::rgbd_imu`]), `stereo` and `stereo-imu` ([`Rig::stereo`],
 //!   [`Rig::stereo_imu`]).
@@ -41,6 +42,7 @@ mod output;
 pub mod preset;
 pub mod rgbd_imu_perturb;
 pub mod rgbd_imu_render;
+pub mod rig_file;
 
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};

@@ -3,10 +3,13 @@
 //! one RGB-D camera of a render without `--rig`; `rgbd-imu` that camera on a RealSense
 //! D435i-like body with its IMU, written in the TUM layout with the IMU beside it.
 
+use std::path::Path;
+
 use glam::{DQuat, DVec3};
 use rslam_core::dataset::euroc::{CameraColour, EurocCamera, EurocImu, RadialTangential};
 use rslam_core::{Intrinsics, Pose};
 
+use super::rig_file::read_rig_file;
 use crate::PipelineError;
 
 /// The names of the rigs written in the EuRoC layout ([`Rig::preset`]).
@@ -110,13 +113,18 @@ pub enum RigPreset {
 }
 
 impl RigPreset {
-    /// The preset `name` stands for; the error lists the valid names.
+    /// The preset `name` stands for, or the rig of a `.toml` file ([`read_rig_file`]); the
+    /// error lists the valid names.
     pub fn by_name(name: &str) -> Result<Self, PipelineError> {
         match name {
             "rgbd" => Ok(Self::Rgbd),
             "rgbd-imu" => Ok(Self::RgbdImu),
             _ if RIG_NAMES.contains(&name) => Rig::preset(name).map(Self::Euroc),
-            other => Err(unknown_rig(other, &PRESET_NAMES)),
+            _ if name.ends_with(".toml") => read_rig_file(Path::new(name)).map(Self::Euroc),
+            other => Err(unknown_rig(
+                other,
+                &[&PRESET_NAMES[..], &["a rig file (FILE.toml)"]].concat(),
+            )),
         }
     }
 }
@@ -139,6 +147,8 @@ pub struct Rig {
     /// The `--rig` name, for the manifest.
     pub name: String,
     pub cameras: Vec<EurocCamera>,
+    /// Per camera: its stamps are its capture times plus this (its clock runs ahead by it), ns.
+    pub time_offsets_ns: Vec<i64>,
     pub imu: Option<EurocImu>,
 }
 
@@ -167,6 +177,7 @@ impl Rig {
                 distortion: RadialTangential::NONE,
                 colour: CameraColour::Rgb,
             }],
+            time_offsets_ns: vec![0],
             imu: Some(d435i_imu()),
         }
     }
@@ -200,6 +211,7 @@ impl Rig {
                     body_from_cam0.compose(&cam0_from_cam1),
                 ),
             ],
+            time_offsets_ns: vec![0, 0],
             imu: None,
         }
     }
@@ -238,7 +250,7 @@ mod tests {
         let err = RigPreset::by_name("mono").unwrap_err().to_string();
         assert_eq!(
             err,
-            "--rig: 'mono': expected one of rgbd, rgbd-imu, stereo, stereo-imu"
+            "--rig: 'mono': expected one of rgbd, rgbd-imu, stereo, stereo-imu, a rig file (FILE.toml)"
         );
     }
 

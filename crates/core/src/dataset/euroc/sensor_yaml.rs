@@ -331,7 +331,6 @@ impl Document<'_> {
             }
         }
         let (data, at) = self.numbers_in::<16>(map, "data", "16 numbers (row-major 4x4 T_BS)")?;
-        at.check_last_row(&data[12..])?;
         at.pose_from_rows(&data)
     }
 }
