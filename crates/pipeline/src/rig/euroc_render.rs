@@ -262,7 +262,7 @@ pub fn render_euroc(
             .map(|&t| nanoseconds(t))
             .collect::<Result<Vec<_>, _>>()?;
         let times_ns = camera_stamps(&job.scene.spec, &camera.name, &times_ns)?;
-        if i == 1 {
+        if i == 0 {
             if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
                 writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
             }
