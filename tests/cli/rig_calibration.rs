@@ -4,10 +4,14 @@
 
 use std::path::{Path, PathBuf};
 
+use glam::{DQuat, DVec3};
 use rslam_core::dataset::euroc::read_euroc;
-use rslam_core::dataset::Manifest;
-use rslam_core::Pose;
+use rslam_core::dataset::{
+    decode_depth_png, read_dataset, DatasetFormat, DatasetOverrides, Manifest,
+};
+use rslam_core::{DepthImage, Intrinsics, Pose};
 
+use crate::dataset_check::assert_poses_close;
 use crate::harness::Workspace;
 
 const NOMINAL_BASELINE_M: f64 = 0.11;
@@ -175,6 +179,15 @@ fn sensor_prefixes_fail_with_one_line_errors() {
     one_error_line(&err);
     let err = rig("imu0:extrinsic_rot:1").fails_with(2, &["no sensor 'imu0'"]);
     one_error_line(&err);
+    let err = rig("imu0:extrinsic_trans:0.01@dynamic").fails_with(
+        2,
+        &["'imu0:extrinsic_trans:0.01@dynamic': @dynamic moves a camera"],
+    );
+    one_error_line(&err);
+    let err = rig("cam1:extrinsic_rot:1@dynamic@calibration")
+        .fails_with(2, &["@dynamic and @calibration exclude each other"]);
+    one_error_line(&err);
+    assert!(!ws.path("x").join("rslam.json").exists());
     let one = |spec: &str| {
         ws.rslam(&[
             "render",
@@ -456,4 +469,273 @@ fn an_imu_turned_in_rendered_mode_reads_in_its_turned_frame_and_the_files_stay_n
         explained < 0.1 * raw,
         "rotated nominal readings differ by {explained} m/s², unrotated by {raw}"
     );
+}
+
+/// `calibration_per_frame.csv` of `root`: its header, and each column's values by frame.
+fn per_frame_columns(root: &Path) -> (String, Vec<Vec<f64>>) {
+    let csv = std::fs::read_to_string(root.join("calibration_per_frame.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap().to_string();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let columns = (0..rows[0].len())
+        .map(|c| rows.iter().map(|r| r[c]).collect())
+        .collect();
+    (header, columns)
+}
+
+/// The three columns `{prefix}_x{suffix}`, `…_y…`, `…_z…` on frame `k`.
+fn per_frame_vector(
+    header: &str,
+    columns: &[Vec<f64>],
+    prefix: &str,
+    unit: &str,
+    k: usize,
+) -> DVec3 {
+    let at = |axis: &str| {
+        let name = format!("{prefix}_{axis}_{unit}");
+        let c = header
+            .split(',')
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("no {name} in {header}"));
+        columns[c][k]
+    };
+    DVec3::new(at("x"), at("y"), at("z"))
+}
+
+/// Mean absolute grey difference between `moved` and `nominal` as seen by a camera turned by
+/// `nominal_from_moved` about its centre: moved pixel x' shows what nominal pixel K·R·K⁻¹·x'
+/// shows (bilinear), over the pixels whose source lies 2 px inside the nominal image.
+fn turned_view_error(
+    nominal: &image::GrayImage,
+    moved: &image::GrayImage,
+    k: &Intrinsics,
+    nominal_from_moved: DQuat,
+) -> f64 {
+    let at = |x: u32, y: u32| nominal.get_pixel(x, y)[0] as f64;
+    let (mut sum, mut count) = (0.0, 0usize);
+    for y in 0..moved.height() {
+        for x in 0..moved.width() {
+            let ray = DVec3::new((x as f64 - k.cx) / k.fx, (y as f64 - k.cy) / k.fy, 1.0);
+            let d = nominal_from_moved * ray;
+            let (u, v) = (k.fx * d.x / d.z + k.cx, k.fy * d.y / d.z + k.cy);
+            if d.z <= 0.0
+                || u < 2.0
+                || v < 2.0
+                || u > k.width as f64 - 3.0
+                || v > k.height as f64 - 3.0
+            {
+                continue;
+            }
+            let (x0, y0) = (u.floor() as u32, v.floor() as u32);
+            let (fx, fy) = (u - x0 as f64, v - y0 as f64);
+            let sample = (1.0 - fy) * ((1.0 - fx) * at(x0, y0) + fx * at(x0 + 1, y0))
+                + fy * ((1.0 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+            sum += (sample - moved.get_pixel(x, y)[0] as f64).abs();
+            count += 1;
+        }
+    }
+    assert!(count > 1000, "{count} pixels compared");
+    sum / count as f64
+}
+
+#[test]
+fn dynamic_extrinsic_rot_turns_cam0_on_every_frame_by_the_listed_rotation() {
+    let ws = Workspace::new();
+    render(&ws, "clean", "stereo", None);
+    render(
+        &ws,
+        "shaken",
+        "stereo",
+        Some("cam0:extrinsic_rot:1@dynamic"),
+    );
+    let (clean, shaken) = (ws.path("clean"), ws.path("shaken"));
+    let record = calibration_record(&shaken);
+    assert_eq!(
+        record["dynamic"],
+        serde_json::json!(["cam0:extrinsic_rot:1@dynamic"])
+    );
+    assert_eq!(record["per_frame"], "calibration_per_frame.csv");
+    // cam1 is not addressed and the files state the nominal rig.
+    for (a, b) in frames(&clean, "cam1").iter().zip(frames(&shaken, "cam1")) {
+        assert!(same_bytes(a, &b), "{} changed", b.display());
+    }
+    for file in ["mav0/cam0/sensor.yaml", "orbslam3_stereo.yaml"] {
+        assert!(same_bytes(&clean.join(file), &shaken.join(file)), "{file}");
+    }
+
+    let (header, columns) = per_frame_columns(&shaken);
+    assert_eq!(
+        header,
+        "frame,t_ns,baseline_true_m,cam0_rot_x_deg,cam0_rot_y_deg,cam0_rot_z_deg,cam0_trans_x_m,cam0_trans_y_m,cam0_trans_z_m"
+    );
+    let cam0 = frames(&shaken, "cam0");
+    assert_eq!(columns[1].len(), cam0.len());
+    let intrinsics = read_euroc(&shaken).unwrap().cameras[0].camera.intrinsics;
+    let rotations: Vec<DQuat> = (0..cam0.len())
+        .map(|k| {
+            assert_eq!(
+                format!("{}.png", columns[1][k]),
+                cam0[k].file_name().unwrap().to_string_lossy()
+            );
+            let degrees = per_frame_vector(&header, &columns, "cam0_rot", "deg", k);
+            assert_eq!(
+                per_frame_vector(&header, &columns, "cam0_trans", "m", k),
+                DVec3::ZERO
+            );
+            DQuat::from_scaled_axis(degrees * std::f64::consts::PI / 180.0)
+        })
+        .collect();
+    assert_ne!(rotations[0], rotations[1], "a new draw on every frame");
+    // Each frame is the nominal one seen through its own listed turn, and not through the
+    // nominal mount or another frame's turn.
+    let nominal = frames(&clean, "cam0");
+    for (k, rotation) in rotations.iter().enumerate() {
+        let (n, m) = (grey(&nominal[k]), grey(&cam0[k]));
+        let listed = turned_view_error(&n, &m, &intrinsics, *rotation);
+        let unturned = turned_view_error(&n, &m, &intrinsics, DQuat::IDENTITY);
+        let other = turned_view_error(&n, &m, &intrinsics, rotations[(k + 1) % rotations.len()]);
+        assert!(
+            listed < 3.0 && listed < 0.2 * unturned.min(other),
+            "frame {k}: grey error {listed} with the listed turn, {unturned} without, {other} with another frame's"
+        );
+    }
+}
+
+/// Median over pixels of |depth the moved camera sees − depth predicted for it|, predicting from
+/// the nominal depth image with the moved camera shifted by `shift` (its own frame) from the
+/// nominal one: nominal pixel x at depth Z is the point P = Z·K⁻¹x, which the moved camera sees
+/// at K·(P − shift) with depth (P − shift)_z (moved depth read bilinearly where its four pixels
+/// have depth).
+fn shifted_depth_error(
+    nominal: &DepthImage,
+    moved: &DepthImage,
+    k: &Intrinsics,
+    shift: DVec3,
+) -> f64 {
+    let at = |img: &DepthImage, x: u32, y: u32| img.data[(y * img.width + x) as usize] as f64;
+    let mut residuals = Vec::new();
+    for y in 0..nominal.height {
+        for x in 0..nominal.width {
+            let z = at(nominal, x, y);
+            if z <= 0.0 {
+                continue;
+            }
+            let p = DVec3::new(
+                (x as f64 - k.cx) / k.fx * z,
+                (y as f64 - k.cy) / k.fy * z,
+                z,
+            ) - shift;
+            let (u, v) = (k.fx * p.x / p.z + k.cx, k.fy * p.y / p.z + k.cy);
+            if p.z <= 0.0
+                || u < 0.0
+                || v < 0.0
+                || u >= k.width as f64 - 1.0
+                || v >= k.height as f64 - 1.0
+            {
+                continue;
+            }
+            let (x0, y0) = (u.floor() as u32, v.floor() as u32);
+            let corners = [(x0, y0), (x0 + 1, y0), (x0, y0 + 1), (x0 + 1, y0 + 1)]
+                .map(|(x, y)| at(moved, x, y));
+            if corners.iter().any(|d| *d <= 0.0) {
+                continue;
+            }
+            let (fx, fy) = (u - x0 as f64, v - y0 as f64);
+            let seen = (1.0 - fy) * ((1.0 - fx) * corners[0] + fx * corners[1])
+                + fy * ((1.0 - fx) * corners[2] + fx * corners[3]);
+            residuals.push((seen - p.z).abs());
+        }
+    }
+    assert!(
+        residuals.len() > 1000,
+        "{} pixels compared",
+        residuals.len()
+    );
+    residuals.sort_by(f64::total_cmp);
+    residuals[residuals.len() / 2]
+}
+
+#[test]
+fn dynamic_extrinsic_trans_shifts_the_rgbd_imu_camera_on_every_frame_by_the_listed_offset() {
+    let ws = Workspace::new();
+    let args = [
+        "--frames",
+        "7",
+        "--camera",
+        "320,240,260,260,159.5,119.5",
+        "--rate",
+        "30",
+        "--rig",
+        "rgbd-imu",
+        "--format",
+        "tum",
+    ];
+    ws.render_room0("clean", &args, None);
+    ws.render_room0("shaken", &args, Some("cam0:extrinsic_trans:0.05@dynamic"));
+    let (clean, shaken) = (ws.path("clean"), ws.path("shaken"));
+    let record = calibration_record(&shaken);
+    assert_eq!(
+        record["dynamic"],
+        serde_json::json!(["cam0:extrinsic_trans:0.05@dynamic"])
+    );
+    // The IMU and every calibration file are nominal.
+    for file in [
+        "imu0/data.csv",
+        "imu0/sensor.yaml",
+        "orbslam3_rgbd_inertial.yaml",
+    ] {
+        assert!(same_bytes(&clean.join(file), &shaken.join(file)), "{file}");
+    }
+
+    let (header, columns) = per_frame_columns(&shaken);
+    assert!(header.starts_with("frame,t_ns,cam0_rot_x_deg,"), "{header}");
+    let read = |root: &Path| read_dataset(root, &DatasetOverrides::default()).unwrap();
+    let (nominal, moved) = (read(&clean), read(&shaken));
+    assert_eq!(columns[1].len(), moved.frames.len());
+    let shifts: Vec<DVec3> = (0..moved.frames.len())
+        .map(|k| {
+            assert!((columns[1][k] * 1e-9 - moved.frames[k].rgb_time).abs() < 1e-6);
+            assert_eq!(
+                per_frame_vector(&header, &columns, "cam0_rot", "deg", k),
+                DVec3::ZERO
+            );
+            per_frame_vector(&header, &columns, "cam0_trans", "m", k)
+        })
+        .collect();
+    assert_ne!(shifts[0], shifts[1], "a new draw on every frame");
+
+    // groundtruth.txt is the camera as it was on each frame: the nominal pose shifted by the
+    // listed offset in the camera's frame.
+    let shifted: Vec<Pose> = nominal
+        .ground_truth
+        .as_ref()
+        .unwrap()
+        .poses
+        .iter()
+        .zip(&shifts)
+        .map(|(pose, shift)| pose.compose(&Pose::new(DQuat::IDENTITY, *shift)))
+        .collect();
+    assert_poses_close(&moved.ground_truth.as_ref().unwrap().poses, &shifted, 1e-5);
+
+    // Each frame's depth is what the nominal geometry looks like from the listed shift, and not
+    // from the nominal mount or another frame's shift.
+    let depth = |ds: &rslam_core::dataset::SourceDataset, k: usize| {
+        decode_depth_png(
+            ds.frames[k].depth.as_ref().unwrap(),
+            DatasetFormat::Tum.depth_scale(),
+        )
+        .unwrap()
+    };
+    for (k, shift) in shifts.iter().enumerate() {
+        let (n, m) = (depth(&nominal, k), depth(&moved, k));
+        let listed = shifted_depth_error(&n, &m, &moved.intrinsics, *shift);
+        let unshifted = shifted_depth_error(&n, &m, &moved.intrinsics, DVec3::ZERO);
+        let other = shifted_depth_error(&n, &m, &moved.intrinsics, shifts[(k + 1) % shifts.len()]);
+        assert!(
+            listed < 1e-3 && listed < 0.1 * unshifted.min(other),
+            "frame {k}: median depth error {listed} m with the listed shift, {unshifted} without, {other} with another frame's"
+        );
+    }
 }

@@ -1,16 +1,20 @@
 //! Calibration perturbations of a multi-sensor rig: `baseline:σ`, `extrinsic_rot:DEG` and
-//! `extrinsic_trans:M`, each in one of two modes.
+//! `extrinsic_trans:M`, each in one of three modes.
 //!
 //! - rendered (the default): the sensor really sits elsewhere (the mount moved). Images and IMU
 //!   readings are made with the perturbed placement; the calibration files state the nominal one.
+//! - `@dynamic`: rendered, with a new draw on every frame of the moved camera (the mount shakes).
+//!   Not for the IMU: its readings come from the body's smooth motion, and a mount that jumps on
+//!   every sample has no angular velocity or acceleration to read. Not with `@calibration`: a
+//!   calibration file holds one value per sequence.
 //! - `@calibration`: the sensor is where it should be, images are nominal, and the written
 //!   calibration is perturbed (what the seed paper did to the real EuRoC sequences).
 //!
 //! Draws (perturbations.md §2): a sensor's draws are keyed by (that sensor's seed, item name,
-//! frame, purpose); a per-sequence draw is frame 0's. What each item moves:
+//! frame, purpose); a per-sequence draw is frame 0's, so frame k's draw does not depend on how
+//! many frames there are. What each item moves:
 //! - `baseline:σ` moves cam1 by δ ~ N(0, σ) metres along cam0's x axis (the baseline axis of a
-//!   rectified pair), once per sequence, or per cam1 frame with `@dynamic` (rendered only: a
-//!   calibration file holds one value).
+//!   rectified pair).
 //! - `extrinsic_rot:DEG` turns the sensor about its own centre, `T_BS' = T_BS · Rx(αx)·Ry(αy)·Rz(αz)`
 //!   with α ~ N(0, DEG°) per axis of the sensor's frame.
 //! - `extrinsic_trans:M` shifts the sensor by Δt ~ N(0, M) per axis of its own frame.
@@ -54,7 +58,7 @@ pub struct CalibrationItem {
     /// Standard deviation: metres (`baseline`, `extrinsic_trans`) or degrees (`extrinsic_rot`).
     pub sigma: f64,
     pub mode: CalibrationMode,
-    /// A new draw on every frame (`baseline@dynamic`).
+    /// A new draw on every frame of the moved camera (`@dynamic`, rendered).
     pub dynamic: bool,
 }
 
@@ -81,21 +85,25 @@ impl CalibrationItem {
         if name == BASELINE && sensor.is_some() {
             return Err("baseline moves cam1 along cam0's x axis and takes no sensor".into());
         }
-        let (mode, dynamic) = match mode {
-            None => (CalibrationMode::Rendered, false),
-            Some("calibration") => (CalibrationMode::Calibration, false),
-            Some("dynamic") if name == BASELINE => (CalibrationMode::Rendered, true),
-            Some(m) => {
-                let valid = if name == BASELINE {
-                    "@calibration, @dynamic"
-                } else {
-                    "@calibration"
-                };
+        let modes: Vec<&str> =
+            mode.map_or_else(Vec::new, |m| m.split('@').map(str::trim).collect());
+        let (mode, dynamic) = match modes.as_slice() {
+            [] => (CalibrationMode::Rendered, false),
+            ["calibration"] => (CalibrationMode::Calibration, false),
+            ["dynamic"] => (CalibrationMode::Rendered, true),
+            [a, b] if [*a, *b].contains(&"dynamic") && [*a, *b].contains(&"calibration") => {
+                return Err("@dynamic and @calibration exclude each other: a calibration file holds one value per sequence".into());
+            }
+            _ => {
+                let m = modes.join("@");
                 return Err(format!(
-                    "unknown mode '@{m}'; valid: {valid} (rendered is the default)"
+                    "unknown mode '@{m}'; valid: @calibration, @dynamic (rendered is the default)"
                 ));
             }
         };
+        if let Some(imu) = sensor.filter(|s| dynamic && s.starts_with("imu")) {
+            return Err(format!("@dynamic moves a camera on every frame; {imu} is the body frame its readings are made in, and a mount that jumps on every sample has no angular velocity or acceleration to read: use {imu}:{name}:{value} (once per sequence)"));
+        }
         Ok(Self {
             name: name.to_string(),
             sensor: sensor.map(str::to_string),
@@ -129,10 +137,11 @@ impl CalibrationItem {
         self.draw3(cam1_seed, frame).x
     }
 
-    /// `T_BS` of the sensor after an `extrinsic_*` item with the sensor's `seed`.
-    pub fn apply_extrinsic(&self, body_from_sensor: &Pose, seed: u64) -> Pose {
-        let d = self.draw3(seed, 0);
-        let delta = if self.name == EXTRINSIC_ROT {
+    /// The sensor's move `Δ` under an `extrinsic_*` item on frame `frame` (0 for a per-sequence
+    /// draw) with the sensor's `seed`: `T_BS' = T_BS · Δ`.
+    pub fn extrinsic_offset(&self, seed: u64, frame: u32) -> Pose {
+        let d = self.draw3(seed, frame);
+        if self.name == EXTRINSIC_ROT {
             let a = d * std::f64::consts::PI / 180.0;
             let rotation = DQuat::from_rotation_x(a.x)
                 * DQuat::from_rotation_y(a.y)
@@ -140,8 +149,13 @@ impl CalibrationItem {
             Pose::new(rotation, DVec3::ZERO)
         } else {
             Pose::new(DQuat::IDENTITY, d)
-        };
-        body_from_sensor.compose(&delta)
+        }
+    }
+
+    /// `T_BS` of the sensor after an `extrinsic_*` item's per-sequence draw with the sensor's
+    /// `seed`.
+    pub fn apply_extrinsic(&self, body_from_sensor: &Pose, seed: u64) -> Pose {
+        body_from_sensor.compose(&self.extrinsic_offset(seed, 0))
     }
 }
 
@@ -204,6 +218,85 @@ mod tests {
         // The same item, seed and sensor pose give the same draw; another seed another.
         assert_eq!(item("cam1:extrinsic_rot:2").apply_extrinsic(&t_bs, 5), rot);
         assert_ne!(item("cam1:extrinsic_rot:2").apply_extrinsic(&t_bs, 6), rot);
+    }
+
+    /// Mean and sample standard deviation.
+    fn mean_std(values: &[f64]) -> (f64, f64) {
+        let n = values.len() as f64;
+        let mean = values.iter().sum::<f64>() / n;
+        let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+        (mean, var.sqrt())
+    }
+
+    #[test]
+    fn dynamic_extrinsic_draws_are_per_frame_normal_per_axis_and_repeatable() {
+        let n = 4000u32;
+        for (text, sigma) in [
+            ("cam1:extrinsic_rot:0.5@dynamic", 0.5),
+            ("extrinsic_trans:0.01@dynamic", 0.01),
+        ] {
+            let item = item(text);
+            assert!(item.dynamic && item.mode == CalibrationMode::Rendered);
+            // Per axis: the Rx·Ry·Rz angles in degrees, or the shift in metres.
+            let axes = |frame: u32| -> [f64; 3] {
+                let delta = item.extrinsic_offset(9, frame);
+                if item.name == EXTRINSIC_ROT {
+                    let (x, y, z) = delta.rotation.to_euler(glam::EulerRot::XYZ);
+                    let again = DQuat::from_rotation_x(x)
+                        * DQuat::from_rotation_y(y)
+                        * DQuat::from_rotation_z(z);
+                    assert!(
+                        again.abs_diff_eq(delta.rotation, 1e-12),
+                        "{again} {delta:?}"
+                    );
+                    assert_eq!(delta.translation, DVec3::ZERO);
+                    [x.to_degrees(), y.to_degrees(), z.to_degrees()]
+                } else {
+                    assert_eq!(delta.rotation, DQuat::IDENTITY);
+                    delta.translation.to_array()
+                }
+            };
+            let draws: Vec<[f64; 3]> = (0..n).map(axes).collect();
+            for axis in 0..3 {
+                let values: Vec<f64> = draws.iter().map(|d| d[axis]).collect();
+                let (mean, std) = mean_std(&values);
+                assert!(
+                    mean.abs() < 4.0 * sigma / f64::from(n).sqrt(),
+                    "{text} axis {axis}: mean {mean}"
+                );
+                // The sample std's standard error is σ/√(2n) ≈ 1.1 % of σ here.
+                assert!(
+                    (std / sigma - 1.0).abs() < 0.05,
+                    "{text} axis {axis}: std {std}"
+                );
+                let lag1 = values
+                    .windows(2)
+                    .map(|w| (w[0] - mean) * (w[1] - mean))
+                    .sum::<f64>()
+                    / (f64::from(n - 1) * std * std);
+                assert!(lag1.abs() < 0.05, "{text} axis {axis}: lag-1 {lag1}");
+            }
+            // The axes are independent draws.
+            let (x, y): (Vec<f64>, Vec<f64>) = draws.iter().map(|d| (d[0], d[1])).unzip();
+            let ((mx, sx), (my, sy)) = (mean_std(&x), mean_std(&y));
+            let xy = x
+                .iter()
+                .zip(&y)
+                .map(|(a, b)| (a - mx) * (b - my))
+                .sum::<f64>()
+                / (f64::from(n - 1) * sx * sy);
+            assert!(xy.abs() < 0.05, "{text}: x–y correlation {xy}");
+            // Keyed by seed and frame only: the same again, another seed or frame another.
+            assert_eq!(item.extrinsic_offset(9, 17), item.extrinsic_offset(9, 17));
+            assert_ne!(item.extrinsic_offset(9, 17), item.extrinsic_offset(10, 17));
+            assert_ne!(item.extrinsic_offset(9, 17), item.extrinsic_offset(9, 18));
+            // Frame 0 is the per-sequence draw.
+            let t_bs = Pose::new(DQuat::from_rotation_z(0.3), DVec3::new(0.1, 0.0, 0.0));
+            assert_eq!(
+                item.apply_extrinsic(&t_bs, 9),
+                t_bs.compose(&item.extrinsic_offset(9, 0))
+            );
+        }
     }
 
     #[test]

@@ -88,22 +88,22 @@ pub fn listing() -> Vec<ListEntry> {
             }),
     );
     entries.extend(item_entries("sensor", SENSOR_ITEMS));
-    let modes = "rendered (default): images and IMU made with the moved sensor, the calibration files state the nominal one; @calibration: images nominal, the written calibration moved; the manifest records both; needs a rig (--rig, or a EuRoC input: @calibration only)";
+    let modes = "rendered (default): images and IMU made with the moved sensor, the calibration files state the nominal one; @dynamic: rendered, a new draw on every frame of the moved camera (per-frame draws in calibration_per_frame.csv; not with @calibration); @calibration: images nominal, the written calibration moved; the manifest records both; needs a rig (--rig, or a EuRoC input: @calibration only)";
     let calibration = [
         (
             BASELINE,
             "baseline:METRES[@dynamic|@calibration]",
-            format!("cam1 moved by δ ~ N(0, σ) along cam0's x axis, once per sequence; @dynamic: a new δ on every cam1 frame (rendered only, per-frame values in calibration_per_frame.csv); {modes}"),
+            format!("cam1 moved by δ ~ N(0, σ) along cam0's x axis, once per sequence; {modes}"),
         ),
         (
             EXTRINSIC_ROT,
-            "[SENSOR:]extrinsic_rot:DEGREES[@calibration]",
-            format!("T_BS' = T_BS·Rx·Ry·Rz, per-axis angles ~ N(0, D°) in the sensor's frame, one draw per sequence; SENSOR cam0, cam1, imu0, …, without one every camera draws its own; {modes}"),
+            "[SENSOR:]extrinsic_rot:DEGREES[@dynamic|@calibration]",
+            format!("T_BS' = T_BS·Rx·Ry·Rz, per-axis angles ~ N(0, D°) in the sensor's frame, one draw per sequence; SENSOR cam0, cam1, imu0, …, without one every camera draws its own; @dynamic for cameras only (imu0 per sequence); {modes}"),
         ),
         (
             EXTRINSIC_TRANS,
-            "[SENSOR:]extrinsic_trans:METRES[@calibration]",
-            format!("T_BS' = T_BS·(I, Δt), Δt ~ N(0, M) per axis of the sensor's frame, one draw per sequence; SENSOR as for extrinsic_rot; {modes}"),
+            "[SENSOR:]extrinsic_trans:METRES[@dynamic|@calibration]",
+            format!("T_BS' = T_BS·(I, Δt), Δt ~ N(0, M) per axis of the sensor's frame, one draw per sequence; SENSOR and @dynamic as for extrinsic_rot; {modes}"),
         ),
     ];
     entries.extend(

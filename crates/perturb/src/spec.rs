@@ -9,7 +9,8 @@
 //!        | 'exposure:' MS ['@' K] | 'rolling_shutter:' MS      sensor effects (need a scene)
 //!        | 'imu_noise:' K | 'imu_bias_step:' G/A | …          IMU items (see crate::imu::items)
 //!        | 'baseline:' METRES ['@calibration' | '@dynamic']      calibration of a rig
-//!        | [SENSOR ':'] ('extrinsic_rot:' DEGREES | 'extrinsic_trans:' METRES) ['@calibration']
+//!        | [SENSOR ':'] ('extrinsic_rot:' DEGREES | 'extrinsic_trans:' METRES)
+//!          ['@calibration' | '@dynamic']                       (`@dynamic`: cameras only)
 //!        | 'distortion:' ('radtan' | 'equidistant') '(' C ',' C ',' C ',' C ')'
 //! SENSOR := 'cam' N | 'imu' N                               a rig's sensor: cam0, cam1, imu0
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)

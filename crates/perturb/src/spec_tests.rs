@@ -244,7 +244,7 @@ fn items_addressed_to_a_camera_reach_only_that_camera() {
 #[test]
 fn calibration_items_parse_with_their_modes_and_round_trip() {
     let spec = PerturbSpec::parse(
-        "fog:1,baseline:0.01@dynamic,cam1:extrinsic_rot:0.5@calibration,imu0:extrinsic_trans:0.01,extrinsic_trans:0.002",
+        "fog:1,baseline:0.01@dynamic,cam1:extrinsic_rot:0.5@calibration,imu0:extrinsic_trans:0.01,extrinsic_trans:0.002,cam0:extrinsic_rot:0.5@dynamic",
     )
     .unwrap();
     use crate::calibration::CalibrationMode::{Calibration, Rendered};
@@ -268,13 +268,17 @@ fn calibration_items_parse_with_their_modes_and_round_trip() {
             (Some("cam1"), "extrinsic_rot", 0.5, Calibration, false),
             (Some("imu0"), "extrinsic_trans", 0.01, Rendered, false),
             (None, "extrinsic_trans", 0.002, Rendered, false),
+            (Some("cam0"), "extrinsic_rot", 0.5, Rendered, true),
         ]
     );
     assert_eq!(
         spec.to_string(),
-        "baseline:0.01@dynamic,cam1:extrinsic_rot:0.5@calibration,imu0:extrinsic_trans:0.01,extrinsic_trans:0.002,fog:1"
+        "baseline:0.01@dynamic,cam1:extrinsic_rot:0.5@calibration,imu0:extrinsic_trans:0.01,extrinsic_trans:0.002,cam0:extrinsic_rot:0.5@dynamic,fog:1"
     );
     assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
+    let every_camera = PerturbSpec::parse("extrinsic_trans:0.01@dynamic").unwrap();
+    assert!(every_camera.calibration[0].dynamic && every_camera.calibration[0].sensor.is_none());
+    assert_eq!(every_camera.to_string(), "extrinsic_trans:0.01@dynamic");
     assert!(!spec.needs_scene());
     assert!(spec.for_camera("cam0").calibration.is_empty());
 }
@@ -303,11 +307,23 @@ fn sensor_and_calibration_errors_name_the_item_and_what_was_expected() {
     assert!(err("cam1:baseline:0.01").contains("takes no sensor"));
     assert!(err("baseline:-0.01").contains("metres ≥ 0"));
     assert!(err("extrinsic_rot:x").contains("degrees ≥ 0"));
-    let e = err("cam1:extrinsic_rot:1@dynamic");
+    let e = err("imu0:extrinsic_rot:1@dynamic");
     assert!(
-        e.contains("unknown mode '@dynamic'; valid: @calibration"),
+        e.starts_with("--perturb item 'imu0:extrinsic_rot:1@dynamic': @dynamic moves a camera")
+            && e.ends_with("use imu0:extrinsic_rot:1 (once per sequence)"),
         "{e}"
     );
+    for text in [
+        "cam1:extrinsic_trans:0.01@dynamic@calibration",
+        "baseline:0.01@calibration@dynamic",
+    ] {
+        let e = err(text);
+        assert!(
+            e.contains("@dynamic and @calibration exclude each other"),
+            "{e}"
+        );
+    }
+    assert!(err("extrinsic_rot:1@smooth").contains("valid: @calibration, @dynamic"));
     assert!(err("baseline:0.1@smooth").contains("@calibration, @dynamic"));
     assert!(err("baseline:0.01,baseline:0.02@calibration").contains("twice"));
     for text in ["cam1:fog:3", "baseline:0.01", "cam0:extrinsic_rot:1"] {

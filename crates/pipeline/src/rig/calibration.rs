@@ -3,7 +3,10 @@
 //! state, and the manifest's record of both.
 //!
 //! Items apply in the order written, rendered ones to the actual rig and `@calibration` ones to
-//! the written rig, both starting from the nominal rig. Camera `i` draws with
+//! the written rig, both starting from the nominal rig. `@dynamic` items move a camera per frame
+//! on top of the actual rig: on frame k, `T_BS(k) = B_k · Δ_k`, where `B_k` is the actual `T_BS`
+//! (for cam1 moved by `baseline@dynamic`'s δ_k along cam0's x axis) and `Δ_k` the product of the
+//! camera's `extrinsic_*@dynamic` draws for frame k, in the order written. Camera `i` draws with
 //! [`camera_seed`]`(seed, i)`, the IMU with [`imu_seed`]`(seed)`; `baseline` moves cam1 and
 //! draws with cam1's seed.
 
@@ -16,20 +19,21 @@ use serde_json::{json, Value};
 use super::euroc_render::{camera_seed, imu_seed};
 use super::preset::Rig;
 
-/// Per cam1 frame under `baseline@dynamic`: its δ and cam1's actual baseline, beside the
-/// manifest.
+/// What the `@dynamic` items drew on every frame, beside the manifest.
 pub const PER_FRAME_FILE: &str = "calibration_per_frame.csv";
 
 /// The rig as mounted and as calibrated.
 #[derive(Clone, Debug)]
 pub struct PerturbedRig {
-    /// Where the sensors are: frames and IMU readings are made with it (cam1 before a
-    /// `baseline@dynamic` offset, which [`PerturbedRig::body_from_camera`] adds per frame).
+    /// Where the sensors are: frames and IMU readings are made with it (the cameras before their
+    /// `@dynamic` moves, which [`PerturbedRig::body_from_camera`] adds per frame).
     pub actual: Rig,
     /// What the calibration files state.
     pub written: Rig,
-    /// `baseline@dynamic`, with cam1's seed.
-    dynamic_baseline: Option<(CalibrationItem, u64)>,
+    /// The `@dynamic` items, in the order written.
+    dynamic: Vec<CalibrationItem>,
+    /// The job's seed, for the cameras' per-frame draws.
+    seed: u64,
     /// δ of a per-sequence `baseline` and its mode.
     baseline_offset: Option<(f64, CalibrationMode)>,
 }
@@ -59,7 +63,8 @@ impl PerturbedRig {
         let mut rig = Self {
             actual: nominal.clone(),
             written: nominal.clone(),
-            dynamic_baseline: None,
+            dynamic: Vec::new(),
+            seed,
             baseline_offset: None,
         };
         for item in &spec.calibration {
@@ -72,17 +77,16 @@ impl PerturbedRig {
                     ),
                 ));
             }
+            if item.dynamic {
+                rig.dynamic.push(item.clone());
+                continue;
+            }
             let target = match item.mode {
                 CalibrationMode::Rendered => &mut rig.actual,
                 CalibrationMode::Calibration => &mut rig.written,
             };
             if item.name == BASELINE {
-                let cam1_seed = camera_seed(seed, 1);
-                if item.dynamic {
-                    rig.dynamic_baseline = Some((item.clone(), cam1_seed));
-                    continue;
-                }
-                let delta = item.baseline_offset(cam1_seed, 0);
+                let delta = item.baseline_offset(camera_seed(seed, 1), 0);
                 let cam0 = target.cameras[0].body_from_camera;
                 let cam1 = &mut target.cameras[1].body_from_camera;
                 *cam1 = move_along_baseline(&cam0, cam1, delta);
@@ -102,26 +106,41 @@ impl PerturbedRig {
         Ok(rig)
     }
 
-    /// δ of `baseline@dynamic` on cam1's frame `frame`; 0 without it.
-    fn dynamic_offset(&self, frame: usize) -> f64 {
-        self.dynamic_baseline.as_ref().map_or(0.0, |(item, seed)| {
-            item.baseline_offset(*seed, frame as u32)
-        })
+    /// δ of `baseline@dynamic` on cam1's frame `frame`; `None` without it.
+    fn dynamic_baseline_offset(&self, frame: usize) -> Option<f64> {
+        let item = self.dynamic.iter().find(|item| item.name == BASELINE)?;
+        Some(item.baseline_offset(camera_seed(self.seed, 1), frame as u32))
+    }
+
+    /// Camera `index`'s `Δ_k` on its frame `frame`: the product of its `extrinsic_*@dynamic`
+    /// draws; `None` when none moves it.
+    fn dynamic_extrinsic(&self, index: usize, frame: usize) -> Option<Pose> {
+        let name = &self.actual.cameras[index].name;
+        let seed = camera_seed(self.seed, index);
+        self.dynamic
+            .iter()
+            .filter(|item| item.name != BASELINE && item.moves(name))
+            .map(|item| item.extrinsic_offset(seed, frame as u32))
+            .reduce(|a, b| a.compose(&b))
     }
 
     /// Camera `index`'s actual `T_BS` on its frame `frame`.
     pub fn body_from_camera(&self, index: usize, frame: usize) -> Pose {
-        let camera = self.actual.cameras[index].body_from_camera;
-        if index != 1 || self.dynamic_baseline.is_none() {
-            return camera;
+        let mut camera = self.actual.cameras[index].body_from_camera;
+        if let Some(delta) = self.dynamic_baseline_offset(frame).filter(|_| index == 1) {
+            let cam0 = self.actual.cameras[0].body_from_camera;
+            camera = move_along_baseline(&cam0, &camera, delta);
         }
-        let cam0 = self.actual.cameras[0].body_from_camera;
-        move_along_baseline(&cam0, &camera, self.dynamic_offset(frame))
+        match self.dynamic_extrinsic(index, frame) {
+            Some(delta) => camera.compose(&delta),
+            None => camera,
+        }
     }
 
-    /// The manifest's `calibration`: each sensor's actual and written `T_BS` (row-major; cam1's
-    /// actual one before a per-frame offset), and with two cameras the baseline along cam0's x
-    /// axis, nominal, actual and written, and the δ drawn.
+    /// The manifest's `calibration`: each sensor's actual and written `T_BS` (row-major; a
+    /// camera's actual one before its `@dynamic` moves), with two cameras the baseline along
+    /// cam0's x axis, nominal, actual and written, and the δ drawn; with `@dynamic` items, those
+    /// items (`dynamic`) and the file with their draws (`per_frame`).
     pub fn record(&self, nominal: &Rig) -> Value {
         let pose = |p: &Pose| p.to_row_major().to_vec();
         let mut sensors: Vec<Value> = nominal
@@ -162,25 +181,74 @@ impl PerturbedRig {
             record["baseline_offset_m"] = json!(delta);
             record["baseline_mode"] = json!(mode);
         }
-        if self.dynamic_baseline.is_some() {
+        if self.dynamic.iter().any(|item| item.name == BASELINE) {
             record["baseline_mode"] = json!("dynamic");
+        }
+        if !self.dynamic.is_empty() {
+            let items: Vec<String> = self.dynamic.iter().map(ToString::to_string).collect();
+            record["dynamic"] = json!(items);
             record["per_frame"] = json!(PER_FRAME_FILE);
         }
         record
     }
 
-    /// [`PER_FRAME_FILE`] for cam1's frames stamped `cam1_times_ns`, under `baseline@dynamic`:
-    /// `frame,t_ns,baseline_offset_m,baseline_true_m`.
-    pub fn per_frame_csv(&self, cam1_times_ns: &[u64]) -> Option<String> {
-        self.dynamic_baseline.as_ref()?;
-        let cam0 = self.actual.cameras[0].body_from_camera;
-        let mut csv = String::from("frame,t_ns,baseline_offset_m,baseline_true_m\n");
-        for (frame, t_ns) in cam1_times_ns.iter().enumerate() {
-            let baseline = baseline_m(&cam0, &self.body_from_camera(1, frame));
-            csv.push_str(&format!(
-                "{frame},{t_ns},{:e},{baseline:e}\n",
-                self.dynamic_offset(frame)
-            ));
+    /// [`PER_FRAME_FILE`] for the frames stamped `times_ns` (the rig's cameras share their
+    /// frame times), when an item is `@dynamic`: `frame,t_ns`, then under `baseline@dynamic`
+    /// `baseline_offset_m` (δ_k), with two cameras `baseline_true_m` (cam1 along cam0's x axis
+    /// on that frame), and for each camera an `extrinsic_*@dynamic` item moves, its `Δ_k` as
+    /// `camN_rot_{x,y,z}_deg` (rotation vector, degrees) and `camN_trans_{x,y,z}_m` (metres),
+    /// both in the camera's frame.
+    pub fn per_frame_csv(&self, times_ns: &[u64]) -> Option<String> {
+        if self.dynamic.is_empty() {
+            return None;
+        }
+        let moved: Vec<(usize, &str)> = self
+            .actual
+            .cameras
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| self.dynamic_extrinsic(*i, 0).is_some())
+            .map(|(i, camera)| (i, camera.name.as_str()))
+            .collect();
+        let two_cameras = self.actual.cameras.len() >= 2;
+        let mut header = vec!["frame".to_string(), "t_ns".to_string()];
+        if self.dynamic_baseline_offset(0).is_some() {
+            header.push("baseline_offset_m".into());
+        }
+        if two_cameras {
+            header.push("baseline_true_m".into());
+        }
+        for (_, name) in &moved {
+            for quantity in ["rot", "trans"] {
+                let unit = if quantity == "rot" { "deg" } else { "m" };
+                header
+                    .extend(["x", "y", "z"].map(|axis| format!("{name}_{quantity}_{axis}_{unit}")));
+            }
+        }
+        let mut csv = header.join(",") + "\n";
+        for (frame, t_ns) in times_ns.iter().enumerate() {
+            let mut row = vec![frame.to_string(), t_ns.to_string()];
+            row.extend(
+                self.dynamic_baseline_offset(frame)
+                    .map(|d| format!("{d:e}")),
+            );
+            if two_cameras {
+                let baseline = baseline_m(
+                    &self.body_from_camera(0, frame),
+                    &self.body_from_camera(1, frame),
+                );
+                row.push(format!("{baseline:e}"));
+            }
+            for (i, _) in &moved {
+                let delta = self.dynamic_extrinsic(*i, frame).unwrap_or(Pose::IDENTITY);
+                let rotation = delta.rotation.to_scaled_axis() * 180.0 / std::f64::consts::PI;
+                let values = rotation
+                    .to_array()
+                    .into_iter()
+                    .chain(delta.translation.to_array());
+                row.extend(values.map(|v| format!("{v:e}")));
+            }
+            csv.push_str(&(row.join(",") + "\n"));
         }
         Some(csv)
     }
@@ -277,6 +345,135 @@ mod tests {
         assert_eq!(row[..2], ["1", "20"]);
         let offset: f64 = row[2].parse().unwrap();
         assert!((offset - offsets[1]).abs() < 1e-12);
+    }
+
+    /// The CSV's rows as numbers by column name.
+    fn csv_columns(csv: &str) -> Vec<(String, Vec<f64>)> {
+        let mut lines = csv.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let rows: Vec<Vec<f64>> = lines
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        header
+            .iter()
+            .enumerate()
+            .map(|(c, name)| (name.to_string(), rows.iter().map(|r| r[c]).collect()))
+            .collect()
+    }
+
+    fn column<'a>(columns: &'a [(String, Vec<f64>)], name: &str) -> &'a [f64] {
+        &columns.iter().find(|(n, _)| n == name).unwrap().1
+    }
+
+    #[test]
+    fn dynamic_extrinsics_move_each_frame_by_the_draws_the_csv_lists() {
+        let nominal = Rig::stereo_imu();
+        const MOVING: &str =
+            "cam1:extrinsic_rot:0.5@dynamic,cam1:extrinsic_trans:0.01@dynamic,cam0:extrinsic_rot:0.2@dynamic";
+        let rig = perturbed(MOVING, 4);
+        assert_eq!(rig.actual, nominal, "nothing moves per sequence");
+        assert_eq!(rig.written, nominal);
+        let times: Vec<u64> = (0..10).map(|k| 1_000 + 50_000_000 * k).collect();
+        let csv = rig.per_frame_csv(&times).unwrap();
+        let header = csv.lines().next().unwrap();
+        assert_eq!(
+            header,
+            "frame,t_ns,baseline_true_m,\
+             cam0_rot_x_deg,cam0_rot_y_deg,cam0_rot_z_deg,cam0_trans_x_m,cam0_trans_y_m,cam0_trans_z_m,\
+             cam1_rot_x_deg,cam1_rot_y_deg,cam1_rot_z_deg,cam1_trans_x_m,cam1_trans_y_m,cam1_trans_z_m"
+        );
+        let columns = csv_columns(&csv);
+        assert_eq!(column(&columns, "t_ns")[3], times[3] as f64);
+        for (i, camera) in nominal.cameras.iter().enumerate() {
+            let name = &camera.name;
+            let get = |q: &str, k: usize| {
+                glam::DVec3::from_array(["x", "y", "z"].map(|a| {
+                    column(
+                        &columns,
+                        &format!("{name}_{q}_{a}_{}", if q == "rot" { "deg" } else { "m" }),
+                    )[k]
+                }))
+            };
+            for k in 0..times.len() {
+                // The listed Δ_k, applied to the nominal T_BS, is the pose frame k is made with.
+                let rotation =
+                    glam::DQuat::from_scaled_axis(get("rot", k) * std::f64::consts::PI / 180.0);
+                let listed = camera
+                    .body_from_camera
+                    .compose(&Pose::new(rotation, get("trans", k)));
+                let used = rig.body_from_camera(i, k);
+                assert!(
+                    used.rotation.abs_diff_eq(listed.rotation, 1e-12),
+                    "{name} frame {k}"
+                );
+                assert!((used.translation - listed.translation).length() < 1e-12);
+                assert_ne!(used, camera.body_from_camera, "{name} frame {k} moved");
+            }
+            assert_ne!(
+                get("rot", 0),
+                get("rot", 1),
+                "{name}: a new draw on every frame"
+            );
+        }
+        // cam0 only turns; the true baseline is between the cameras as placed on that frame.
+        assert_eq!(column(&columns, "cam0_trans_x_m")[5], 0.0);
+        let expected = baseline_m(&rig.body_from_camera(0, 5), &rig.body_from_camera(1, 5));
+        assert!((column(&columns, "baseline_true_m")[5] - expected).abs() < 1e-12);
+        // Frame k's draw does not depend on how many frames there are.
+        let short = rig.per_frame_csv(&times[..4]).unwrap();
+        assert!(csv.starts_with(&short), "{short}");
+        // The same seed draws the same, another seed another.
+        assert_eq!(
+            perturbed(MOVING, 4).per_frame_csv(&times),
+            Some(csv.clone())
+        );
+        assert_ne!(perturbed(MOVING, 5).per_frame_csv(&times), Some(csv));
+        let record = rig.record(&nominal);
+        assert_eq!(record["per_frame"], PER_FRAME_FILE);
+        assert_eq!(
+            record["dynamic"],
+            json!([
+                "cam1:extrinsic_rot:0.5@dynamic",
+                "cam1:extrinsic_trans:0.01@dynamic",
+                "cam0:extrinsic_rot:0.2@dynamic"
+            ])
+        );
+        assert!(record.get("baseline_mode").is_none());
+    }
+
+    #[test]
+    fn a_dynamic_baseline_and_a_dynamic_shift_add_up_on_top_of_the_per_sequence_rig() {
+        let nominal = Rig::stereo_imu();
+        let rig = perturbed(
+            "extrinsic_rot:1,baseline:0.01@dynamic,cam1:extrinsic_trans:0.01@dynamic",
+            8,
+        );
+        assert_ne!(rig.actual.cameras, nominal.cameras, "rotated per sequence");
+        let csv = rig.per_frame_csv(&[0, 1, 2]).unwrap();
+        assert!(
+            csv.starts_with("frame,t_ns,baseline_offset_m,baseline_true_m,cam1_rot_x_deg,"),
+            "{csv}"
+        );
+        let columns = csv_columns(&csv);
+        for k in 0..3 {
+            let actual = rig.actual.cameras[1].body_from_camera;
+            let cam0 = rig.actual.cameras[0].body_from_camera;
+            let shifted =
+                move_along_baseline(&cam0, &actual, column(&columns, "baseline_offset_m")[k]);
+            let t = glam::DVec3::from_array(
+                ["x", "y", "z"].map(|a| column(&columns, &format!("cam1_trans_{a}_m"))[k]),
+            );
+            let expected = shifted.compose(&Pose::new(glam::DQuat::IDENTITY, t));
+            let used = rig.body_from_camera(1, k);
+            assert!(
+                (used.translation - expected.translation).length() < 1e-12,
+                "frame {k}"
+            );
+            assert_eq!(rig.body_from_camera(0, k), cam0, "cam0 has no dynamic item");
+            let true_b = baseline_m(&cam0, &used);
+            assert!((column(&columns, "baseline_true_m")[k] - true_b).abs() < 1e-12);
+        }
+        assert_eq!(rig.record(&nominal)["baseline_mode"], "dynamic");
     }
 
     #[test]

@@ -388,6 +388,10 @@ mod tests {
             ("baseline:0.01", "baseline:0.01@calibration"),
             ("baseline:0.01@dynamic", "baseline:0.01@calibration"),
             (
+                "cam1:extrinsic_rot:0.5@dynamic",
+                "cam1:extrinsic_rot:0.5@calibration",
+            ),
+            (
                 "cam1:extrinsic_trans:0.02",
                 "cam1:extrinsic_trans:0.02@calibration",
             ),

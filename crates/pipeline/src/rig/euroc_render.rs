@@ -294,7 +294,7 @@ pub fn render_euroc(
         let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
         source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
         let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
-        if i == 1 {
+        if i == 0 {
             if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
                 writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
             }

@@ -16,7 +16,7 @@ use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat};
 use rslam_core::Trajectory;
 use rslam_gpu::GpuContext;
 
-use super::calibration::PerturbedRig;
+use super::calibration::{PerturbedRig, PER_FRAME_FILE};
 use super::euroc_render::{
     camera_frame_spec, check_rig_spec, imu_and_ground_truth, imu_seed, motion_spline,
 };
@@ -85,10 +85,8 @@ pub fn render_rgbd_imu(
         .iter()
         .map(|&t| nanoseconds(t))
         .collect::<Result<Vec<_>, _>>()?;
-    let stamps_s: Vec<f64> = camera_stamps(spec, &camera.name, &times_ns)?
-        .iter()
-        .map(|&t| t as f64 * 1e-9)
-        .collect();
+    let stamps_ns = camera_stamps(spec, &camera.name, &times_ns)?;
+    let stamps_s: Vec<f64> = stamps_ns.iter().map(|&t| t as f64 * 1e-9).collect();
     let plan = FramePlan::recorded(
         &SourceTiming {
             rgb_times: &stamps_s,
@@ -137,6 +135,9 @@ pub fn render_rgbd_imu(
     let written_camera = &perturbed.written.cameras[0];
     let written_imu = perturbed.written.imu.as_ref();
     let mut sensor_files = inertial_files(written_imu, &streams.imu, &streams.ground_truth);
+    if let Some(csv) = perturbed.per_frame_csv(&stamps_ns) {
+        sensor_files.push((PER_FRAME_FILE.into(), csv));
+    }
     if let Some(imu) = written_imu {
         sensor_files.push((
             ORBSLAM3_RGBD_INERTIAL_FILE.into(),
