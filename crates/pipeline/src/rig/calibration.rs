@@ -10,7 +10,7 @@
 //! [`camera_seed`]`(seed, i)`, the IMU with [`imu_seed`]`(seed)`; `baseline` moves cam1 and
 //! draws with cam1's seed.
 
-use rslam_core::dataset::euroc::IMU_DIR;
+use rslam_core::dataset::euroc::{EurocCamera, IMU_DIR};
 use rslam_core::Pose;
 use rslam_perturb::calibration::{move_along_baseline, CalibrationItem, CalibrationMode, BASELINE};
 use rslam_perturb::{PerturbError, PerturbSpec};
@@ -78,6 +78,15 @@ impl PerturbedRig {
                 ));
             }
             if item.dynamic {
+                let clocks = |c: (&EurocCamera, &i64)| (c.0.rate_hz, *c.1);
+                let mut cameras = nominal.cameras.iter().zip(&nominal.time_offsets_ns);
+                let first = cameras.next().map(clocks);
+                if cameras.any(|c| Some(clocks(c)) != first) {
+                    return Err(PerturbError::spec(
+                        item.to_string(),
+                        "its per-frame draws are listed by frame for every camera at once; the rig's cameras differ in rate or time offset".to_string(),
+                    ));
+                }
                 rig.dynamic.push(item.clone());
                 continue;
             }
@@ -261,6 +270,20 @@ mod tests {
 
     fn perturbed(text: &str, seed: u64) -> PerturbedRig {
         PerturbedRig::new(&Rig::stereo_imu(), &PerturbSpec::parse(text).unwrap(), seed).unwrap()
+    }
+
+    #[test]
+    fn per_frame_draws_need_cameras_on_one_clock() {
+        let mut rig = Rig::stereo_imu();
+        rig.time_offsets_ns[1] = 2_500_000;
+        let spec = PerturbSpec::parse("cam1:extrinsic_rot:1@dynamic").unwrap();
+        let err = PerturbedRig::new(&rig, &spec, 0).err().unwrap().to_string();
+        assert!(err.contains("differ in rate or time offset"), "{err}");
+        rig.time_offsets_ns[1] = 0;
+        rig.cameras[1].rate_hz = 10.0;
+        assert!(PerturbedRig::new(&rig, &spec, 0).is_err());
+        let once = PerturbSpec::parse("cam1:extrinsic_rot:1").unwrap();
+        PerturbedRig::new(&rig, &once, 0).unwrap();
     }
 
     #[test]
