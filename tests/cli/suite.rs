@@ -380,3 +380,60 @@ fn a_hand_written_suite_takes_user_meshes_and_paths_relative_to_it() {
     );
     ws.rslam(&["suite", "status", "suite"]).success();
 }
+
+/// A `rig = "rgbd-imu"` row is the `rgbd-imu` render: the TUM layout with the IMU, the body's
+/// ground truth and ORB-SLAM3's RGB-D-inertial settings beside it, the same bytes as the render
+/// command the suite records.
+#[test]
+fn an_rgbd_imu_row_makes_the_rgbd_imu_dataset() {
+    let ws = Workspace::new();
+    ws.write(
+        "suite/suite.toml",
+        &format!(
+            "[[sequence]]\nname = \"room0__imu\"\nscene = \"room0\"\nframes = 7\ncamera = \"{SMALL_CAMERA}\"\nrate = 30\nseed = 3\nformat = \"tum\"\nrig = \"rgbd-imu\"\nperturb = \"imu_noise:2\"\n"
+        ),
+    );
+    ws.rslam(&["suite", "run", "suite"]).success();
+    let dataset = ws.path("suite/datasets/room0__imu");
+    for file in [
+        "rgb.txt",
+        "imu0/data.csv",
+        "state_groundtruth_estimate0/data.csv",
+        "orbslam3_rgbd_inertial.yaml",
+    ] {
+        assert!(dataset.join(file).is_file(), "{file}");
+    }
+    ws.rslam(&[
+        "render",
+        "--scene",
+        "room0",
+        "--frames",
+        "7",
+        "--rig",
+        "rgbd-imu",
+        "--camera",
+        SMALL_CAMERA,
+        "--rate",
+        "30",
+        "--format",
+        "tum",
+        "--seed",
+        "3",
+        "--perturb",
+        "imu_noise:2",
+        "--out",
+        "by_hand",
+    ])
+    .success();
+    let (suite, by_hand) = (tree(&dataset), tree(&ws.path("by_hand")));
+    let content = |t: &std::collections::BTreeMap<String, Vec<u8>>| -> BTreeSet<String> {
+        t.keys()
+            .filter(|k| !k.starts_with("rslam."))
+            .cloned()
+            .collect()
+    };
+    assert_eq!(content(&suite), content(&by_hand));
+    for key in content(&suite) {
+        assert_eq!(suite[&key], by_hand[&key], "{key}");
+    }
+}

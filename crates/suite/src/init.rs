@@ -22,7 +22,8 @@ pub fn write_suite(dir: &Path, options: &InitOptions) -> Result<(PathBuf, Suite)
         "rslam suite: preset {}, {} sequences. One [[sequence]] per dataset, made into\n\
          datasets/<name>/ by `rslam suite run`; [defaults] fills what a row leaves out.\n\
          Row keys: name (<scene>__<setting>), scene, perturb, seed, frames, format, camera, rate, traj,\n\
-         depth_png, rig (format = \"euroc\" with rig = \"stereo\" or \"stereo-imu\").\n\
+         depth_png, rig (format = \"euroc\" with rig = \"stereo\" or \"stereo-imu\"; format = \"tum\" with\n\
+         rig = \"rgbd-imu\": the camera and an IMU).\n\
          A row without a seed gets one derived from the suite seed and its name.",
         options.preset,
         file.sequences.len()

@@ -9,7 +9,7 @@ use rslam_core::trajectory_io::read_trajectory;
 use rslam_core::Intrinsics;
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::rig::rig_camera_frames;
+use rslam_pipeline::rig::{render_rgbd_imu, rgbd_imu_frame_count, rig_camera_frames};
 use rslam_pipeline::{
     render_dataset, render_euroc, FolderState, FramePlan, PipelineError, Progress, RenderJob, Rig,
     RigRenderJob, SceneJob,
@@ -49,6 +49,9 @@ pub enum Sensors {
         /// `replica`, `tum` or `W,H,FX,FY,CX,CY`, as written.
         camera_text: String,
         depth_png: DepthPng,
+        /// `rig = "rgbd-imu"`: the camera on a RealSense D435i-like body with its IMU (TUM
+        /// only; `imu0/` and the body's ground truth beside the TUM files).
+        imu: bool,
     },
     /// A rig preset (its `--rig` name is `Rig::name`), in the EuRoC layout.
     Rig(Rig),
@@ -114,7 +117,11 @@ impl Sequence {
                 format,
                 camera_text,
                 depth_png,
+                imu,
             } => {
+                if *imu {
+                    push("--rig", "rgbd-imu".into());
+                }
                 push("--camera", camera_text.clone());
                 push("--rate", self.rate_hz.to_string());
                 push("--format", format.to_string());
@@ -164,7 +171,10 @@ impl Sequence {
         let (out, command) = (self.dir(suite_dir), self.command());
         match &self.sensors {
             Sensors::Camera {
-                format, depth_png, ..
+                format,
+                depth_png,
+                imu,
+                ..
             } => {
                 let job = RenderJob {
                     scene,
@@ -174,7 +184,10 @@ impl Sequence {
                     force,
                     command,
                 };
-                let report = render_dataset(ctx, &job, progress)?;
+                let report = match imu {
+                    true => render_rgbd_imu(ctx, &job, progress)?,
+                    false => render_dataset(ctx, &job, progress)?,
+                };
                 Ok((report.made, report.found))
             }
             Sensors::Rig(rig) => {
@@ -203,6 +216,13 @@ impl Sequence {
                 .iter()
                 .map(|c| c.frames)
                 .sum();
+            return Ok(FrameCounts {
+                rendered: frames,
+                written: frames,
+            });
+        }
+        if let Sensors::Camera { imu: true, .. } = &self.sensors {
+            let frames = rgbd_imu_frame_count(poses, self.rate_hz, self.spec.fast)?;
             return Ok(FrameCounts {
                 rendered: frames,
                 written: frames,

@@ -199,8 +199,21 @@ fn sensors(
     layout: Layout,
     spec: &PerturbSpec,
 ) -> Result<(Sensors, Intrinsics), String> {
-    match (layout, row.rig.as_deref()) {
-        (Layout::Camera(format), None) => {
+    let rig = row.rig.as_deref().filter(|name| *name != "rgbd");
+    match (layout, rig) {
+        (Layout::Camera(format), None | Some("rgbd-imu")) => {
+            let imu = rig.is_some();
+            if imu && format != DatasetFormat::Tum {
+                return Err(format!(
+                    "rig rgbd-imu: needs format = \"tum\" (the TUM layout with imu0/ beside it), not {format}"
+                ));
+            }
+            if imu {
+                check_rig_spec(spec, true).map_err(|e| match e {
+                    PipelineError::Option { message, .. } => format!("perturb: {message}"),
+                    other => other.to_string(),
+                })?;
+            }
             let depth_png = match row.depth_png.as_deref() {
                 None => DepthPng::default(),
                 Some(text) => text.parse().map_err(|e| format!("depth_png: {e}"))?,
@@ -211,6 +224,7 @@ fn sensors(
                 format,
                 camera_text,
                 depth_png,
+                imu,
             };
             Ok((sensors, camera))
         }
@@ -247,7 +261,7 @@ fn sensors(
             RIG_NAMES.join(", ")
         )),
         (Layout::Camera(format), Some(_)) => Err(format!(
-            "rig: needs format = \"euroc\" (a rig is written in the EuRoC layout), not {format}"
+            "rig: needs format = \"euroc\" (a stereo rig is written in the EuRoC layout), not {format}; with {format}, rig = \"rgbd\" or (tum) \"rgbd-imu\""
         )),
     }
 }
@@ -330,6 +344,39 @@ mod tests {
                 .contains("suite.toml:1: sequence 'room0__a': depth_png"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn an_rgbd_imu_row_is_the_rgbd_imu_render_in_the_tum_layout() {
+        let row = |keys: &str| {
+            open(&format!(
+                "[[sequence]]\nname = \"room0__imu\"\nscene = \"room0\"\nframes = 400\nseed = 2\ncamera = \"tum\"\n{keys}"
+            ))
+        };
+        let suite =
+            row("format = \"tum\"\nrig = \"rgbd-imu\"\nperturb = \"fog:3,imu_noise:2\"\n").unwrap();
+        let sequence = &suite.sequences[0];
+        assert_eq!(sequence.layout(), Layout::Camera(DatasetFormat::Tum));
+        assert_eq!(
+            sequence.command().join(" "),
+            "rslam render --scene room0 --frames 400 --rig rgbd-imu --camera tum --rate 30 \
+             --format tum --seed 2 --perturb fog:3,imu_noise:2 --out datasets/room0__imu"
+        );
+        // 400 poses at 30 Hz: 397 frames up to the IMU's last sample
+        let counts = sequence.frame_counts(Path::new(".")).unwrap();
+        assert_eq!((counts.rendered, counts.written), (397, 397));
+        let plain = row("format = \"tum\"\nrig = \"rgbd\"\n").unwrap();
+        assert!(!plain.sequences[0].command().contains(&"--rig".to_string()));
+        for (keys, expected) in [
+            ("format = \"replica\"\nrig = \"rgbd-imu\"\n", "rig rgbd-imu: needs format = \"tum\""),
+            (
+                "format = \"tum\"\nrig = \"rgbd-imu\"\nperturb = \"distortion:equidistant(0.1,0,0,0)\"\n",
+                "perturb: 'distortion:equidistant",
+            ),
+        ] {
+            let err = row(keys).unwrap_err().to_string();
+            assert!(err.contains(&format!("suite.toml:1: sequence 'room0__imu': {expected}")), "{keys}: {err}");
+        }
     }
 
     #[test]

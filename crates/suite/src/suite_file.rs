@@ -49,7 +49,8 @@ pub struct SequenceFields {
     pub format: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub camera: Option<String>,
-    /// A rig preset (`stereo`, `stereo-imu`) instead of one camera; with `format = "euroc"`.
+    /// A rig preset: `stereo`, `stereo-imu` instead of one camera, with `format = "euroc"`;
+    /// `rgbd-imu`, the camera and an IMU, with `format = "tum"`; `rgbd`, the camera alone.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rig: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]

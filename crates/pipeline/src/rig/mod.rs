@@ -54,4 +54,4 @@ pub use imu_items::{refuse_imu_items, with_imu_report};
 pub use preset::{
     d435i_imu, Rig, RigPreset, EUROC_CAM0_INTRINSICS, PRESET_NAMES, RIG_NAMES, STEREO_BASELINE_M,
 };
-pub use rgbd_imu_render::{render_rgbd_imu, ORBSLAM3_RGBD_INERTIAL_FILE};
+pub use rgbd_imu_render::{render_rgbd_imu, rgbd_imu_frame_count, ORBSLAM3_RGBD_INERTIAL_FILE};

@@ -13,7 +13,7 @@
 
 use rslam_core::dataset::euroc::inertial_files;
 use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat};
-use rslam_core::Trajectory;
+use rslam_core::{SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
 
 use super::calibration::{PerturbedRig, PER_FRAME_FILE};
@@ -35,6 +35,34 @@ use crate::PipelineError;
 
 /// ORB-SLAM3 v1.0 RGB-D-inertial settings of the `rgbd-imu` rig, in the dataset root.
 pub const ORBSLAM3_RGBD_INERTIAL_FILE: &str = "orbslam3_rgbd_inertial.yaml";
+
+/// The camera's capture times along `spline`: its rate's grid from the spline's start, without
+/// frames after the IMU's last sample, which would have no readings since the previous frame
+/// (at 30 Hz the camera's grid may run up to 5 ms past the IMU's).
+fn frame_times(spline: &SplineSe3, rig: &Rig) -> Vec<f64> {
+    let imu_end = rig
+        .imu
+        .as_ref()
+        .and_then(|imu| sample_times(spline, imu.rate_hz).last().copied())
+        .unwrap_or(f64::INFINITY);
+    let mut times_s = sample_times(spline, rig.cameras[0].rate_hz);
+    times_s.retain(|&t| t <= imu_end + 1e-9);
+    times_s
+}
+
+/// The frames an `rgbd-imu` render of `poses` path poses at `rate_hz` (the camera's rate),
+/// played `fast` times faster, writes, without the scene (for a plan).
+pub fn rgbd_imu_frame_count(
+    poses: usize,
+    rate_hz: f64,
+    fast: Option<u32>,
+) -> Result<usize, PipelineError> {
+    let rig = Rig::rgbd_imu(rslam_core::Intrinsics::TUM, rate_hz);
+    let times: Vec<f64> = (0..poses).map(|i| i as f64 / rate_hz).collect();
+    let path = vec![rslam_core::Pose::IDENTITY; poses];
+    let spline = motion_spline(&body_path(&times, &path, fast, &rslam_core::Pose::IDENTITY))?;
+    Ok(frame_times(&spline, &rig).len())
+}
 
 /// Renders `job` (its format must be TUM) with [`Rig::rgbd_imu`] of its camera and rate. Items
 /// are those of a rig ([`check_rig_spec`]); IMU items, `cam_imu_offset` and the calibration
@@ -65,15 +93,7 @@ pub fn render_rgbd_imu(
         spec.fast,
         &camera.body_from_camera,
     ))?;
-    // Frames after the IMU's last sample would have no readings since the previous frame (at
-    // 30 Hz the camera's grid may run up to 5 ms past the IMU's): left out.
-    let imu_end = rig
-        .imu
-        .as_ref()
-        .and_then(|imu| sample_times(&spline, imu.rate_hz).last().copied())
-        .unwrap_or(f64::INFINITY);
-    let mut times_s = sample_times(&spline, camera.rate_hz);
-    times_s.retain(|&t| t <= imu_end + 1e-9);
+    let times_s = frame_times(&spline, &rig);
     let streams = imu_and_ground_truth(
         scene,
         &rig.name,
@@ -164,4 +184,20 @@ pub fn render_rgbd_imu(
         sensor_files,
     };
     write_dataset(ctx, &mut pipeline, output, progress, "rendering")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_plan_counts_the_frames_a_render_writes() {
+        // 7 poses at 30 Hz: the spline is valid for 4/30 s, which the IMU covers to 0.130 s,
+        // so the frame at 0.133 s is left out (the frames `rig_rgbd.rs` reads back).
+        assert_eq!(rgbd_imu_frame_count(7, 30.0, None).unwrap(), 4);
+        // 400 poses at 30 Hz: 397/30 s = 13.233 s, frames every 1/30 s up to the IMU's last
+        // sample at 13.230 s.
+        assert_eq!(rgbd_imu_frame_count(400, 30.0, None).unwrap(), 397);
+        assert_eq!(rgbd_imu_frame_count(400, 30.0, Some(2)).unwrap(), 199);
+    }
 }
