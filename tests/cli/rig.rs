@@ -135,3 +135,76 @@ fn a_killed_rig_render_resumes_to_the_same_bytes() {
     assert!(made <= 2 * 198 - 41, "{said}");
     crate::dataset_check::assert_same_tree(&whole.path("rig"), &killed.path("rig"));
 }
+
+/// `distortion:radtan` on a EuRoC rig: every camera sees through the lens, and sensor.yaml and
+/// ORB-SLAM3's stereo settings state it. A clean pixel (x, y) lands where the radial-tangential
+/// model sends it: sampling the lens frame there gives the clean frame back.
+#[test]
+fn a_stereo_rig_through_a_radtan_lens_states_it_in_every_camera_file() {
+    const LENS: [f64; 4] = [-0.28, 0.07, 0.0002, 0.00002];
+    let ws = Workspace::new();
+    let args = ["--frames", "4", "--rig", "stereo", "--format", "euroc"];
+    ws.render_room0("clean", &args, None);
+    let item = "distortion:radtan(-0.28,0.07,0.0002,0.00002)";
+    ws.render_room0("lens", &args, Some(item));
+    let lens = rslam_core::dataset::euroc::read_euroc(&ws.path("lens")).unwrap();
+    let clean = rslam_core::dataset::euroc::read_euroc(&ws.path("clean")).unwrap();
+    for camera in &lens.cameras {
+        assert_eq!(
+            camera.camera.distortion.to_array(),
+            LENS,
+            "{}",
+            camera.camera.name
+        );
+    }
+    let settings = std::fs::read_to_string(ws.path("lens/orbslam3_stereo.yaml")).unwrap();
+    for key in [
+        "Camera1.k1: -0.28",
+        "Camera2.k1: -0.28",
+        "Camera2.p2: 0.00002",
+    ] {
+        assert!(settings.contains(key), "{key}:\n{settings}");
+    }
+    let manifest = crate::dataset_check::manifest(&ws.path("lens"));
+    assert_eq!(
+        manifest.perturbation_parsed["distortion"]["model"],
+        "radtan"
+    );
+
+    for (c, l) in clean.cameras.iter().zip(&lens.cameras) {
+        let k = c.camera.intrinsics;
+        let (sharp, seen) = (
+            crate::rig_calibration::grey(&c.frames[0].path),
+            crate::rig_calibration::grey(&l.frames[0].path),
+        );
+        let bilinear = |x: f64, y: f64| -> f64 {
+            let (x0, y0) = (x.floor(), y.floor());
+            let (fx, fy) = (x - x0, y - y0);
+            let at =
+                |dx: f64, dy: f64| seen.get_pixel((x0 + dx) as u32, (y0 + dy) as u32)[0] as f64;
+            (at(0.0, 0.0) * (1.0 - fx) + at(1.0, 0.0) * fx) * (1.0 - fy)
+                + (at(0.0, 1.0) * (1.0 - fx) + at(1.0, 1.0) * fx) * fy
+        };
+        let (mut through_lens, mut unmoved, mut pixels) = (0.0, 0.0, 0.0);
+        for v in (40..k.height - 40).step_by(4) {
+            for u in (60..k.width - 60).step_by(4) {
+                let (x, y) = ((u as f64 - k.cx) / k.fx, (v as f64 - k.cy) / k.fy);
+                let r2 = x * x + y * y;
+                let radial = 1.0 + LENS[0] * r2 + LENS[1] * r2 * r2;
+                let xd = x * radial + 2.0 * LENS[2] * x * y + LENS[3] * (r2 + 2.0 * x * x);
+                let yd = y * radial + LENS[2] * (r2 + 2.0 * y * y) + 2.0 * LENS[3] * x * y;
+                let (ud, vd) = (k.fx * xd + k.cx, k.fy * yd + k.cy);
+                let clean_value = sharp.get_pixel(u, v)[0] as f64;
+                through_lens += (bilinear(ud, vd) - clean_value).abs();
+                unmoved += (seen.get_pixel(u, v)[0] as f64 - clean_value).abs();
+                pixels += 1.0;
+            }
+        }
+        let (through_lens, unmoved) = (through_lens / pixels, unmoved / pixels);
+        assert!(
+            through_lens < 3.0 && unmoved > 3.0 * through_lens,
+            "{}: {through_lens} grey levels through the model, {unmoved} without",
+            c.camera.name
+        );
+    }
+}

@@ -363,7 +363,10 @@ fn rgbd_rig_flags_fail_with_one_line_errors() {
             "--perturb",
             "distortion:equidistant(0.08,-0.03,0.01,-0.002)",
         ],
-        &["'distortion:equidistant", "rigs do not support it yet"],
+        &[
+            "'distortion:equidistant",
+            "the rgbd-imu rig does not support a lens yet",
+        ],
     );
     fail(
         &["--rig", "rgbd", "--perturb", "imu_noise:2"],

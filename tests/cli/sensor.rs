@@ -48,7 +48,8 @@ fn render_blurs_along_the_path_and_perturb_refuses_sensor_items() {
 
 /// Through a lens: the frames change, the ground truth does not, the manifest records the lens,
 /// cam_params.json (Replica) and orbslam3.yaml (TUM) carry it, and so does a perturbed copy; a
-/// recorded dataset and a rig refuse it with one line naming the item.
+/// recorded dataset, and a EuRoC rig for a lens other than radtan, refuse it with one line naming
+/// the item.
 #[test]
 fn render_through_a_lens_writes_it_into_the_camera_files() {
     let ws = Workspace::new();
@@ -139,5 +140,5 @@ fn render_through_a_lens_writes_it_into_the_camera_files() {
         "--perturb",
         lens,
     ])
-    .fails_with(2, &[lens, "rigs do not support it yet"]);
+    .fails_with(2, &[lens, "use distortion:radtan(k1,k2,p1,p2)"]);
 }

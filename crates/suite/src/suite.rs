@@ -8,7 +8,7 @@ use rslam_core::limits::{MAX_POSES, MAX_SUITE_SEQUENCES};
 use rslam_core::trajectory_io::ReadOptions;
 use rslam_core::{read_text_file, Intrinsics};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::rig::{check_rig_spec, RIG_NAMES};
+use rslam_pipeline::rig::{check_rig_spec, RigLayout, RIG_NAMES};
 use rslam_pipeline::{PipelineError, Rig};
 
 use crate::layout::Layout;
@@ -209,7 +209,7 @@ fn sensors(
                 ));
             }
             if imu {
-                check_rig_spec(spec, true).map_err(|e| match e {
+                check_rig_spec(spec, RigLayout::RgbdImu).map_err(|e| match e {
                     PipelineError::Option { message, .. } => format!("perturb: {message}"),
                     other => other.to_string(),
                 })?;
@@ -245,7 +245,7 @@ fn sensors(
                     "{key}: a rig has its own cameras (without depth); leave {key} out of its rows and [defaults]"
                 ));
             }
-            check_rig_spec(spec, false).map_err(|e| match e {
+            check_rig_spec(spec, RigLayout::Euroc).map_err(|e| match e {
                 PipelineError::Option { message, .. } => format!("perturb: {message}"),
                 other => other.to_string(),
             })?;

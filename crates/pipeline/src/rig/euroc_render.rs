@@ -10,9 +10,11 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use rslam_core::dataset::euroc::RadialTangential;
 use rslam_core::dataset::euroc::{EurocImu, EurocWriter, GroundTruthState, ImuSample as ImuRow};
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::hash::splitmix64;
+use rslam_core::Distortion;
 use rslam_core::{CoreError, Pose, SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
 use rslam_perturb::imu::{shift_stamp, ImuOrigin, ImuReport};
@@ -85,25 +87,55 @@ pub fn imu_seed(seed: u64) -> u64 {
     splitmix64(seed ^ 0x494d_5530)
 }
 
-/// Refuses what a rig cannot do: `misalign` on a rig whose cameras have no depth (`with_depth`
-/// false: EuRoC's), and a lens (`distortion`). Image and depth corruptions apply to every camera
-/// or the one named (`cam1:fog:3`), the shutter (`exposure`, `rolling_shutter`) to every camera,
-/// `rot`/`trans`/`fast` to the rig's motion ([`body_path`]). Calibration items and the sensors
-/// named are checked against the rig by [`PerturbedRig::new`].
-pub fn check_rig_spec(spec: &PerturbSpec, with_depth: bool) -> Result<(), PipelineError> {
-    if let (Some(misalign), false) = (spec.misalign, with_depth) {
+/// Where a rig is written, which decides what it can take.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RigLayout {
+    /// The EuRoC layout: cameras without depth; sensor.yaml and ORB-SLAM3's settings describe
+    /// radial-tangential lenses.
+    Euroc,
+    /// `rgbd-imu`: the TUM layout with `imu0/` beside it.
+    RgbdImu,
+}
+
+/// Refuses what a rig cannot do: `misalign` where its cameras have no depth (EuRoC), and a
+/// lens other than `distortion:radtan` on EuRoC rigs (any lens on `rgbd-imu`). Image and depth
+/// corruptions apply to every camera or the one named (`cam1:fog:3`), the shutter (`exposure`,
+/// `rolling_shutter`) and the lens to every camera, `rot`/`trans`/`fast` to the rig's motion
+/// ([`body_path`]). Calibration items and the sensors named are checked against the rig by
+/// [`PerturbedRig::new`].
+pub fn check_rig_spec(spec: &PerturbSpec, layout: RigLayout) -> Result<(), PipelineError> {
+    if let (Some(misalign), RigLayout::Euroc) = (spec.misalign, layout) {
         return Err(PipelineError::option(
             "--perturb",
             format!("'misalign:{}': the rig's cameras have no depth stream to delay (for a time offset between sensors: cam_imu_offset)", misalign.frames),
         ));
     }
-    match &spec.distortion {
-        Some(lens) => Err(PipelineError::option(
-            "--perturb",
-            format!("'{}': rigs do not support it yet (their sensor.yaml and stereo settings describe undistorted, rectified cameras); image, depth and shutter items work", distortion::item(lens)),
-        )),
-        None => Ok(()),
+    let why = match (&spec.distortion, layout) {
+        (None, _) | (Some(Distortion::Radtan { .. }), RigLayout::Euroc) => return Ok(()),
+        (Some(_), RigLayout::Euroc) => "EuRoC's sensor.yaml and ORB-SLAM3's stereo settings written here describe radial-tangential lenses: use distortion:radtan(k1,k2,p1,p2)",
+        (Some(_), RigLayout::RgbdImu) => "the rgbd-imu rig does not support a lens yet; the one-camera render and the EuRoC rigs (radtan) do",
+    };
+    let lens = spec
+        .distortion
+        .as_ref()
+        .map(distortion::item)
+        .unwrap_or_default();
+    Err(PipelineError::option(
+        "--perturb",
+        format!("'{lens}': {why}"),
+    ))
+}
+
+/// `rig` seen through the spec's lens: every camera's distortion is its coefficients (radtan,
+/// as [`check_rig_spec`] lets through), so that sensor.yaml and ORB-SLAM3's settings state it.
+fn through_lens(rig: &Rig, spec: &PerturbSpec) -> Rig {
+    let mut rig = rig.clone();
+    if let Some(Distortion::Radtan { k1, k2, p1, p2 }) = spec.distortion {
+        for camera in &mut rig.cameras {
+            camera.distortion = RadialTangential { k1, k2, p1, p2 };
+        }
     }
+    rig
 }
 
 /// The spec as camera `name`'s frames take it: its items ([`PerturbSpec::for_camera`]) without
@@ -161,11 +193,12 @@ pub fn render_euroc(
     job: &RigRenderJob,
     progress: &dyn Progress,
 ) -> Result<RigReport, PipelineError> {
-    check_rig_spec(&job.scene.spec, false)?;
-    let Some(cam0) = job.rig.cameras.first() else {
+    check_rig_spec(&job.scene.spec, RigLayout::Euroc)?;
+    let rig = &through_lens(&job.rig, &job.scene.spec);
+    let Some(cam0) = rig.cameras.first() else {
         return Err(PipelineError::option("--rig", "the rig has no camera"));
     };
-    let perturbed = PerturbedRig::new(&job.rig, &job.scene.spec, job.scene.seed)?;
+    let perturbed = PerturbedRig::new(rig, &job.scene.spec, job.scene.seed)?;
     let resolved = job.scene.resolve()?;
     let spline = motion_spline(&body_path(
         &resolved.clean.timestamps,
@@ -173,8 +206,7 @@ pub fn render_euroc(
         job.scene.spec.fast,
         &cam0.body_from_camera,
     ))?;
-    let runs: Vec<CameraRun> = job
-        .rig
+    let runs: Vec<CameraRun> = rig
         .cameras
         .iter()
         .enumerate()
@@ -193,7 +225,7 @@ pub fn render_euroc(
     let imu_seed = imu_seed(job.scene.seed);
     let streams = imu_and_ground_truth(
         &job.scene,
-        &job.rig.name,
+        &rig.name,
         perturbed.actual.imu.as_ref(),
         &spline,
         &runs[0].times_s,
@@ -201,9 +233,9 @@ pub fn render_euroc(
     let mut extra = serde_json::json!({
         "adapter": ctx.describe(),
         "layout": "euroc",
-        "rig": job.rig.name,
+        "rig": rig.name,
         "path_rate_hz": job.scene.rate_hz,
-        "cameras": job.rig.cameras.iter().zip(&runs).zip(&job.rig.time_offsets_ns).map(|((c, r), &offset_ns)| {
+        "cameras": rig.cameras.iter().zip(&runs).zip(&rig.time_offsets_ns).map(|((c, r), &offset_ns)| {
             let mut camera = serde_json::json!({
                 "name": c.name,
                 "frames": r.times_s.len(),
@@ -215,14 +247,14 @@ pub fn render_euroc(
             }
             camera
         }).collect::<Vec<_>>(),
-        "imu": job.rig.imu.as_ref().map(|imu| serde_json::json!({
+        "imu": rig.imu.as_ref().map(|imu| serde_json::json!({
             "rate_hz": imu.rate_hz,
             "seed": imu_seed,
         })),
     });
     record_agent(&mut extra, &job.scene);
     if !job.scene.spec.calibration.is_empty() {
-        extra["calibration"] = perturbed.record(&job.rig);
+        extra["calibration"] = perturbed.record(rig);
     }
     let manifest = ManifestParts {
         command: &job.command,
@@ -230,7 +262,7 @@ pub fn render_euroc(
         source_hash: resolved.scene.content_hash(),
         format: None,
         camera: Some(cam0.intrinsics),
-        distortion: None,
+        distortion: job.scene.spec.distortion,
         depth_png: DepthPng::default(),
         rate_hz: cam0.rate_hz,
         seed: job.scene.seed,
@@ -240,8 +272,7 @@ pub fn render_euroc(
     }
     .build()?;
     let manifest = with_imu_report(manifest, streams.report.as_ref())?;
-    let cameras: Vec<CameraFrames> = job
-        .rig
+    let cameras: Vec<CameraFrames> = rig
         .cameras
         .iter()
         .zip(&runs)
@@ -272,8 +303,8 @@ pub fn render_euroc(
     let resume = found == FolderState::Resume && job.scene.spec.stateful_item().is_none();
     let mut stamps = Vec::new();
     let mut kept = Vec::new();
-    for (i, (camera, run)) in job.rig.cameras.iter().zip(&runs).enumerate() {
-        let times_ns = clock_stamps(&job.rig, i, &run.times_s)?;
+    for (i, (camera, run)) in rig.cameras.iter().zip(&runs).enumerate() {
+        let times_ns = clock_stamps(rig, i, &run.times_s)?;
         let times_ns = camera_stamps(&job.scene.spec, &camera.name, &times_ns)?;
         kept.push(match resume {
             true => writer.keep_written_frames(i, &times_ns)?,
@@ -288,8 +319,7 @@ pub fn render_euroc(
         .sum();
     progress.start(made, "rendering");
     let mut sinks = Vec::new();
-    for (i, ((camera, run), times_ns)) in job.rig.cameras.iter().zip(&runs).zip(stamps).enumerate()
-    {
+    for (i, ((camera, run), times_ns)) in rig.cameras.iter().zip(&runs).zip(stamps).enumerate() {
         let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
         let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
         source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
@@ -309,7 +339,7 @@ pub fn render_euroc(
     }
     progress.finish();
 
-    if job.rig.imu.is_some() {
+    if rig.imu.is_some() {
         writer.write_imu(&streams.imu)?;
     }
     writer.write_ground_truth(&streams.ground_truth)?;
@@ -440,16 +470,18 @@ mod tests {
     #[test]
     fn misalign_needs_a_depth_stream_and_motion_items_are_the_rigs() {
         let spec = PerturbSpec::parse("fog:2,misalign:3").unwrap();
-        let err = check_rig_spec(&spec, false).unwrap_err().to_string();
+        let err = check_rig_spec(&spec, RigLayout::Euroc)
+            .unwrap_err()
+            .to_string();
         assert!(
             err.starts_with("--perturb: 'misalign:3': the rig's cameras have no depth stream"),
             "{err}"
         );
         assert!(!err.contains('\n'), "{err}");
-        check_rig_spec(&spec, true).unwrap();
+        check_rig_spec(&spec, RigLayout::RgbdImu).unwrap();
         let motion =
             PerturbSpec::parse("fog:2,rot:1,trans:0.01@smooth,fast:2,exposure:10").unwrap();
-        check_rig_spec(&motion, false).unwrap();
+        check_rig_spec(&motion, RigLayout::Euroc).unwrap();
         let frame_spec = camera_frame_spec(&motion, "cam0");
         assert_eq!(frame_spec.fast, None, "the motion has taken fast already");
         assert_eq!(frame_spec.rotation, motion.rotation);

@@ -48,7 +48,7 @@ pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
 pub use euroc_render::{
     camera_seed, check_rig_spec, imu_seed, render_euroc, rig_camera_frames, CameraFrames,
-    RigRenderJob, RigReport,
+    RigLayout, RigRenderJob, RigReport,
 };
 pub use imu_items::{refuse_imu_items, with_imu_report};
 pub use preset::{

@@ -18,7 +18,7 @@ use rslam_gpu::GpuContext;
 
 use super::calibration::{PerturbedRig, PER_FRAME_FILE};
 use super::euroc_render::{
-    camera_frame_spec, check_rig_spec, imu_and_ground_truth, imu_seed, motion_spline,
+    camera_frame_spec, check_rig_spec, imu_and_ground_truth, imu_seed, motion_spline, RigLayout,
 };
 use super::imu_items::{camera_stamps, with_imu_report};
 use super::motion::{body_path, camera_poses, nanoseconds, sample_times};
@@ -81,7 +81,7 @@ pub fn render_rgbd_imu(
     }
     let scene = &job.scene;
     let spec = &scene.spec;
-    check_rig_spec(spec, true)?;
+    check_rig_spec(spec, RigLayout::RgbdImu)?;
     let rig = Rig::rgbd_imu(scene.camera, scene.rate_hz);
     let camera = &rig.cameras[0];
     let frame_spec = camera_frame_spec(spec, &camera.name);
