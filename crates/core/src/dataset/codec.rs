@@ -89,6 +89,11 @@ pub fn encode_grey_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
 
 /// Whether the PNG or JPEG at `path` holds colour (not grey), from its header alone.
 pub fn read_image_has_colour(path: &Path) -> Result<bool, CoreError> {
+    Ok(read_image_colour_type(path)?.has_color())
+}
+
+/// The PNG's or JPEG's colour type (channels and bits per sample), from its header alone.
+pub(crate) fn read_image_colour_type(path: &Path) -> Result<image::ColorType, CoreError> {
     let decoder = image::ImageReader::open(path)
         .map_err(|e| CoreError::io(path, e))?
         .with_guessed_format()
@@ -100,7 +105,7 @@ pub fn read_image_has_colour(path: &Path) -> Result<bool, CoreError> {
                 format!("not a readable image: {}", printable(e.to_string().trim())),
             )
         })?;
-    Ok(image::ImageDecoder::color_type(&decoder).has_color())
+    Ok(image::ImageDecoder::color_type(&decoder))
 }
 
 /// 16-bit grayscale PNG of `round(z · scale)`, saturating; 0 stays 0 (invalid).

@@ -77,7 +77,7 @@ fn check_size(path: &Path, image: &RgbImage, camera: Intrinsics) -> Result<(), P
     Err(PipelineError::input(
         path,
         format!(
-            "image is {}x{}, but the camera's sensor.yaml says {}x{}",
+            "image is {}x{}, but the camera's calibration says {}x{}",
             image.width, image.height, camera.width, camera.height
         ),
     ))
