@@ -412,6 +412,23 @@ fn perturb_tumvi_image_corruptions_run_on_an_8_bit_copy_and_are_refused_on_16_bi
         assert!(err.contains(&format!("{}.png", STAMPS[0])), "{err}");
         assert!(!ws.path("x").exists());
     }
+    // A 16-bit frame among 8-bit ones is refused when it is read, not cut to its high byte.
+    write_tum_vi_style(&ws.path("mixed"), true);
+    let odd = format!("mixed/mav0/cam0/data/{}.png", STAMPS[2]);
+    frame16(0, 2).save(ws.path(&odd)).unwrap();
+    let err = ws
+        .rslam(&[
+            "perturb",
+            "--input",
+            "mixed",
+            "--out",
+            "y",
+            "--perturb",
+            "gaussian_noise:3",
+        ])
+        .fails_with(2, &[&odd, "16-bit samples, but the GPU frames are 8-bit"]);
+    assert_eq!(error_lines(&err), 1, "{err}");
+    assert!(!ws.path("y/rslam.json").exists());
 }
 
 #[test]

@@ -297,17 +297,18 @@ impl EurocWriter {
             ));
         }
         self.take_stamp(stream, t_ns)?;
-        let bytes =
-            match stream.camera.colour {
-                CameraColour::Grey => encode_grey_png(image)?,
-                CameraColour::Rgb => encode_png(image)?,
-                CameraColour::Grey16 => return Err(CoreError::bad_file(
+        let bytes = match stream.camera.colour {
+            CameraColour::Grey => encode_grey_png(image)?,
+            CameraColour::Rgb => encode_png(image)?,
+            CameraColour::Grey16 => {
+                return Err(CoreError::bad_file(
                     dir(),
                     format!(
                         "{name}: 16-bit grey frames can be copied, not encoded from 8-bit images"
                     ),
-                )),
-            };
+                ))
+            }
+        };
         self.content
             .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), &bytes)
     }
