@@ -14,6 +14,7 @@ mod list;
 mod motion;
 mod perturb;
 mod perturb_euroc;
+mod perturb_tumvi;
 mod render;
 mod resume;
 mod rig;

@@ -94,6 +94,8 @@ hostile_input_properties!(
     euroc_imu_yaml,
     euroc_imu,
     euroc_groundtruth,
+    tum_vi_camchain,
+    tum_vi_imu_config,
     suite,
     method,
 );

@@ -41,8 +41,8 @@ Tracked fraction = ground-truth poses with an associated estimate pose / all gro
 No reference tool computes these; they are rslam's definitions (spec metrics.md).
 
 --runs DIR --datasets DIR: evaluates DIR/<method>/<sequence>.txt (or DIR/<method>/<sequence>/<repeat>.txt)
-against the ground truth in DATASETS/<sequence>/traj.txt, groundtruth.txt or (EuRoC)
-mav0/state_groundtruth_estimate0/data.csv. A sequence named
+against the ground truth in DATASETS/<sequence>/traj.txt, groundtruth.txt, (EuRoC)
+mav0/state_groundtruth_estimate0/data.csv or (TUM-VI) mav0/mocap0/data.csv. A sequence named
 <scene>__<setting> belongs to that setting (room0__fog-3), a bare <scene> is clean. A run is a
 failure when a runner left <repeat>.failed (or <sequence>.failed) for it, a text file whose first
 line is the reason (an empty one: 'failed (no reason given)'); a .failed beside a .txt of the same
@@ -59,7 +59,8 @@ figure per category (fog, depth_missing, rot, ...), and Welch's t-test of ln ATE
 against clean per method, over scenes and repeats.
 
 --agent EST GT (repeated, one per agent) or --agents DIR (DIR/<agent>/estimate.txt with
-DIR/<agent>/traj.txt, groundtruth.txt or mav0/state_groundtruth_estimate0/data.csv): several
+DIR/<agent>/traj.txt, groundtruth.txt, mav0/state_groundtruth_estimate0/data.csv or
+mav0/mocap0/data.csv): several
 agents of one multi-agent system, all in one world frame. Each agent is associated as above,
 then aligned twice: on its own (--align), and by ONE
 joint alignment of the same mode fitted over every agent's pairs together and applied to every
@@ -99,8 +100,8 @@ pub struct EvalArgs {
         conflicts_with_all = ["runs", "agents", "plot"]
     )]
     agent: Vec<PathBuf>,
-    /// A folder of agents: DIR/<agent>/estimate.txt with DIR/<agent>/traj.txt, groundtruth.txt
-    /// or mav0/state_groundtruth_estimate0/data.csv.
+    /// A folder of agents: DIR/<agent>/estimate.txt with DIR/<agent>/traj.txt, groundtruth.txt,
+    /// mav0/state_groundtruth_estimate0/data.csv or mav0/mocap0/data.csv.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["runs", "plot"])]
     agents: Option<PathBuf>,
     /// Force the file format instead of detecting it: tum, replica, kitti or euroc.

@@ -16,8 +16,8 @@ use crate::progress_bar::ProgressBar;
 
 #[derive(clap::Args)]
 pub struct PerturbArgs {
-    /// A dataset (Replica, TUM or EuRoC layout: a folder holding mav0/), a folder of PNG/JPEG
-    /// images, or one image.
+    /// A dataset (Replica, TUM or EuRoC layout: a folder holding mav0/, also TUM-VI's
+    /// EuRoC-style export with dso/), a folder of PNG/JPEG images, or one image.
     #[arg(long)]
     input: PathBuf,
     /// Output: a folder for datasets and image folders, a file for one image (same format).
@@ -68,7 +68,7 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
             ];
             if let Some((flag, _)) = given.iter().find(|(_, given)| *given) {
                 anyhow::bail!(
-                    "{flag}: {} is a EuRoC dataset; its cameras and rates come from its sensor.yaml files and it has no depth",
+                    "{flag}: {} is a EuRoC dataset; its cameras and rates come from its calibration files and it has no depth",
                     args.input.display()
                 );
             }

@@ -89,6 +89,11 @@ pub fn encode_grey_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
 
 /// Whether the PNG or JPEG at `path` holds colour (not grey), from its header alone.
 pub fn read_image_has_colour(path: &Path) -> Result<bool, CoreError> {
+    Ok(read_image_colour_type(path)?.has_color())
+}
+
+/// The PNG's or JPEG's colour type (channels and bits per sample), from its header alone.
+pub(crate) fn read_image_colour_type(path: &Path) -> Result<image::ColorType, CoreError> {
     let decoder = image::ImageReader::open(path)
         .map_err(|e| CoreError::io(path, e))?
         .with_guessed_format()
@@ -100,7 +105,7 @@ pub fn read_image_has_colour(path: &Path) -> Result<bool, CoreError> {
                 format!("not a readable image: {}", printable(e.to_string().trim())),
             )
         })?;
-    Ok(image::ImageDecoder::color_type(&decoder).has_color())
+    Ok(image::ImageDecoder::color_type(&decoder))
 }
 
 /// 16-bit grayscale PNG of `round(z · scale)`, saturating; 0 stays 0 (invalid).
@@ -160,16 +165,38 @@ fn limited_reader(bytes: &[u8]) -> Result<image::ImageReader<Cursor<&[u8]>>, Str
     Ok(reader)
 }
 
-pub fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
-    let image = limited_reader(bytes)?
+fn decode(bytes: &[u8]) -> Result<image::DynamicImage, String> {
+    limited_reader(bytes)?
         .decode()
-        .map_err(|e| format!("not a readable image: {}", printable(e.to_string().trim())))?
-        .into_rgb8();
-    Ok(RgbImage {
+        .map_err(|e| format!("not a readable image: {}", printable(e.to_string().trim())))
+}
+
+pub fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
+    Ok(rgb_of(decode(bytes)?))
+}
+
+/// [`read_rgb`] for a frame whose every bit must reach the 8-bit GPU frames: an image with
+/// 16-bit samples is refused rather than cut to its high byte.
+pub fn read_rgb8(path: &Path) -> Result<RgbImage, CoreError> {
+    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
+    let image = decode(&bytes).map_err(|message| CoreError::bad_file(path, message))?;
+    let colour = image.color();
+    if colour.bytes_per_pixel() > colour.channel_count() {
+        return Err(CoreError::bad_file(
+            path,
+            "16-bit samples, but the GPU frames are 8-bit and would drop the low byte; expected an 8-bit image",
+        ));
+    }
+    Ok(rgb_of(image))
+}
+
+fn rgb_of(image: image::DynamicImage) -> RgbImage {
+    let image = image.into_rgb8();
+    RgbImage {
         width: image.width(),
         height: image.height(),
         data: image.into_raw(),
-    })
+    }
 }
 
 /// A 16-bit (or 8-bit) single-channel PNG as metric depth.

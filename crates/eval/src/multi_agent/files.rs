@@ -1,9 +1,9 @@
 //! Where the agents' files are: repeated `EST GT` pairs, or one folder per agent.
 //!
 //! A folder of agents holds `<dir>/<agent>/estimate.txt` (the name a benchmark runner gives the
-//! estimate it asks a method for) beside the agent's ground truth, `traj.txt`, `groundtruth.txt`
-//! or EuRoC's `mav0/state_groundtruth_estimate0/data.csv` (the names `--runs` looks for in a
-//! dataset folder), all in one world frame.
+//! estimate it asks a method for) beside the agent's ground truth, `traj.txt`, `groundtruth.txt`,
+//! EuRoC's `mav0/state_groundtruth_estimate0/data.csv` or TUM-VI's `mav0/mocap0/data.csv` (the
+//! names `--runs` looks for in a dataset folder), all in one world frame.
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -61,8 +61,8 @@ pub fn agents_from_pairs(est_gt: &[PathBuf]) -> Result<Vec<AgentFiles>, EvalErro
 }
 
 /// The agents of `dir`: every folder in it (not hidden), by name, each with
-/// [`AGENT_ESTIMATE_FILE`] and a ground truth (`traj.txt`, `groundtruth.txt` or EuRoC's
-/// `mav0/state_groundtruth_estimate0/data.csv`). A folder missing either is an error naming the
+/// [`AGENT_ESTIMATE_FILE`] and a ground truth (`traj.txt`, `groundtruth.txt`, EuRoC's
+/// `mav0/state_groundtruth_estimate0/data.csv` or TUM-VI's `mav0/mocap0/data.csv`). A folder missing either is an error naming the
 /// file; so is a `dir` without agent folders.
 pub fn agents_in_folder(dir: &Path) -> Result<Vec<AgentFiles>, EvalError> {
     let entries = std::fs::read_dir(dir).map_err(|e| EvalError::io(dir, e))?;
@@ -82,7 +82,7 @@ pub fn agents_in_folder(dir: &Path) -> Result<Vec<AgentFiles>, EvalError> {
             path: dir.to_path_buf(),
             message: format!(
                 "no agent folder; expected <dir>/<agent>/{AGENT_ESTIMATE_FILE} with \
-                 <dir>/<agent>/traj.txt, groundtruth.txt or mav0/state_groundtruth_estimate0/data.csv"
+                 <dir>/<agent>/traj.txt, groundtruth.txt, mav0/state_groundtruth_estimate0/data.csv or mav0/mocap0/data.csv"
             ),
         });
     }
@@ -102,7 +102,7 @@ pub fn agents_in_folder(dir: &Path) -> Result<Vec<AgentFiles>, EvalError> {
                 .find(|p| p.is_file())
                 .ok_or_else(|| EvalError::BadAgents {
                     path: folder.clone(),
-                    message: "no ground truth: expected traj.txt, groundtruth.txt or mav0/state_groundtruth_estimate0/data.csv".to_string(),
+                    message: "no ground truth: expected traj.txt, groundtruth.txt, mav0/state_groundtruth_estimate0/data.csv or mav0/mocap0/data.csv".to_string(),
                 })?;
             Ok(AgentFiles {
                 name: folder

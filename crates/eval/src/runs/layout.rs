@@ -1,6 +1,7 @@
 //! Finding the runs: `<runs>/<method>/<sequence>.txt` (or `<runs>/<method>/<sequence>/<repeat>.txt`)
-//! and each sequence's ground truth in `<datasets>/<sequence>/`: `traj.txt`, `groundtruth.txt` or
-//! EuRoC's `mav0/state_groundtruth_estimate0/data.csv` (the body's).
+//! and each sequence's ground truth in `<datasets>/<sequence>/`: `traj.txt`, `groundtruth.txt`,
+//! EuRoC's `mav0/state_groundtruth_estimate0/data.csv` (the body's) or TUM-VI's
+//! `mav0/mocap0/data.csv` (the IMU's, which is its body).
 //!
 //! A runner records a run that failed as `<repeat>.failed` (or `<sequence>.failed`) beside where
 //! the estimate would be: a text file whose first line is the reason. It wins over an estimate of
@@ -13,11 +14,13 @@ use std::path::{Path, PathBuf};
 use super::naming::scene_and_setting;
 use crate::EvalError;
 
-/// Ground-truth files looked for in a dataset folder, in this order (Replica, TUM, EuRoC layout).
-pub(crate) const GROUND_TRUTH_FILES: [&str; 3] = [
+/// Ground-truth files looked for in a dataset folder, in this order (Replica, TUM, EuRoC layout,
+/// TUM-VI's EuRoC-style export).
+pub(crate) const GROUND_TRUTH_FILES: [&str; 4] = [
     "traj.txt",
     "groundtruth.txt",
     "mav0/state_groundtruth_estimate0/data.csv",
+    "mav0/mocap0/data.csv",
 ];
 const ESTIMATE_EXTENSION: &str = "txt";
 const FAILED_EXTENSION: &str = "failed";
@@ -68,8 +71,9 @@ pub fn find_sequences(datasets: &Path) -> Result<Vec<Sequence>, EvalError> {
         return Err(EvalError::BadRuns {
             path: datasets.to_path_buf(),
             message: "no dataset folder holding a ground truth; expected \
-                      <datasets>/<sequence>/traj.txt (Replica), .../groundtruth.txt (TUM) or \
-                      .../mav0/state_groundtruth_estimate0/data.csv (EuRoC)"
+                      <datasets>/<sequence>/traj.txt (Replica), .../groundtruth.txt (TUM), \
+                      .../mav0/state_groundtruth_estimate0/data.csv (EuRoC) or \
+                      .../mav0/mocap0/data.csv (TUM-VI)"
                 .to_string(),
         });
     }
@@ -203,6 +207,10 @@ mod tests {
     fn each_layout_s_ground_truth_is_found_in_its_dataset_folder() {
         let dir = tempfile::tempdir().unwrap();
         let euroc_truth = "mav0/state_groundtruth_estimate0/data.csv";
+        let tum_vi_truth = "mav0/mocap0/data.csv";
+        write(&dir.path().join("room1__tum_vi").join(tum_vi_truth), "x");
+        write(&dir.path().join("room1__both").join(tum_vi_truth), "x");
+        write(&dir.path().join("room1__both").join(euroc_truth), "x");
         write(&dir.path().join("room0__replica/traj.txt"), "x");
         write(&dir.path().join("room0__tum/groundtruth.txt"), "x");
         write(&dir.path().join("room0__euroc").join(euroc_truth), "x");
@@ -219,6 +227,8 @@ mod tests {
                 at("room0__euroc", euroc_truth),
                 at("room0__replica", "traj.txt"),
                 at("room0__tum", "groundtruth.txt"),
+                at("room1__both", euroc_truth),
+                at("room1__tum_vi", tum_vi_truth),
             ]
         );
     }

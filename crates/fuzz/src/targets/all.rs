@@ -1,6 +1,6 @@
 //! Every fuzz target, in the order `rslam-fuzz` runs them.
 
-use super::{dataset, euroc, mesh, suite, text, trajectory};
+use super::{dataset, euroc, mesh, suite, text, trajectory, tum_vi};
 use crate::target::{nothing, Target};
 
 pub static TARGETS: &[Target] = &[
@@ -129,6 +129,18 @@ pub static TARGETS: &[Target] = &[
         file: Some(euroc::GROUND_TRUTH_CSV),
         prepare: euroc::prepare,
         check: euroc::ground_truth,
+    },
+    Target {
+        name: "tum_vi_camchain",
+        file: Some(tum_vi::CAMCHAIN),
+        prepare: tum_vi::prepare,
+        check: tum_vi::camchain,
+    },
+    Target {
+        name: "tum_vi_imu_config",
+        file: Some(tum_vi::IMU_CONFIG),
+        prepare: tum_vi::prepare,
+        check: tum_vi::imu_config,
     },
     Target {
         name: "suite",

@@ -68,7 +68,7 @@ pub fn ground_truth(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
 /// An accepted sequence has usable cameras, frames inside their camera folder in strictly
 /// increasing time, finite IMU readings and finite unit-quaternion ground truth, both in
 /// strictly increasing time.
-fn read(root: &Path) -> Result<(), String> {
+pub(super) fn read(root: &Path) -> Result<(), String> {
     let dataset: EurocDataset = read_euroc(root).map_err(|e| e.to_string())?;
     for camera in &dataset.cameras {
         if let Err(problem) = camera.camera.intrinsics.check() {

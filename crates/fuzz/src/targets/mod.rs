@@ -7,5 +7,6 @@ mod mesh;
 mod suite;
 mod text;
 mod trajectory;
+mod tum_vi;
 
 pub use all::TARGETS;

@@ -13,12 +13,19 @@
 //! truth that no item changed, are copied byte for byte (through the writer, so they are in the
 //! checksum list). A recorded dataset cannot be re-rendered, so depth, trajectory, stream,
 //! shutter and rendered-mode calibration items are refused.
+//!
+//! TUM-VI's EuRoC-style export (`dataset-room1_512_16/`) goes the same way with its own
+//! calibration files ([`TumViFiles`]): no sensor.yaml or ORB-SLAM3 settings are written, the
+//! manifest's layout is `tum-vi`. Its frames are 16-bit grey: image corruptions on them are
+//! refused (the GPU frames are 8-bit and would drop the low byte); IMU and `@calibration` items
+//! copy them byte for byte.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::{
-    read_euroc, EurocCameraFrames, EurocDataset, EurocWriter, GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR,
+    read_euroc, CameraColour, EurocCameraFrames, EurocDataset, EurocWriter, GROUND_TRUTH_DIR,
+    IMU_DIR, MAV_DIR,
 };
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::CoreError;
@@ -34,6 +41,7 @@ use super::euroc_source::EurocCameraSource;
 use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::output;
 use super::preset::Rig;
+use super::tum_vi_files::TumViFiles;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
 use crate::pipeline::Pipeline;
@@ -110,13 +118,30 @@ fn check_file_names(dataset: &EurocDataset) -> Result<(), PipelineError> {
     Ok(())
 }
 
+/// Refuses image corruptions on a camera whose frames are 16-bit (TUM-VI's): the GPU frames are
+/// 8-bit, so its corrupted copy would lose the low byte of every pixel.
+fn check_bit_depth(dataset: &EurocDataset, specs: &[PerturbSpec]) -> Result<(), PipelineError> {
+    for (camera, spec) in dataset.cameras.iter().zip(specs) {
+        let (Some(first), false) = (camera.frames.first(), spec.image.is_empty()) else {
+            continue;
+        };
+        if camera.camera.colour == CameraColour::Grey16 {
+            return Err(PipelineError::input(
+                &first.path,
+                format!("{}: 16-bit grey frames, but image corruptions run on 8-bit frames on the GPU and would drop the low 8 bits; IMU and @calibration items work on this input (its frames are copied byte for byte)", camera.camera.name),
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn read_bytes(path: &Path) -> Result<Vec<u8>, PipelineError> {
     Ok(std::fs::read(path).map_err(|e| CoreError::io(path, e))?)
 }
 
 /// Copies the sensor.yaml of every sensor whose written calibration is the recorded one (the
-/// writer makes the others from `written`); writes the IMU readings and the ground truth that the
-/// IMU items changed, and copies the others as they are.
+/// writer makes the others from `written`; TUM-VI has none); writes the IMU readings and the
+/// ground truth that the IMU items changed, and copies the others as they are.
 fn write_sensor_files(
     dataset: &EurocDataset,
     written: &Rig,
@@ -128,13 +153,14 @@ fn write_sensor_files(
         let bytes = read_bytes(&mav.join(sensor).join(file))?;
         Ok(writer.copy_sensor_file(sensor, file, &bytes)?)
     };
+    let sensor_yaml = dataset.tum_vi.is_none();
     for (camera, written) in dataset.cameras.iter().zip(&written.cameras) {
-        if camera.camera == *written {
+        if sensor_yaml && camera.camera == *written {
             copy(&camera.camera.name, "sensor.yaml")?;
         }
     }
     if let Some(recorded) = &dataset.imu {
-        if written.imu.as_ref() == Some(&recorded.imu) {
+        if sensor_yaml && written.imu.as_ref() == Some(&recorded.imu) {
             copy(IMU_DIR, "sensor.yaml")?;
         }
         match imu.filter(|p| p.samples_changed) {
@@ -160,7 +186,7 @@ fn perturb_recorded_imu(
     let Some(imu) = &dataset.imu else {
         refuse_imu_items(
             spec,
-            &format!("the EuRoC dataset {} (no imu0/)", dataset.mav_dir.display()),
+            &format!("the dataset {} (no imu0/)", dataset.mav_dir.display()),
         )?;
         return Ok(None);
     };
@@ -235,6 +261,7 @@ pub fn perturb_euroc(
         .iter()
         .map(|c| job.spec.for_camera(&c.camera.name))
         .collect();
+    check_bit_depth(&dataset, &specs)?;
     let cam0_times = times_s(cam0);
     let cam0_plan = FramePlan::recorded(
         &SourceTiming {
@@ -258,9 +285,19 @@ pub fn perturb_euroc(
         (Some(perturbed), _) => perturbed.samples.len(),
         (None, recorded) => recorded.as_ref().map_or(0, |r| r.samples.len()),
     };
+    let imu_changed = imu.as_ref().is_some_and(|p| p.samples_changed);
+    let tum_vi = match &dataset.tum_vi {
+        Some(calibration) => Some(TumViFiles::plan(
+            &dataset,
+            calibration,
+            &perturbed.written,
+            imu_changed,
+        )?),
+        None => None,
+    };
     let mut extra = serde_json::json!({
         "adapter": ctx.describe(),
-        "layout": "euroc",
+        "layout": if tum_vi.is_some() { "tum-vi" } else { "euroc" },
         "input": "recorded",
         "cameras": dataset.cameras.iter().zip(&seeds).map(|(c, seed)| serde_json::json!({
             "name": c.camera.name,
@@ -270,13 +307,21 @@ pub fn perturb_euroc(
         })).collect::<Vec<_>>(),
         "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
             "samples": imu_samples,
-            "copied": !imu.as_ref().is_some_and(|p| p.samples_changed),
+            "copied": !imu_changed,
         })),
         "ground_truth_copied": dataset.ground_truth.is_some()
             && !imu.as_ref().is_some_and(|p| p.ground_truth_changed),
     });
     if !job.spec.calibration.is_empty() {
         extra["calibration"] = perturbed.record(&recorded);
+    }
+    if let Some(files) = &tum_vi {
+        extra["tum_vi"] = files.record();
+    }
+    if dataset.ground_truth.is_none() && imu.as_ref().is_some_and(|p| p.ground_truth_changed) {
+        extra["imu_biases_in_ground_truth"] = serde_json::json!(
+            "not written: the input has no ground truth with biases (state_groundtruth_estimate0/), so the biases the IMU items added are recorded here only"
+        );
     }
     let manifest = ManifestParts {
         command: &job.command,
@@ -313,11 +358,14 @@ pub fn perturb_euroc(
             manifest: Manifest::read(&job.out)?,
         });
     }
-    let writer = Arc::new(EurocWriter::open(
-        &job.out,
+    let (cameras_written, imu_written) = (
         perturbed.written.cameras.clone(),
         perturbed.written.imu.clone(),
-    )?);
+    );
+    let writer = Arc::new(match tum_vi {
+        Some(_) => EurocWriter::open_calibration_elsewhere(&job.out, cameras_written, imu_written)?,
+        None => EurocWriter::open(&job.out, cameras_written, imu_written)?,
+    });
 
     progress.start(cameras.iter().map(|c| c.frames).sum(), "perturbing");
     let mut sinks = Vec::new();
@@ -338,6 +386,9 @@ pub fn perturb_euroc(
     progress.finish();
 
     write_sensor_files(&dataset, &perturbed.written, imu.as_ref(), &writer)?;
+    if let Some(files) = &tum_vi {
+        files.write(&writer)?;
+    }
     let writer = Arc::try_unwrap(writer)
         .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
     let manifest = writer.finish(manifest)?;

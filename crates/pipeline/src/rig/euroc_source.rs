@@ -1,11 +1,11 @@
 //! One camera of a recorded EuRoC dataset as a frame source: its PNGs decoded ahead of the GPU,
 //! grey frames widened to the RGB the frame textures take (R = G = B, so a grey frame written
-//! back grey is the same bytes).
+//! back grey is the same bytes); a 16-bit frame is refused, not cut to 8 bits.
 
 use std::path::Path;
 
 use rslam_core::dataset::euroc::EurocFrame;
-use rslam_core::dataset::read_rgb;
+use rslam_core::dataset::read_rgb8;
 use rslam_core::{Intrinsics, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
@@ -51,7 +51,7 @@ impl FrameSource for EurocCameraSource {
             .map(|&s| (s, self.frames[s].clone()))
             .collect();
         self.decoder = Some(DecodeAhead::start(needed, |(index, frame)| {
-            Ok((*index, read_rgb(&frame.path)?))
+            Ok((*index, read_rgb8(&frame.path)?))
         }));
         Ok(())
     }
@@ -77,7 +77,7 @@ fn check_size(path: &Path, image: &RgbImage, camera: Intrinsics) -> Result<(), P
     Err(PipelineError::input(
         path,
         format!(
-            "image is {}x{}, but the camera's sensor.yaml says {}x{}",
+            "image is {}x{}, but the camera's calibration says {}x{}",
             image.width, image.height, camera.width, camera.height
         ),
     ))

@@ -17,7 +17,8 @@
 //!   files as EuRoC has them and ORB-SLAM3's RGB-D-inertial settings.
 //! - [`rgbd_imu_perturb`]: the inertial files an `rgbd-imu` output's perturbed copy keeps.
 //! - [`euroc_perturb`]: [`perturb_euroc`], a recorded EuRoC dataset (MH_01_easy, …) copied with
-//!   every camera's frames corrupted (image corruptions) and its IMU perturbed (IMU items).
+//!   every camera's frames corrupted (image corruptions) and its IMU perturbed (IMU items); also
+//!   TUM-VI's EuRoC-style export, whose own files (`dso/`, `mocap0/`) [`tum_vi_files`] keeps.
 //!
 //! - [`imu_items`]: the spec's IMU items (`imu_noise`, `imu_bias_step`, …) on the rig's IMU
 //!   stream and ground truth, `cam_imu_offset` on the camera stamps; refused without an IMU.
@@ -43,6 +44,7 @@ pub mod preset;
 pub mod rgbd_imu_perturb;
 pub mod rgbd_imu_render;
 pub mod rig_file;
+mod tum_vi_files;
 
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};

@@ -16,26 +16,31 @@
 //! in cam0's frame, from the two `T_BS`) and, for the inertial one, `IMU.T_b_c1` (cam0's `T_BS`)
 //! and imu0's noise densities, laid out as ORB-SLAM3's `Examples/Stereo(-Inertial)/EuRoC.yaml`.
 //! [`read_euroc`] reads the layout back, rslam's or a published sequence (it does not need the
-//! settings files). Timestamps are integer nanoseconds; quaternions in the ground truth are written **w** first. Plain data:
+//! settings files), or TUM-VI's EuRoC-style export (`dso/camchain.yaml` and `imu_config.yaml`
+//! in place of the sensor.yaml files, `mocap0/` for the ground truth; [`TumViCalibration`]). Timestamps are integer nanoseconds; quaternions in the ground truth are written **w** first. Plain data:
 //! [`EurocCamera`], [`EurocImu`] (sensor.yaml), [`EurocFrame`], [`ImuSample`],
 //! [`GroundTruthState`] (data.csv rows).
 
+mod camchain;
 mod csv;
 mod reader;
 mod samples;
 mod sensor_yaml;
 mod sensors;
+mod tum_vi;
 mod writer;
 
 #[cfg(test)]
 mod tests;
 
+pub use camchain::{read_camchain, Camchain, CamchainCamera};
 pub use csv::{ground_truth_csv, imu_csv, CAMERA_HEADER, GROUND_TRUTH_HEADER, IMU_HEADER};
 pub use reader::{read_euroc, read_inertial, EurocCameraFrames, EurocDataset, EurocImuSamples};
 pub use samples::{nanoseconds_from_seconds, EurocFrame, GroundTruthState, ImuSample};
 pub use sensor_yaml::{CAMERA_YAML_FIRST_LINE, IMU_YAML_FIRST_LINE};
 pub use sensors::{CameraColour, EurocCamera, EurocImu, RadialTangential};
+pub use tum_vi::{TumViCalibration, CAMCHAIN_FILE, IMU_CONFIG_FILE, TUM_VI_CALIBRATION_DIR};
 pub use writer::{
-    inertial_files, EurocWriter, GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR, ORBSLAM3_STEREO_FILE,
-    ORBSLAM3_STEREO_INERTIAL_FILE,
+    inertial_files, EurocWriter, GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR, MOCAP_DIR,
+    ORBSLAM3_STEREO_FILE, ORBSLAM3_STEREO_INERTIAL_FILE,
 };

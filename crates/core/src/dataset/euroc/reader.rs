@@ -1,13 +1,16 @@
 //! Reads a EuRoC dataset back: rslam's own or a published one (MH_01_easy and the rest), which
-//! has no rslam manifest and more folders (`leica0`, `body.yaml`) that are not read.
+//! has no rslam manifest and more folders (`leica0`, `body.yaml`) that are not read; or TUM-VI's
+//! EuRoC-style export (its calibration in `dso/`, see [`super::tum_vi`]), told by a first camera
+//! without sensor.yaml.
 
 use std::path::{Path, PathBuf};
 
 use super::csv::{read_camera_csv, read_ground_truth_csv, read_imu_csv};
 use super::sensor_yaml::{read_camera_yaml, read_imu_yaml};
+use super::tum_vi::{self, TumViCalibration};
 use super::writer::{GROUND_TRUTH_DIR, IMU_DIR, MAV_DIR};
 use super::{CameraColour, EurocCamera, EurocFrame, EurocImu, GroundTruthState, ImuSample};
-use crate::dataset::read_image_has_colour;
+use crate::dataset::codec::read_image_colour_type;
 use crate::limits::MAX_EUROC_CAMERAS;
 use crate::CoreError;
 
@@ -35,8 +38,10 @@ pub struct EurocDataset {
     /// `imu0`, when there is one.
     pub imu: Option<EurocImuSamples>,
     /// `state_groundtruth_estimate0/data.csv`, when there is one (EuRoC's test sequences have
-    /// none).
+    /// none, nor has TUM-VI).
     pub ground_truth: Option<Vec<GroundTruthState>>,
+    /// TUM-VI's calibration, for its export; `None` for EuRoC's layout.
+    pub tum_vi: Option<TumViCalibration>,
 }
 
 /// The number of a camera folder `cam<N>`.
@@ -80,11 +85,20 @@ pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
         ));
     }
     numbered.sort();
+    let tum_vi = match numbered.first() {
+        Some((_, first)) if !mav_dir.join(first).join("sensor.yaml").is_file() => Some(
+            tum_vi::read_calibration(&mav_dir, &mav_dir.join(first).join("sensor.yaml"))?,
+        ),
+        _ => None,
+    };
     let cameras = numbered
         .iter()
-        .map(|(_, name)| read_camera(&mav_dir, name))
+        .map(|(_, name)| read_camera(&mav_dir, name, tum_vi.as_ref()))
         .collect::<Result<Vec<_>, _>>()?;
-    let (imu, ground_truth) = read_inertial(&mav_dir)?;
+    let (imu, ground_truth) = read_inertial_calibrated(&mav_dir, |imu_dir| match &tum_vi {
+        None => read_imu_yaml(&imu_dir.join("sensor.yaml")),
+        Some(calibration) => tum_vi::imu(calibration),
+    })?;
     if cameras.is_empty() && imu.is_none() {
         return Err(CoreError::bad_file(
             &mav_dir,
@@ -96,6 +110,7 @@ pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
         cameras,
         imu,
         ground_truth,
+        tum_vi,
     })
 }
 
@@ -105,10 +120,19 @@ pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
 pub fn read_inertial(
     dir: &Path,
 ) -> Result<(Option<EurocImuSamples>, Option<Vec<GroundTruthState>>), CoreError> {
+    read_inertial_calibrated(dir, |imu_dir| read_imu_yaml(&imu_dir.join("sensor.yaml")))
+}
+
+/// [`read_inertial`] with the IMU's calibration from `calibration(imu_dir)` (TUM-VI's is not in
+/// a sensor.yaml).
+fn read_inertial_calibrated(
+    dir: &Path,
+    calibration: impl FnOnce(&Path) -> Result<EurocImu, CoreError>,
+) -> Result<(Option<EurocImuSamples>, Option<Vec<GroundTruthState>>), CoreError> {
     let imu_dir = dir.join(IMU_DIR);
     let imu = if imu_dir.is_dir() {
         Some(EurocImuSamples {
-            imu: read_imu_yaml(&imu_dir.join("sensor.yaml"))?,
+            imu: calibration(&imu_dir)?,
             samples: read_imu_csv(&imu_dir.join("data.csv"))?,
         })
     } else {
@@ -123,14 +147,32 @@ pub fn read_inertial(
     Ok((imu, ground_truth))
 }
 
-fn read_camera(mav_dir: &Path, name: &str) -> Result<EurocCameraFrames, CoreError> {
+fn read_camera(
+    mav_dir: &Path,
+    name: &str,
+    tum_vi: Option<&TumViCalibration>,
+) -> Result<EurocCameraFrames, CoreError> {
     let dir = mav_dir.join(name);
-    let mut camera = read_camera_yaml(&dir.join("sensor.yaml"), name)?;
-    let frames = read_camera_csv(&dir.join("data.csv"), &dir.join("data"))?;
-    if let Some(first) = frames.first() {
-        if read_image_has_colour(&first.path)? {
-            camera.colour = CameraColour::Rgb;
+    let csv = dir.join("data.csv");
+    let (mut camera, frames) = match tum_vi {
+        None => {
+            let camera = read_camera_yaml(&dir.join("sensor.yaml"), name)?;
+            (camera, read_camera_csv(&csv, &dir.join("data"))?)
         }
+        Some(calibration) => {
+            let frames = read_camera_csv(&csv, &dir.join("data"))?;
+            (tum_vi::camera(calibration, name, &csv, &frames)?, frames)
+        }
+    };
+    if let Some(first) = frames.first() {
+        let colour_type = read_image_colour_type(&first.path)?;
+        camera.colour = if colour_type.has_color() {
+            CameraColour::Rgb
+        } else if colour_type.bytes_per_pixel() > colour_type.channel_count() {
+            CameraColour::Grey16
+        } else {
+            CameraColour::Grey
+        };
     }
     Ok(EurocCameraFrames { camera, frames })
 }

@@ -18,7 +18,7 @@ pub const IMU_YAML_FIRST_LINE: &str = "#Default imu sensor yaml file";
 
 /// A number as YAML 1.1 readers (PyYAML, yaml-cpp, OpenCV) all read as a float: Rust's shortest
 /// round-trip digits, never an exponent, always a decimal point.
-fn float(v: f64) -> String {
+pub(super) fn float(v: f64) -> String {
     let text = format!("{v}");
     if text.contains('.') {
         text
@@ -105,7 +105,7 @@ enum Value {
 }
 
 /// `text` up to a `#` that starts a comment (at the start or after a blank), trimmed at the end.
-fn without_comment(text: &str) -> &str {
+pub(super) fn without_comment(text: &str) -> &str {
     let bytes = text.as_bytes();
     let end = (0..bytes.len())
         .find(|&i| bytes[i] == b'#' && (i == 0 || bytes[i - 1].is_ascii_whitespace()))
@@ -335,6 +335,18 @@ impl Document<'_> {
     }
 }
 
+/// `resolution: [w, h]` as whole pixels, each 1 to [`MAX_IMAGE_SIDE`].
+pub(super) fn resolution(at: &LineRef, [w, h]: [f64; 2]) -> Result<(u32, u32), CoreError> {
+    let pixels =
+        |v: f64| (v >= 1.0 && v.fract() == 0.0 && v <= MAX_IMAGE_SIDE as f64).then_some(v as u32);
+    match (pixels(w), pixels(h)) {
+        (Some(width), Some(height)) => Ok((width, height)),
+        _ => Err(at.error(format!(
+            "resolution [{w}, {h}]: expected two whole numbers of pixels [w, h], each 1 to {MAX_IMAGE_SIDE}"
+        ))),
+    }
+}
+
 /// A camera's sensor.yaml; `name` is its folder (`cam0`). The colour is not in the file: it
 /// comes back as [`CameraColour::Grey`] for the reader to settle.
 pub fn read_camera_yaml(path: &Path, name: &str) -> Result<EurocCamera, CoreError> {
@@ -353,13 +365,8 @@ pub fn read_camera_yaml(path: &Path, name: &str) -> Result<EurocCamera, CoreErro
     )?;
     let body_from_camera = doc.t_bs()?;
     let rate_hz = doc.positive("rate_hz", "a positive frame rate in Hz")?;
-    let side = format!("two whole numbers of pixels [w, h], each 1 to {MAX_IMAGE_SIDE}");
-    let ([w, h], at) = doc.numbers_in::<2>(&doc.keys, "resolution", &side)?;
-    let pixels =
-        |v: f64| (v >= 1.0 && v.fract() == 0.0 && v <= MAX_IMAGE_SIDE as f64).then_some(v as u32);
-    let (Some(width), Some(height)) = (pixels(w), pixels(h)) else {
-        return Err(at.error(format!("resolution [{w}, {h}]: expected {side}")));
-    };
+    let (wh, at) = doc.numbers_in::<2>(&doc.keys, "resolution", "two numbers [w, h]")?;
+    let (width, height) = resolution(&at, wh)?;
     let ([fx, fy, cx, cy], at) =
         doc.numbers_in::<4>(&doc.keys, "intrinsics", "4 numbers [fu, fv, cu, cv]")?;
     let intrinsics = Intrinsics {
@@ -399,6 +406,26 @@ pub fn read_imu_yaml(path: &Path) -> Result<EurocImu, CoreError> {
         comment: doc.comment(),
         body_from_imu: doc.t_bs()?,
         rate_hz: doc.positive("rate_hz", "a positive sample rate in Hz")?,
+        gyroscope_noise_density: doc.non_negative("gyroscope_noise_density", density)?,
+        gyroscope_random_walk: doc.non_negative("gyroscope_random_walk", density)?,
+        accelerometer_noise_density: doc.non_negative("accelerometer_noise_density", density)?,
+        accelerometer_random_walk: doc.non_negative("accelerometer_random_walk", density)?,
+    })
+}
+
+/// Kalibr's IMU file as TUM-VI ships it (`dso/imu_config.yaml`: the four noise parameters,
+/// `update_rate`, `rostopic`). TUM-VI's body frame is its IMU's, so `T_BS` is the identity.
+pub fn read_kalibr_imu_yaml(path: &Path) -> Result<EurocImu, CoreError> {
+    let text = read_text_file(path, "a Kalibr IMU yaml")?;
+    let doc = parse(path, &text)?;
+    let density = "a non-negative noise density or random walk";
+    Ok(EurocImu {
+        comment: match doc.keys.get("rostopic").map(|e| &e.value) {
+            Some(Value::Scalar(topic)) => topic.clone(),
+            _ => String::new(),
+        },
+        body_from_imu: Pose::IDENTITY,
+        rate_hz: doc.positive("update_rate", "a positive sample rate in Hz")?,
         gyroscope_noise_density: doc.non_negative("gyroscope_noise_density", density)?,
         gyroscope_random_walk: doc.non_negative("gyroscope_random_walk", density)?,
         accelerometer_noise_density: doc.non_negative("accelerometer_noise_density", density)?,

@@ -31,12 +31,14 @@ impl RadialTangential {
     }
 }
 
-/// How a camera's frames are stored: 8-bit grey PNG (EuRoC's own cameras) or 8-bit RGB PNG.
+/// How a camera's frames are stored: 8-bit grey PNG (EuRoC's own cameras), 8-bit RGB PNG, or
+/// 16-bit grey PNG (TUM-VI's cameras; read and copied, never encoded: the GPU frames are 8-bit).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CameraColour {
     #[default]
     Grey,
     Rgb,
+    Grey16,
 }
 
 /// One camera stream (`mav0/cam0`, `mav0/cam1`, …) as its sensor.yaml describes it.
@@ -51,6 +53,8 @@ pub struct EurocCamera {
     pub rate_hz: f64,
     /// `resolution: [w, h]` and `intrinsics: [fu, fv, cu, cv]`.
     pub intrinsics: Intrinsics,
+    /// TUM-VI's cameras are equidistant (Kannala-Brandt): their lens stays in `dso/camchain.yaml`,
+    /// which is rewritten line by line, and this is [`RadialTangential::NONE`].
     pub distortion: RadialTangential,
     /// Not a sensor.yaml key: the writer picks the PNG colour type by it, the reader tells it
     /// from the first frame's PNG header (grey when the camera has no frame).

@@ -12,7 +12,9 @@ use super::{
     nanoseconds_from_seconds, CameraColour, EurocCamera, EurocImu, GroundTruthState, ImuSample,
 };
 use crate::dataset::orbslam3::{stereo_inertial_settings, stereo_pair_problem, stereo_settings};
-use crate::dataset::{encode_grey_png, encode_png, refuse_symlinks, ContentWriter, Manifest};
+use crate::dataset::{
+    encode_grey_png, encode_png, is_bookkeeping, refuse_symlinks, ContentWriter, Manifest,
+};
 use crate::{CoreError, Pose, RgbImage};
 
 /// The folder under the dataset root that holds every sensor, as in the published dataset.
@@ -21,6 +23,8 @@ pub const MAV_DIR: &str = "mav0";
 pub const IMU_DIR: &str = "imu0";
 /// The ground truth's folder under `mav0/`.
 pub const GROUND_TRUTH_DIR: &str = "state_groundtruth_estimate0";
+/// TUM-VI's motion-capture poses (`T_world_imu`, no velocity or biases) under `mav0/`.
+pub const MOCAP_DIR: &str = "mocap0";
 /// ORB-SLAM3 v1.0 stereo settings for cam0 and cam1, in the dataset root (next to `mav0/`),
 /// written when the rig has two cameras or more.
 pub const ORBSLAM3_STEREO_FILE: &str = "orbslam3_stereo.yaml";
@@ -52,6 +56,9 @@ pub struct EurocWriter {
     /// Files under `mav0/` copied as they are ([`EurocWriter::copy_sensor_file`]); `finish`
     /// does not write its own in their place.
     copied: Mutex<HashSet<String>>,
+    /// Whether `finish` writes the sensor.yaml files and ORB-SLAM3's settings (EuRoC), or the
+    /// calibration lives elsewhere ([`EurocWriter::open_calibration_elsewhere`]).
+    sensor_yaml: bool,
 }
 
 /// A folder name made of letters, digits and `_` (as `cam0`): nothing that leaves `mav0/`.
@@ -158,6 +165,27 @@ impl EurocWriter {
         cameras: Vec<EurocCamera>,
         imu: Option<EurocImu>,
     ) -> Result<Self, CoreError> {
+        Self::open_with(root, cameras, imu, true)
+    }
+
+    /// [`EurocWriter::open`] for a layout whose calibration is not in sensor.yaml files
+    /// (TUM-VI's export keeps it in `dso/`, written with [`EurocWriter::copy_file`]): `finish`
+    /// writes the data.csv files only, no sensor.yaml and no ORB-SLAM3 settings (so the first two
+    /// cameras need not make one stereo pair for them).
+    pub fn open_calibration_elsewhere(
+        root: &Path,
+        cameras: Vec<EurocCamera>,
+        imu: Option<EurocImu>,
+    ) -> Result<Self, CoreError> {
+        Self::open_with(root, cameras, imu, false)
+    }
+
+    fn open_with(
+        root: &Path,
+        cameras: Vec<EurocCamera>,
+        imu: Option<EurocImu>,
+        sensor_yaml: bool,
+    ) -> Result<Self, CoreError> {
         refuse_symlinks(root, root)?;
         for (i, camera) in cameras.iter().enumerate() {
             check_camera(camera, root)?;
@@ -171,7 +199,7 @@ impl EurocWriter {
                 ));
             }
         }
-        if let [left, right, ..] = cameras.as_slice() {
+        if let ([left, right, ..], true) = (cameras.as_slice(), sensor_yaml) {
             if let Some(problem) = stereo_pair_problem(left, right) {
                 return Err(CoreError::bad_file(
                     root.join(ORBSLAM3_STEREO_FILE),
@@ -212,6 +240,7 @@ impl EurocWriter {
                 rows: Mutex::new(Vec::new()),
             },
             copied: Mutex::new(HashSet::new()),
+            sensor_yaml,
         })
     }
 
@@ -271,6 +300,14 @@ impl EurocWriter {
         let bytes = match stream.camera.colour {
             CameraColour::Grey => encode_grey_png(image)?,
             CameraColour::Rgb => encode_png(image)?,
+            CameraColour::Grey16 => {
+                return Err(CoreError::bad_file(
+                    dir(),
+                    format!(
+                        "{name}: 16-bit grey frames can be copied, not encoded from 8-bit images"
+                    ),
+                ))
+            }
         };
         self.content
             .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), &bytes)
@@ -346,14 +383,14 @@ impl EurocWriter {
         let is_camera = self.cameras.iter().any(|c| c.camera.name == sensor);
         let allowed = match file {
             "sensor.yaml" => is_camera || sensor == IMU_DIR,
-            "data.csv" => sensor == IMU_DIR || sensor == GROUND_TRUTH_DIR,
+            "data.csv" => [IMU_DIR, GROUND_TRUTH_DIR, MOCAP_DIR].contains(&sensor),
             _ => false,
         };
         if !allowed || !plain_name(sensor) {
             return Err(CoreError::bad_file(
                 self.root().join(MAV_DIR).join(crate::printable(sensor)),
                 format!(
-                    "{}/{}: expected a camera's or imu0's sensor.yaml, or imu0's or {GROUND_TRUTH_DIR}'s data.csv",
+                    "{}/{}: expected a camera's or imu0's sensor.yaml, or the data.csv of imu0, {GROUND_TRUTH_DIR} or {MOCAP_DIR}",
                     crate::printable(sensor),
                     crate::printable(file)
                 ),
@@ -384,6 +421,32 @@ impl EurocWriter {
             ));
         }
         self.content.write(name, bytes)
+    }
+
+    /// Writes `bytes` as `<root>/<relative>`, a file of a recorded dataset outside `mav0/`
+    /// (TUM-VI's `dso/camchain.yaml`, `dso/cam0/vignette.png`, …), copied or rewritten. `relative`
+    /// is made of plain names (letters, digits, `_`, `-`, `.`; none starting with `.`) joined by
+    /// `/`, not under `mav0/` and not the manifest's files. Hashed like every other file.
+    pub fn copy_file(&self, relative: &str, bytes: &[u8]) -> Result<(), CoreError> {
+        let plain = |part: &str| {
+            !part.is_empty()
+                && !part.starts_with('.')
+                && part
+                    .bytes()
+                    .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'.' || b == b'-')
+        };
+        let parts: Vec<&str> = relative.split('/').collect();
+        if !parts.iter().all(|p| plain(p)) || parts[0] == MAV_DIR || is_bookkeeping(relative) {
+            return Err(CoreError::bad_file(
+                self.root().join(crate::printable(relative)),
+                "expected a path of plain names outside mav0/ for a file copied from the input",
+            ));
+        }
+        let path = self.root().join(relative);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| CoreError::io(dir, e))?;
+        }
+        self.content.write(relative, bytes)
     }
 
     /// Appends IMU samples, each after the last one. Requires an IMU given to `open`.
@@ -438,6 +501,9 @@ impl EurocWriter {
             let name = &stream.camera.name;
             let times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
             self.write_text(&format!("{MAV_DIR}/{name}/data.csv"), &camera_csv(&times))?;
+            if !self.sensor_yaml {
+                continue;
+            }
             self.write_text(
                 &format!("{MAV_DIR}/{name}/sensor.yaml"),
                 &camera_yaml(&stream.camera),
@@ -450,6 +516,9 @@ impl EurocWriter {
             .lock()
             .unwrap_or_else(|p| p.into_inner());
         for (relative, text) in inertial_files(self.imu.as_ref(), &imu_rows, &states) {
+            if !self.sensor_yaml && relative.ends_with("sensor.yaml") {
+                continue;
+            }
             let relative = format!("{MAV_DIR}/{relative}");
             let path = self.root().join(&relative);
             if let Some(dir) = path.parent() {
@@ -458,7 +527,7 @@ impl EurocWriter {
             self.write_text(&relative, &text)?;
         }
         drop((imu_rows, states));
-        if let [left, right, ..] = self.cameras.as_slice() {
+        if let ([left, right, ..], true) = (self.cameras.as_slice(), self.sensor_yaml) {
             let (left, right) = (&left.camera, &right.camera);
             self.write_text(ORBSLAM3_STEREO_FILE, &stereo_settings(left, right))?;
             if let Some(imu) = &self.imu {

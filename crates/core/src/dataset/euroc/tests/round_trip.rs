@@ -59,6 +59,7 @@ fn a_written_dataset_reads_back_equal() {
                     let expected = (0.299 * first[0] + 0.587 * first[1] + 0.114 * first[2]).round();
                     assert_eq!(luma[0] as f64, expected);
                 }
+                CameraColour::Grey16 => unreachable!("the fixture's cameras are 8-bit"),
             }
         }
     }
