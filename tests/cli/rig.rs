@@ -208,3 +208,31 @@ fn a_stereo_rig_through_a_radtan_lens_states_it_in_every_camera_file() {
         );
     }
 }
+
+/// A killed `rslam perturb --input` of a EuRoC dataset resumes frame by frame to the bytes of an
+/// uninterrupted one.
+#[test]
+fn a_killed_euroc_perturb_resumes_to_the_same_bytes() {
+    let ws = Workspace::new();
+    let mut render = RIG_RENDER.to_vec();
+    render[4] = "200"; // --frames
+    render[6] = "stereo"; // --rig
+    ws.rslam(&render).success();
+    let args = [
+        "perturb",
+        "--input",
+        "rig",
+        "--out",
+        "noisy",
+        "--perturb",
+        "gaussian_noise:2",
+    ];
+    ws.rslam(&args).success();
+    std::fs::rename(ws.path("noisy"), ws.path("whole")).unwrap();
+    crate::resume::kill_mid_run(&ws, &args, "noisy", "mav0/cam0/data", "");
+    let resumed = ws.rslam(&args);
+    resumed.success();
+    let said = resumed.stderr();
+    assert!(said.contains("resumed noisy: "), "{said}");
+    crate::dataset_check::assert_same_tree(&ws.path("whole"), &ws.path("noisy"));
+}

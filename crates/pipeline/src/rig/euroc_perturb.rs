@@ -39,7 +39,6 @@ use super::camera_sink::EurocCameraSink;
 use super::euroc_render::{camera_seed, CameraFrames, RigReport};
 use super::euroc_source::EurocCameraSource;
 use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
-use super::output;
 use super::preset::Rig;
 use super::tum_vi_files::TumViFiles;
 use crate::manifest::ManifestParts;
@@ -205,19 +204,20 @@ fn perturb_recorded_imu(
     Ok(Some(perturbed))
 }
 
-/// Camera `index`'s frames, written at `times_ns`: copied as they are when its spec has no
-/// image corruption, else through the GPU pipeline.
+/// Camera `index`'s frames after the first `kept` (an interrupted run's, already there),
+/// written at `times_ns`: copied as they are when its spec has no image corruption, else
+/// through the GPU pipeline.
 fn write_camera(
     ctx: &GpuContext,
     spec: &PerturbSpec,
     camera: &EurocCameraFrames,
-    (index, seed): (usize, u64),
+    (index, seed, kept): (usize, u64, usize),
     times_ns: Vec<u64>,
     writer: &Arc<EurocWriter>,
     progress: &dyn Progress,
 ) -> Result<Option<EurocCameraSink>, PipelineError> {
     if spec.image.is_empty() {
-        for (frame, &t_ns) in camera.frames.iter().zip(&times_ns) {
+        for (frame, &t_ns) in camera.frames.iter().zip(&times_ns).skip(kept) {
             writer.copy_frame_ns(index, t_ns, &read_bytes(&frame.path)?)?;
             progress.advance()?;
         }
@@ -226,7 +226,7 @@ fn write_camera(
     let source = EurocCameraSource::new(camera.frames.clone(), camera.camera.intrinsics);
     let mut pipeline = Pipeline::new(ctx, source, spec, seed)?;
     let mut sink = EurocCameraSink::new(writer.clone(), index, times_ns);
-    let sources: Vec<usize> = (0..camera.frames.len()).collect();
+    let sources: Vec<usize> = (kept..camera.frames.len()).collect();
     pipeline.run(ctx, &sources, progress, &mut sink)?;
     Ok(Some(sink))
 }
@@ -348,7 +348,7 @@ pub fn perturb_euroc(
         })
         .collect();
 
-    let found = output::prepare(&job.out, &manifest, job.force)?;
+    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
     if found == FolderState::Complete {
         return Ok(RigReport {
             cameras,
@@ -367,7 +367,19 @@ pub fn perturb_euroc(
         None => EurocWriter::open(&job.out, cameras_written, imu_written)?,
     });
 
-    progress.start(cameras.iter().map(|c| c.frames).sum(), "perturbing");
+    // A resumed run keeps each camera's frames up to the first one missing; an item that
+    // carries a state from frame to frame (auto_exposure) needs every frame made again.
+    let resume = found == FolderState::Resume && job.spec.stateful_item().is_none();
+    let kept = stamps
+        .iter()
+        .enumerate()
+        .map(|(i, times_ns)| match resume {
+            true => writer.keep_written_frames(i, times_ns),
+            false => Ok(0),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let made = cameras.iter().zip(&kept).map(|(c, k)| c.frames - k).sum();
+    progress.start(made, "perturbing");
     let mut sinks = Vec::new();
     for (i, (((camera, &seed), times_ns), spec)) in dataset
         .cameras
@@ -377,8 +389,10 @@ pub fn perturb_euroc(
         .zip(&specs)
         .enumerate()
     {
-        let sink = write_camera(ctx, spec, camera, (i, seed), times_ns, &writer, progress)?;
-        sinks.extend(sink);
+        let at = (i, seed, kept[i]);
+        sinks.extend(write_camera(
+            ctx, spec, camera, at, times_ns, &writer, progress,
+        )?);
     }
     for sink in sinks {
         sink.finish()?;
@@ -393,7 +407,6 @@ pub fn perturb_euroc(
         .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
     let manifest = writer.finish(manifest)?;
     output_folder::finish(&job.out)?;
-    let made = cameras.iter().map(|c| c.frames).sum();
     Ok(RigReport {
         cameras,
         imu_samples,

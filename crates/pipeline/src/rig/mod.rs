@@ -30,7 +30,7 @@
 //! [`rslam_perturb::PerturbSpec::for_camera`]).
 //!
 //! An unfinished rig render resumes frame by frame (each camera from its first missing frame),
-//! as a one-camera render does; an unfinished EuRoC perturb is started over.
+//! as a one-camera render does, and so does an unfinished EuRoC perturb.
 
 pub mod calibration;
 mod camera_sink;
@@ -39,7 +39,6 @@ pub mod euroc_render;
 mod euroc_source;
 mod imu_items;
 mod motion;
-mod output;
 pub mod preset;
 pub mod rgbd_imu_perturb;
 pub mod rgbd_imu_render;
