@@ -131,8 +131,9 @@ fn a_killed_rig_render_resumes_to_the_same_bytes() {
         .and_then(|rest| rest.split(' ').next())
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("{said}"));
-    // 198 frames per camera; cam0 had more than 40 on disk when the run was killed
-    assert!(made <= 2 * 198 - 41, "{said}");
+    // 198 frames per camera; cam0 had more than 40 files on disk when the run was killed, one
+    // of them perhaps a frame still being written (under a temporary name)
+    assert!(made <= 2 * 198 - 40, "{said}");
     crate::dataset_check::assert_same_tree(&whole.path("rig"), &killed.path("rig"));
 }
 

@@ -63,6 +63,16 @@ pub(crate) fn grey(path: &Path) -> image::GrayImage {
     image::open(path).unwrap().to_luma8()
 }
 
+/// Mean absolute difference of two grey images of one size, grey levels.
+pub(crate) fn mean_abs_difference(a: &image::GrayImage, b: &image::GrayImage) -> f64 {
+    let sum: f64 = a
+        .pixels()
+        .zip(b.pixels())
+        .map(|(p, q)| (p.0[0] as f64 - q.0[0] as f64).abs())
+        .sum();
+    sum / (a.width() * a.height()) as f64
+}
+
 /// Disparity of the left image's pixel (x, y) in the right image by block matching along the
 /// row (sum of absolute differences over a window, the right match at x − d), refined to a
 /// sub-pixel by a parabola through the best cost and its neighbours. `None` where the window

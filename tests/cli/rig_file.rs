@@ -6,7 +6,7 @@ use rslam_core::dataset::euroc::{read_euroc, EurocCamera};
 use rslam_pipeline::rig::Rig;
 
 use crate::harness::Workspace;
-use crate::rig_calibration::{frames, grey, median_disparity_ratio};
+use crate::rig_calibration::{frames, grey, mean_abs_difference, median_disparity_ratio};
 
 fn numbers(values: &[f64]) -> String {
     let text: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
@@ -46,15 +46,6 @@ fn stereo_imu_file(cam1: &EurocCamera, extra: &str) -> String {
 fn render(ws: &Workspace, out: &str, rig: &str) {
     let args = ["--frames", "6", "--rig", rig, "--format", "euroc"];
     ws.render_room0(out, &args, Some("imu_noise:0"));
-}
-
-fn mean_abs_difference(a: &image::GrayImage, b: &image::GrayImage) -> f64 {
-    let sum: f64 = a
-        .pixels()
-        .zip(b.pixels())
-        .map(|(p, q)| (p.0[0] as f64 - q.0[0] as f64).abs())
-        .sum();
-    sum / (a.width() * a.height()) as f64
 }
 
 #[test]

@@ -9,7 +9,7 @@ use rslam_core::dataset::euroc::{read_euroc, EurocDataset, GroundTruthState};
 use crate::dataset_check::lines;
 use crate::harness::Workspace;
 use crate::render::SMALL_CAMERA;
-use crate::rig_calibration::grey;
+use crate::rig_calibration::{grey, mean_abs_difference};
 
 const GRAVITY_W: DVec3 = DVec3::new(0.0, 0.0, -9.81);
 
@@ -26,15 +26,6 @@ fn render_rig(
     ];
     ws.render_room0(out, &args, spec);
     read_euroc(&ws.path(out)).unwrap()
-}
-
-fn mean_abs_difference(a: &image::GrayImage, b: &image::GrayImage) -> f64 {
-    let sum: f64 = a
-        .pixels()
-        .zip(b.pixels())
-        .map(|(p, q)| (p.0[0] as f64 - q.0[0] as f64).abs())
-        .sum();
-    sum / (a.width() * a.height()) as f64
 }
 
 fn by_time(states: &[GroundTruthState]) -> HashMap<u64, &GroundTruthState> {

@@ -84,6 +84,24 @@ impl Intrinsics {
 
     /// Whether this is a camera rslam can use: 1 to [`MAX_IMAGE_SIDE`] pixels a side, positive
     /// finite focal lengths, a finite principal point. The error says what is wrong.
+    /// A camera from EuRoC's and Kalibr's `resolution: [w, h]` and `intrinsics: [fu, fv, cu,
+    /// cv]`, checked as [`Intrinsics::check`] does.
+    pub fn from_pinhole(
+        (width, height): (u32, u32),
+        [fx, fy, cx, cy]: [f64; 4],
+    ) -> Result<Self, String> {
+        let camera = Self {
+            width,
+            height,
+            fx,
+            fy,
+            cx,
+            cy,
+        };
+        camera.check()?;
+        Ok(camera)
+    }
+
     pub fn check(&self) -> Result<(), String> {
         for (name, side) in [("width", self.width), ("height", self.height)] {
             if !(1..=MAX_IMAGE_SIDE).contains(&side) {

@@ -113,16 +113,8 @@ pub fn read_rig_file(path: &Path) -> Result<Rig, PipelineError> {
         let fields = spanned.get_ref();
         let bad = |message: String| at(spanned.span().start, format!("cam{i}: {message}"));
         let [width, height] = fields.resolution;
-        let [fx, fy, cx, cy] = fields.intrinsics;
-        let intrinsics = Intrinsics {
-            width,
-            height,
-            fx,
-            fy,
-            cx,
-            cy,
-        };
-        intrinsics.check().map_err(|m| bad(m.to_string()))?;
+        let intrinsics =
+            Intrinsics::from_pinhole((width, height), fields.intrinsics).map_err(&bad)?;
         positive_rate(fields.rate_hz).map_err(&bad)?;
         let offset_ns = fields.time_offset_ms * 1e6;
         if !(offset_ns.is_finite() && offset_ns.abs() < 1e12) {

@@ -230,19 +230,10 @@ impl Block {
         };
         let side = "two whole numbers of pixels [w, h]";
         let (wh, at) = self.numbers::<2>(path, "resolution", side)?;
-        let (width, height) = resolution(&at, wh)?;
+        let size = resolution(&at, wh)?;
         let ([fx, fy, cx, cy], at) =
             self.numbers::<4>(path, "intrinsics", "4 numbers [fu, fv, pu, pv]")?;
-        let intrinsics = Intrinsics {
-            width,
-            height,
-            fx,
-            fy,
-            cx,
-            cy,
-        };
-        intrinsics
-            .check()
+        let intrinsics = Intrinsics::from_pinhole(size, [fx, fy, cx, cy])
             .map_err(|message| at.error(format!("intrinsics: {message}")))?;
         let rostopic = match self.keys.get("rostopic") {
             Some((_, Value::Scalar(topic))) => topic.clone(),

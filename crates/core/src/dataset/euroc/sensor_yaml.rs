@@ -366,19 +366,10 @@ pub fn read_camera_yaml(path: &Path, name: &str) -> Result<EurocCamera, CoreErro
     let body_from_camera = doc.t_bs()?;
     let rate_hz = doc.positive("rate_hz", "a positive frame rate in Hz")?;
     let (wh, at) = doc.numbers_in::<2>(&doc.keys, "resolution", "two numbers [w, h]")?;
-    let (width, height) = resolution(&at, wh)?;
+    let size = resolution(&at, wh)?;
     let ([fx, fy, cx, cy], at) =
         doc.numbers_in::<4>(&doc.keys, "intrinsics", "4 numbers [fu, fv, cu, cv]")?;
-    let intrinsics = Intrinsics {
-        width,
-        height,
-        fx,
-        fy,
-        cx,
-        cy,
-    };
-    intrinsics
-        .check()
+    let intrinsics = Intrinsics::from_pinhole(size, [fx, fy, cx, cy])
         .map_err(|message| at.error(format!("intrinsics: {message}")))?;
     let (distortion, _) = doc.numbers_in::<4>(
         &doc.keys,
