@@ -1,7 +1,8 @@
 //! `rslam perturb --input <TUM-VI export>`: TUM-VI's EuRoC-style export (`dataset-room1_512_16/`:
 //! `mav0/` without sensor.yaml files, 16-bit grey frames, `mocap0/` ground truth, Kalibr and DSO
 //! calibration in `dso/`) copied with its IMU or written calibration perturbed, its own files
-//! kept; image corruptions on 16-bit frames refused; `rslam eval` on its mocap0 ground truth.
+//! kept; image corruptions on 16-bit frames made from their high byte; `rslam eval` on its mocap0
+//! ground truth.
 
 use std::path::Path;
 
@@ -77,6 +78,14 @@ fn frame16(camera: usize, j: usize) -> image::ImageBuffer<image::Luma<u16>, Vec<
     })
 }
 
+fn high_byte(
+    frame: &image::ImageBuffer<image::Luma<u16>, Vec<u16>>,
+) -> image::ImageBuffer<image::Luma<u8>, Vec<u8>> {
+    image::ImageBuffer::from_fn(frame.width(), frame.height(), |x, y| {
+        image::Luma([(frame.get_pixel(x, y)[0] >> 8) as u8])
+    })
+}
+
 /// 120 Hz motion-capture poses of the IMU along an arc, TUM-VI's mocap0/data.csv.
 fn mocap_csv() -> String {
     let mut text = format!("{MOCAP_HEADER}\n");
@@ -117,8 +126,8 @@ fn imu_csv() -> String {
     text
 }
 
-/// Lays out a TUM-VI-style export under `root`: 16-bit frames, or 8-bit with `eight_bit` (a
-/// converted copy, to run image corruptions on the layout).
+/// Lays out a TUM-VI-style export under `root`: 16-bit frames, or with `eight_bit` their high
+/// bytes as 8-bit frames.
 fn write_tum_vi_style(root: &Path, eight_bit: bool) {
     let mav = root.join("mav0");
     for (c, cam) in ["cam0", "cam1"].into_iter().enumerate() {
@@ -129,10 +138,7 @@ fn write_tum_vi_style(root: &Path, eight_bit: bool) {
             csv += &format!("{t},{t}.png\n");
             let path = data.join(format!("{t}.png"));
             if eight_bit {
-                image::DynamicImage::ImageLuma16(frame16(c, j))
-                    .into_luma8()
-                    .save(path)
-                    .unwrap();
+                high_byte(&frame16(c, j)).save(path).unwrap();
             } else {
                 frame16(c, j).save(path).unwrap();
             }
@@ -372,24 +378,36 @@ fn perturb_tumvi_baseline_at_calibration_rewrites_cam1_in_camchain_only() {
 }
 
 #[test]
-fn perturb_tumvi_image_corruptions_run_on_an_8_bit_copy_and_are_refused_on_16_bit_frames() {
+fn perturb_tumvi_corrupts_16_bit_frames_as_their_high_byte_and_writes_257_times_the_result() {
+    let spec = "gaussian_noise:3,cam1:fog:2";
     let ws = Workspace::new();
-    write_tum_vi_style(&ws.path("dataset-room1_512_16"), true);
-    perturb(&ws, "gaussian_noise:3");
-    let (input, out) = (ws.path("dataset-room1_512_16"), ws.path("out"));
-    for cam in ["cam0", "cam1"] {
-        for t in STAMPS {
+    write_tum_vi_style(&ws.path("dataset-room1_512_16"), false);
+    let manifest = perturb(&ws, spec);
+    let ws8 = Workspace::new();
+    write_tum_vi_style(&ws8.path("dataset-room1_512_16"), true);
+    perturb(&ws8, spec);
+    let (input, out, out8) = (
+        ws.path("dataset-room1_512_16"),
+        ws.path("out"),
+        ws8.path("out"),
+    );
+    for (c, cam) in ["cam0", "cam1"].into_iter().enumerate() {
+        assert!(
+            manifest.extra["cameras"][c]["written_frames"]
+                .as_str()
+                .unwrap()
+                .contains("high byte"),
+            "{}",
+            manifest.extra["cameras"][c]
+        );
+        for (j, t) in STAMPS.iter().enumerate() {
             let name = format!("mav0/{cam}/data/{t}.png");
-            let (a, b) = (
-                image::open(input.join(&name)).unwrap(),
-                image::open(out.join(&name)).unwrap(),
-            );
-            assert_eq!(b.color(), image::ColorType::L8, "{name}");
-            assert_ne!(
-                a.into_luma8().into_raw(),
-                b.into_luma8().into_raw(),
-                "{name}"
-            );
+            let wide = image::open(out.join(&name)).unwrap();
+            assert_eq!(wide.color(), image::ColorType::L16, "{name}");
+            let narrow = image::open(out8.join(&name)).unwrap().into_luma8();
+            assert_ne!(narrow, high_byte(&frame16(c, j)), "{name} corrupted");
+            let expected: Vec<u16> = narrow.iter().map(|&v| v as u16 * 257).collect();
+            assert!(wide.into_luma16().into_raw() == expected, "{name}");
         }
     }
     assert_same_files(&input.join("dso"), &out.join("dso"), &DSO_FILES);
@@ -399,36 +417,35 @@ fn perturb_tumvi_image_corruptions_run_on_an_8_bit_copy_and_are_refused_on_16_bi
         &["imu0/data.csv", "mocap0/data.csv", "cam0/data.csv"],
     );
 
-    let ws = Workspace::new();
-    write_tum_vi_style(&ws.path("seq"), false);
-    for spec in ["gaussian_noise:3", "cam1:fog:2,imu_noise:2"] {
+    // A frame of another bit depth than the camera's first is refused when it is read.
+    for (first_eight_bit, odd_frame, expected) in [
+        (true, 2, "16-bit samples, but the GPU frames are 8-bit"),
+        (false, 1, "expected a 16-bit grey PNG"),
+    ] {
+        let ws = Workspace::new();
+        write_tum_vi_style(&ws.path("mixed"), first_eight_bit);
+        let odd = format!("mixed/mav0/cam0/data/{}.png", STAMPS[odd_frame]);
+        if first_eight_bit {
+            frame16(0, odd_frame).save(ws.path(&odd)).unwrap();
+        } else {
+            high_byte(&frame16(0, odd_frame))
+                .save(ws.path(&odd))
+                .unwrap();
+        }
         let err = ws
-            .rslam(&["perturb", "--input", "seq", "--out", "x", "--perturb", spec])
-            .fails_with(
-                2,
-                &["16-bit grey frames, but image corruptions run on 8-bit frames"],
-            );
+            .rslam(&[
+                "perturb",
+                "--input",
+                "mixed",
+                "--out",
+                "y",
+                "--perturb",
+                "gaussian_noise:3",
+            ])
+            .fails_with(2, &[&odd, expected]);
         assert_eq!(error_lines(&err), 1, "{err}");
-        assert!(err.contains(&format!("{}.png", STAMPS[0])), "{err}");
-        assert!(!ws.path("x").exists());
+        assert!(!ws.path("y/rslam.json").exists());
     }
-    // A 16-bit frame among 8-bit ones is refused when it is read, not cut to its high byte.
-    write_tum_vi_style(&ws.path("mixed"), true);
-    let odd = format!("mixed/mav0/cam0/data/{}.png", STAMPS[2]);
-    frame16(0, 2).save(ws.path(&odd)).unwrap();
-    let err = ws
-        .rslam(&[
-            "perturb",
-            "--input",
-            "mixed",
-            "--out",
-            "y",
-            "--perturb",
-            "gaussian_noise:3",
-        ])
-        .fails_with(2, &[&odd, "16-bit samples, but the GPU frames are 8-bit"]);
-    assert_eq!(error_lines(&err), 1, "{err}");
-    assert!(!ws.path("y/rslam.json").exists());
 }
 
 #[test]

@@ -72,18 +72,34 @@ pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
     Ok(out)
 }
 
-/// 8-bit grey PNG of `image`'s luma, `round(0.299 R + 0.587 G + 0.114 B)` (ITU-R BT.601, as
-/// OpenCV's `COLOR_RGB2GRAY`; EuRoC's cameras are grey).
-pub fn encode_grey_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
-    let grey: Vec<u8> = image
+/// `image`'s luma, `round(0.299 R + 0.587 G + 0.114 B)` (ITU-R BT.601, as OpenCV's
+/// `COLOR_RGB2GRAY`).
+fn luma8(image: &RgbImage) -> impl Iterator<Item = u8> + '_ {
+    image
         .data
         .chunks_exact(3)
         .map(|p| (0.299 * p[0] as f64 + 0.587 * p[1] as f64 + 0.114 * p[2] as f64).round() as u8)
-        .collect();
+}
+
+/// 8-bit grey PNG of `image`'s luma (EuRoC's cameras are grey).
+pub fn encode_grey_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
+    let grey: Vec<u8> = luma8(image).collect();
     let mut out = Vec::new();
     png_encoder(&mut out)
         .write_image(&grey, image.width, image.height, ExtendedColorType::L8)
         .map_err(|e| encode_failed("grey PNG", e))?;
+    Ok(out)
+}
+
+/// 16-bit grey PNG of `image`'s 8-bit luma times 257, so that full scale stays full scale and
+/// the high byte, which [`read_grey16_high_byte`] and OpenCV's 8-bit read take, is the luma.
+pub fn encode_grey16_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
+    let grey: Vec<u16> = luma8(image).map(|v| v as u16 * 257).collect();
+    let native: &[u8] = bytemuck::cast_slice(&grey);
+    let mut out = Vec::new();
+    png_encoder(&mut out)
+        .write_image(native, image.width, image.height, ExtendedColorType::L16)
+        .map_err(|e| encode_failed("16-bit grey PNG", e))?;
     Ok(out)
 }
 
@@ -188,6 +204,25 @@ pub fn read_rgb8(path: &Path) -> Result<RgbImage, CoreError> {
         ));
     }
     Ok(rgb_of(image))
+}
+
+/// A 16-bit grey PNG as 8-bit RGB (R = G = B) of each sample's high byte, as libpng's
+/// `png_set_strip_16` (OpenCV's 8-bit read) makes it.
+pub fn read_grey16_high_byte(path: &Path) -> Result<RgbImage, CoreError> {
+    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
+    let image::DynamicImage::ImageLuma16(grey) =
+        decode(&bytes).map_err(|message| CoreError::bad_file(path, message))?
+    else {
+        return Err(CoreError::bad_file(
+            path,
+            "expected a 16-bit grey PNG, as the camera's first frame is",
+        ));
+    };
+    Ok(RgbImage {
+        width: grey.width(),
+        height: grey.height(),
+        data: grey.iter().flat_map(|&v| [(v >> 8) as u8; 3]).collect(),
+    })
 }
 
 fn rgb_of(image: image::DynamicImage) -> RgbImage {

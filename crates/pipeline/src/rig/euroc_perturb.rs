@@ -16,9 +16,10 @@
 //!
 //! TUM-VI's EuRoC-style export (`dataset-room1_512_16/`) goes the same way with its own
 //! calibration files ([`TumViFiles`]): no sensor.yaml or ORB-SLAM3 settings are written, the
-//! manifest's layout is `tum-vi`. Its frames are 16-bit grey: image corruptions on them are
-//! refused (the GPU frames are 8-bit and would drop the low byte); IMU and `@calibration` items
-//! copy them byte for byte.
+//! manifest's layout is `tum-vi`. Its frames are 16-bit grey: a corrupted one is made from the
+//! frame's high byte (the GPU frames are 8-bit, as OpenCV reads such a PNG into 8 bits) and
+//! written 16-bit as 257 × its 8-bit value; the manifest says so. Frames of a camera without
+//! image corruptions are copied byte for byte.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -117,21 +118,15 @@ fn check_file_names(dataset: &EurocDataset) -> Result<(), PipelineError> {
     Ok(())
 }
 
-/// Refuses image corruptions on a camera whose frames are 16-bit (TUM-VI's): the GPU frames are
-/// 8-bit, so its corrupted copy would lose the low byte of every pixel.
-fn check_bit_depth(dataset: &EurocDataset, specs: &[PerturbSpec]) -> Result<(), PipelineError> {
-    for (camera, spec) in dataset.cameras.iter().zip(specs) {
-        let (Some(first), false) = (camera.frames.first(), spec.image.is_empty()) else {
-            continue;
-        };
-        if camera.camera.colour == CameraColour::Grey16 {
-            return Err(PipelineError::input(
-                &first.path,
-                format!("{}: 16-bit grey frames, but image corruptions run on 8-bit frames on the GPU and would drop the low 8 bits; IMU and @calibration items work on this input (its frames are copied byte for byte)", camera.camera.name),
-            ));
+/// How a camera's frames were written, for the manifest.
+fn written_frames(colour: CameraColour, spec: &PerturbSpec) -> &'static str {
+    match (spec.image.is_empty(), colour) {
+        (true, _) => "copied byte for byte",
+        (false, CameraColour::Grey16) => {
+            "corrupted from each 16-bit sample's high byte (the GPU frames are 8-bit) and written 16-bit as 257 x the 8-bit result: the low byte is not kept"
         }
+        (false, CameraColour::Grey | CameraColour::Rgb) => "corrupted",
     }
-    Ok(())
 }
 
 fn read_bytes(path: &Path) -> Result<Vec<u8>, PipelineError> {
@@ -223,7 +218,11 @@ fn write_camera(
         }
         return Ok(None);
     }
-    let source = EurocCameraSource::new(camera.frames.clone(), camera.camera.intrinsics);
+    let source = EurocCameraSource::new(
+        camera.frames.clone(),
+        camera.camera.intrinsics,
+        camera.camera.colour,
+    );
     let mut pipeline = Pipeline::new(ctx, source, spec, seed)?;
     let mut sink = EurocCameraSink::new(writer.clone(), index, times_ns);
     let sources: Vec<usize> = (kept..camera.frames.len()).collect();
@@ -261,7 +260,6 @@ pub fn perturb_euroc(
         .iter()
         .map(|c| job.spec.for_camera(&c.camera.name))
         .collect();
-    check_bit_depth(&dataset, &specs)?;
     let cam0_times = times_s(cam0);
     let cam0_plan = FramePlan::recorded(
         &SourceTiming {
@@ -299,11 +297,12 @@ pub fn perturb_euroc(
         "adapter": ctx.describe(),
         "layout": if tum_vi.is_some() { "tum-vi" } else { "euroc" },
         "input": "recorded",
-        "cameras": dataset.cameras.iter().zip(&seeds).map(|(c, seed)| serde_json::json!({
+        "cameras": dataset.cameras.iter().zip(&seeds).zip(&specs).map(|((c, seed), spec)| serde_json::json!({
             "name": c.camera.name,
             "frames": c.frames.len(),
             "rate_hz": c.camera.rate_hz,
             "seed": seed,
+            "written_frames": written_frames(c.camera.colour, spec),
         })).collect::<Vec<_>>(),
         "imu": dataset.imu.as_ref().map(|_| serde_json::json!({
             "samples": imu_samples,

@@ -1,11 +1,12 @@
 //! One camera of a recorded EuRoC dataset as a frame source: its PNGs decoded ahead of the GPU,
 //! grey frames widened to the RGB the frame textures take (R = G = B, so a grey frame written
-//! back grey is the same bytes); a 16-bit frame is refused, not cut to 8 bits.
+//! back grey is the same bytes). A 16-bit grey camera's frames (TUM-VI's) are taken at their
+//! high byte, as OpenCV reads them into 8 bits: the GPU frames are 8-bit.
 
 use std::path::Path;
 
-use rslam_core::dataset::euroc::EurocFrame;
-use rslam_core::dataset::read_rgb8;
+use rslam_core::dataset::euroc::{CameraColour, EurocFrame};
+use rslam_core::dataset::{read_grey16_high_byte, read_rgb8};
 use rslam_core::{Intrinsics, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
@@ -17,15 +18,17 @@ use crate::PipelineError;
 pub struct EurocCameraSource {
     frames: Vec<EurocFrame>,
     intrinsics: Intrinsics,
+    colour: CameraColour,
     /// Each needed frame's colour, decoded with its source index.
     decoder: Option<DecodeAhead<(usize, RgbImage)>>,
 }
 
 impl EurocCameraSource {
-    pub fn new(frames: Vec<EurocFrame>, intrinsics: Intrinsics) -> Self {
+    pub fn new(frames: Vec<EurocFrame>, intrinsics: Intrinsics, colour: CameraColour) -> Self {
         Self {
             frames,
             intrinsics,
+            colour,
             decoder: None,
         }
     }
@@ -50,8 +53,12 @@ impl FrameSource for EurocCameraSource {
             .iter()
             .map(|&s| (s, self.frames[s].clone()))
             .collect();
-        self.decoder = Some(DecodeAhead::start(needed, |(index, frame)| {
-            Ok((*index, read_rgb8(&frame.path)?))
+        let read = match self.colour {
+            CameraColour::Grey16 => read_grey16_high_byte,
+            CameraColour::Grey | CameraColour::Rgb => read_rgb8,
+        };
+        self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
+            Ok((*index, read(&frame.path)?))
         }));
         Ok(())
     }

@@ -13,7 +13,8 @@ use super::{
 };
 use crate::dataset::orbslam3::{stereo_inertial_settings, stereo_pair_problem, stereo_settings};
 use crate::dataset::{
-    encode_grey_png, encode_png, is_bookkeeping, refuse_symlinks, ContentWriter, Manifest,
+    encode_grey16_png, encode_grey_png, encode_png, is_bookkeeping, refuse_symlinks, ContentWriter,
+    Manifest,
 };
 use crate::{CoreError, Pose, RgbImage};
 
@@ -285,11 +286,10 @@ impl EurocWriter {
     ) -> Result<(), CoreError> {
         let stream = self.camera(camera)?;
         let name = &stream.camera.name;
-        let dir = || self.root().join(MAV_DIR).join(name);
         let k = &stream.camera.intrinsics;
         if (image.width, image.height) != (k.width, k.height) {
             return Err(CoreError::bad_file(
-                dir(),
+                self.root().join(MAV_DIR).join(name),
                 format!(
                     "{name}: {}x{} image: expected the camera's {}x{}",
                     image.width, image.height, k.width, k.height
@@ -300,14 +300,7 @@ impl EurocWriter {
         let bytes = match stream.camera.colour {
             CameraColour::Grey => encode_grey_png(image)?,
             CameraColour::Rgb => encode_png(image)?,
-            CameraColour::Grey16 => {
-                return Err(CoreError::bad_file(
-                    dir(),
-                    format!(
-                        "{name}: 16-bit grey frames can be copied, not encoded from 8-bit images"
-                    ),
-                ))
-            }
+            CameraColour::Grey16 => encode_grey16_png(image)?,
         };
         self.content
             .write(&format!("{MAV_DIR}/{name}/data/{t_ns}.png"), &bytes)
