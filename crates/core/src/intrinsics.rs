@@ -82,8 +82,6 @@ impl Intrinsics {
         Ok(k)
     }
 
-    /// Whether this is a camera rslam can use: 1 to [`MAX_IMAGE_SIDE`] pixels a side, positive
-    /// finite focal lengths, a finite principal point. The error says what is wrong.
     /// A camera from EuRoC's and Kalibr's `resolution: [w, h]` and `intrinsics: [fu, fv, cu,
     /// cv]`, checked as [`Intrinsics::check`] does.
     pub fn from_pinhole(
@@ -102,6 +100,8 @@ impl Intrinsics {
         Ok(camera)
     }
 
+    /// Whether this is a camera rslam can use: 1 to [`MAX_IMAGE_SIDE`] pixels a side, positive
+    /// finite focal lengths, a finite principal point. The error says what is wrong.
     pub fn check(&self) -> Result<(), String> {
         for (name, side) in [("width", self.width), ("height", self.height)] {
             if !(1..=MAX_IMAGE_SIDE).contains(&side) {

@@ -142,8 +142,13 @@ pub fn encode_depth_png(
 
 /// Reads a colour image (PNG or JPEG); alpha and 16-bit depth are dropped to 8-bit RGB.
 pub fn read_rgb(path: &Path) -> Result<RgbImage, CoreError> {
+    Ok(rgb_of(read_decoded(path)?))
+}
+
+/// The PNG or JPEG at `path`, decoded as it is stored.
+fn read_decoded(path: &Path) -> Result<image::DynamicImage, CoreError> {
     let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
-    decode_rgb(&bytes).map_err(|message| CoreError::bad_file(path, message))
+    decode(&bytes).map_err(|message| CoreError::bad_file(path, message))
 }
 
 /// Width and height of a PNG or JPEG from its header, without decoding the pixels.
@@ -194,8 +199,7 @@ pub fn decode_rgb(bytes: &[u8]) -> Result<RgbImage, String> {
 /// [`read_rgb`] for a frame whose every bit must reach the 8-bit GPU frames: an image with
 /// 16-bit samples is refused rather than cut to its high byte.
 pub fn read_rgb8(path: &Path) -> Result<RgbImage, CoreError> {
-    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
-    let image = decode(&bytes).map_err(|message| CoreError::bad_file(path, message))?;
+    let image = read_decoded(path)?;
     let colour = image.color();
     if colour.bytes_per_pixel() > colour.channel_count() {
         return Err(CoreError::bad_file(
@@ -209,10 +213,7 @@ pub fn read_rgb8(path: &Path) -> Result<RgbImage, CoreError> {
 /// A 16-bit grey PNG as 8-bit RGB (R = G = B) of each sample's high byte, as libpng's
 /// `png_set_strip_16` (OpenCV's 8-bit read) makes it.
 pub fn read_grey16_high_byte(path: &Path) -> Result<RgbImage, CoreError> {
-    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
-    let image::DynamicImage::ImageLuma16(grey) =
-        decode(&bytes).map_err(|message| CoreError::bad_file(path, message))?
-    else {
+    let image::DynamicImage::ImageLuma16(grey) = read_decoded(path)? else {
         return Err(CoreError::bad_file(
             path,
             "expected a 16-bit grey PNG, as the camera's first frame is",
