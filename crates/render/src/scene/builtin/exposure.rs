@@ -13,7 +13,7 @@ use crate::Mesh;
 /// Linear luminance of the area-weighted median surface (sRGB 0.30). The open walls and floor,
 /// lit more than the average surface, land at sRGB 0.36–0.59, and a frame's mean near the
 /// mid-grey (18 % linear, sRGB 0.46) that a camera's auto-exposure aims for: along the default
-/// paths the median frame mean is 0.44 in room0 and 0.49 in office0. Twice this value (0.60 and
+/// paths the median frame mean is 0.46 in room0 and 0.50 in office0. Twice this value (0.60 and
 /// 0.62) exposed a stop brighter than a camera would.
 const MEDIAN_RADIANCE: f32 = 0.075;
 

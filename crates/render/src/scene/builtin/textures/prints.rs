@@ -5,6 +5,7 @@ use std::f32::consts::TAU;
 
 use super::super::rng::{hash3, unit};
 use super::noise::{cell, fbm, grid_distance, hsv, mix, scale, Rgb};
+use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
 
 /// Blocky text: 3 × 5 glyphs from hash bits, words separated by blanks, ragged line ends.
 fn text_ink(seed: u64, x: f32, y: f32, glyph_w: f32, line_h: f32, line_len: f32) -> bool {
@@ -330,8 +331,23 @@ pub fn whiteboard(seed: u64, u: f32, v: f32) -> Rgb {
     c
 }
 
-/// The view out of a window: sky, clouds, a row of buildings with lit windows, trees.
+/// Daylight outside over the light of the room, as a linear factor on the outside scene: three
+/// stops, so the sky lands at 15 to 30 times an open wall (daylight through a window is 10 to 100
+/// times an interior's luminance).
+const DAYLIGHT_GAIN: f32 = 8.0;
+
+/// The view out of a window as a camera metered for the room sees it: the sky, the clouds and the
+/// sunlit façades clip to white, and only the darker glazing and the trees keep some texture, in
+/// the top of the range.
 pub fn window_view(seed: u64, u: f32, v: f32) -> Rgb {
+    outside(seed, u, v).map(|c| {
+        let light = srgb_to_linear((c.clamp(0.0, 1.0) * 255.0).round() as u8) * DAYLIGHT_GAIN;
+        linear_to_srgb(light) as f32 / 255.0
+    })
+}
+
+/// Sky, clouds, a row of buildings with lit windows, trees.
+fn outside(seed: u64, u: f32, v: f32) -> Rgb {
     let skyline = 0.35 + 0.25 * cell(seed, (u * 7.0) as i64, 0, 1);
     let treeline = 0.72 + 0.12 * fbm(seed, u, 0.0, [9, 1], 3);
     if v > treeline {

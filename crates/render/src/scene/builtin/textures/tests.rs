@@ -123,3 +123,45 @@ fn tiling_patterns_have_no_seam() {
         );
     }
 }
+
+/// A camera metered for the room sees daylight three stops brighter: the sky and the sunlit
+/// façades clip (without the gain only the clouds would), nothing outside is darker than the
+/// room's mid-grey, and the glazing and trees still vary.
+#[test]
+fn the_view_through_a_window_is_exposed_for_the_room_clipped_sky_and_bright_texture() {
+    let n = (TEXTURE_SIZE * TEXTURE_SIZE) as f32;
+    for seed in [1, 2, 3, 4] {
+        let t = TextureSpec {
+            pattern: Pattern::WindowView,
+            seed,
+        }
+        .generate();
+        let white = t
+            .rgba
+            .chunks_exact(4)
+            .filter(|p| p[..3] == [255; 3])
+            .count() as f32
+            / n;
+        let unclipped: Vec<f32> = (0..t.width * t.height)
+            .map(|i| luma(&t, i % t.width, i / t.width))
+            .filter(|&l| l < 1.0)
+            .collect();
+        let darkest = unclipped.iter().copied().fold(1.0, f32::min);
+        let mean = unclipped.iter().sum::<f32>() / unclipped.len() as f32;
+        let spread = (unclipped.iter().map(|l| (l - mean).powi(2)).sum::<f32>()
+            / unclipped.len() as f32)
+            .sqrt();
+        assert!(
+            white > 0.6,
+            "seed {seed}: only {white:.2} of the view clips"
+        );
+        assert!(
+            darkest > 0.45,
+            "seed {seed}: a texel outside at luma {darkest:.2}"
+        );
+        assert!(
+            spread > 0.03,
+            "seed {seed}: what does not clip has a luma spread of {spread:.3}"
+        );
+    }
+}
