@@ -36,15 +36,23 @@ fn luma(t: &Texture, x: u32, y: u32) -> f32 {
     (0.299 * t.rgba[i] as f32 + 0.587 * t.rgba[i + 1] as f32 + 0.114 * t.rgba[i + 2] as f32) / 255.0
 }
 
+fn lumas(t: &Texture) -> Vec<f32> {
+    (0..t.width * t.height)
+        .map(|i| luma(t, i % t.width, i / t.width))
+        .collect()
+}
+
+/// Standard deviation of luma values.
+fn luma_spread(values: &[f32]) -> f32 {
+    let mean = values.iter().sum::<f32>() / values.len() as f32;
+    (values.iter().map(|v| (v - mean).powi(2)).sum::<f32>() / values.len() as f32).sqrt()
+}
+
 /// Mean linear luminance and standard deviation of luma.
 fn albedo_and_contrast(t: &Texture) -> (f32, f32) {
     use crate::scene::srgb::srgb_to_linear;
     let n = (t.width * t.height) as usize;
-    let values: Vec<f32> = (0..t.width * t.height)
-        .map(|i| luma(t, i % t.width, i / t.width))
-        .collect();
-    let mean = values.iter().sum::<f32>() / n as f32;
-    let std = (values.iter().map(|v| (v - mean).powi(2)).sum::<f32>() / n as f32).sqrt();
+    let std = luma_spread(&lumas(t));
     let albedo = t
         .rgba
         .chunks_exact(4)
@@ -142,15 +150,9 @@ fn the_view_through_a_window_is_exposed_for_the_room_clipped_sky_and_bright_text
             .filter(|p| p[..3] == [255; 3])
             .count() as f32
             / n;
-        let unclipped: Vec<f32> = (0..t.width * t.height)
-            .map(|i| luma(&t, i % t.width, i / t.width))
-            .filter(|&l| l < 1.0)
-            .collect();
+        let unclipped: Vec<f32> = lumas(&t).into_iter().filter(|&l| l < 1.0).collect();
         let darkest = unclipped.iter().copied().fold(1.0, f32::min);
-        let mean = unclipped.iter().sum::<f32>() / unclipped.len() as f32;
-        let spread = (unclipped.iter().map(|l| (l - mean).powi(2)).sum::<f32>()
-            / unclipped.len() as f32)
-            .sqrt();
+        let spread = luma_spread(&unclipped);
         assert!(
             white > 0.6,
             "seed {seed}: only {white:.2} of the view clips"
