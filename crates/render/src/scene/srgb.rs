@@ -34,6 +34,11 @@ pub fn srgb_to_linear(v: u8) -> f32 {
     DECODE[v as usize]
 }
 
+/// An sRGB value in [0, 1] (clamped) as linear light, through its nearest byte.
+pub fn unit_srgb_to_linear(c: f32) -> f32 {
+    srgb_to_linear((c.clamp(0.0, 1.0) * 255.0).round() as u8)
+}
+
 pub fn linear_to_srgb(c: f32) -> u8 {
     ENCODE[(c.clamp(0.0, 1.0) * ENCODE_STEPS as f32).round() as usize]
 }

@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use super::exposure::exposure;
 use super::lighting::{bake, BakeInput, Lighting, Window};
 use super::textures::Rgb;
-use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
+use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
 use crate::{Mesh, Vertex};
 
 /// Largest edge of one quad cell, metres; bounds the spacing of the baked lighting samples.
@@ -342,5 +342,5 @@ impl MeshBuilder {
 
 /// An sRGB tint in [0, 1] as linear light.
 fn linear(t: Rgb) -> Vec3 {
-    Vec3::from(t.map(|c| srgb_to_linear((c.clamp(0.0, 1.0) * 255.0).round() as u8)))
+    Vec3::from(t.map(unit_srgb_to_linear))
 }

@@ -5,7 +5,7 @@ use std::f32::consts::TAU;
 
 use super::super::rng::{hash3, unit};
 use super::noise::{cell, fbm, grid_distance, hsv, mix, scale, Rgb};
-use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
+use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
 
 /// Blocky text: 3 × 5 glyphs from hash bits, words separated by blanks, ragged line ends.
 fn text_ink(seed: u64, x: f32, y: f32, glyph_w: f32, line_h: f32, line_len: f32) -> bool {
@@ -341,7 +341,7 @@ const DAYLIGHT_GAIN: f32 = 8.0;
 /// the top of the range.
 pub fn window_view(seed: u64, u: f32, v: f32) -> Rgb {
     outside(seed, u, v).map(|c| {
-        let light = srgb_to_linear((c.clamp(0.0, 1.0) * 255.0).round() as u8) * DAYLIGHT_GAIN;
+        let light = unit_srgb_to_linear(c) * DAYLIGHT_GAIN;
         linear_to_srgb(light) as f32 / 255.0
     })
 }
