@@ -32,9 +32,21 @@ impl RgbImage {
     /// From RGBA rows that start every `row_stride` bytes (GPU readback pads them); alpha is
     /// dropped.
     pub fn from_rgba_rows(width: u32, height: u32, rgba: &[u8], row_stride: usize) -> Self {
+        Self::from_rgba_rows_in(Vec::new(), width, height, rgba, row_stride)
+    }
+
+    /// [`RgbImage::from_rgba_rows`] written into `buffer`'s memory: a buffer of an image of the
+    /// same size is overwritten as it is, with no allocation and no zeroing.
+    pub fn from_rgba_rows_in(
+        mut buffer: Vec<u8>,
+        width: u32,
+        height: u32,
+        rgba: &[u8],
+        row_stride: usize,
+    ) -> Self {
         let row = width as usize * 4;
-        let mut data = vec![0u8; width as usize * height as usize * 3];
-        for (to, from) in data
+        buffer.resize(width as usize * height as usize * 3, 0);
+        for (to, from) in buffer
             .chunks_exact_mut(width as usize * 3)
             .zip(rgba.chunks(row_stride))
         {
@@ -45,7 +57,7 @@ impl RgbImage {
         Self {
             width,
             height,
-            data,
+            data: buffer,
         }
     }
 
@@ -78,16 +90,31 @@ impl DepthImage {
     /// From native-endian f32 rows `row_stride` bytes apart (a padded GPU readback), one row copy
     /// at a time: an element-wise unpack of mapped GPU memory cost 5 ms a 1200×680 frame.
     pub fn from_f32_rows(width: u32, height: u32, bytes: &[u8], row_stride: usize) -> Self {
-        let mut image = Self::new(width, height);
+        Self::from_f32_rows_in(Vec::new(), width, height, bytes, row_stride)
+    }
+
+    /// [`DepthImage::from_f32_rows`] written into `buffer`'s memory, as
+    /// [`RgbImage::from_rgba_rows_in`].
+    pub fn from_f32_rows_in(
+        mut buffer: Vec<f32>,
+        width: u32,
+        height: u32,
+        bytes: &[u8],
+        row_stride: usize,
+    ) -> Self {
         let row = width as usize * 4;
-        for (to, from) in image
-            .data
+        buffer.resize(width as usize * height as usize, 0.0);
+        for (to, from) in buffer
             .chunks_exact_mut(width as usize)
             .zip(bytes.chunks(row_stride))
         {
             bytemuck::cast_slice_mut::<f32, u8>(to).copy_from_slice(&from[..row]);
         }
-        image
+        Self {
+            width,
+            height,
+            data: buffer,
+        }
     }
 
     /// Quantise to 16-bit with `scale` units per metre (rounded, saturating), as depth PNGs store it.

@@ -1,4 +1,6 @@
-use rslam_core::{DepthImage, RgbImage};
+use std::sync::Arc;
+
+use rslam_core::{DepthImage, ImagePool, RgbImage};
 
 use crate::{FrameReadback, FrameTextures, GpuContext, GpuError};
 
@@ -17,9 +19,11 @@ struct Slot {
 }
 
 /// Several frames in flight: frame `i` uses slot `i % n`; its textures and staging buffers are
-/// allocated once and reused. Submitting into a busy slot first reads the older frame back.
+/// allocated once and reused. Submitting into a busy slot first reads the older frame back, into
+/// image buffers the ring's pool was handed back where it has them.
 pub struct FrameRing {
     slots: Vec<Slot>,
+    images: Arc<ImagePool>,
 }
 
 impl FrameRing {
@@ -29,6 +33,7 @@ impl FrameRing {
         height: u32,
         in_flight: usize,
         with_depth: bool,
+        images: Arc<ImagePool>,
     ) -> Self {
         let slots = (0..in_flight.max(1))
             .map(|_| Slot {
@@ -37,7 +42,7 @@ impl FrameRing {
                 pending: None,
             })
             .collect();
-        Self { slots }
+        Self { slots, images }
     }
 
     /// Records frame `index` through `record` (render, perturb …) followed by the readback copy,
@@ -51,7 +56,7 @@ impl FrameRing {
         let n = self.slots.len();
         let slot = &mut self.slots[index % n];
         let finished = match slot.pending.take() {
-            Some((old, submission)) => Some(read_slot(ctx, slot, old, submission)?),
+            Some((old, submission)) => Some(read_slot(ctx, slot, old, submission, &self.images)?),
             None => None,
         };
         let mut encoder = ctx
@@ -77,7 +82,7 @@ impl FrameRing {
         for i in order {
             let slot = &mut self.slots[i];
             if let Some((index, submission)) = slot.pending.take() {
-                frames.push(read_slot(ctx, slot, index, submission)?);
+                frames.push(read_slot(ctx, slot, index, submission, &self.images)?);
             }
         }
         Ok(frames)
@@ -89,8 +94,9 @@ fn read_slot(
     slot: &Slot,
     index: usize,
     submission: wgpu::SubmissionIndex,
+    images: &ImagePool,
 ) -> Result<ReadFrame, GpuError> {
-    let (color, depth) = slot.readback.read(ctx, submission)?;
+    let (color, depth) = slot.readback.read_into(ctx, submission, images)?;
     Ok(ReadFrame {
         index,
         color,

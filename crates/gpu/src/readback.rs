@@ -1,6 +1,6 @@
 use std::sync::mpsc;
 
-use rslam_core::{DepthImage, RgbImage};
+use rslam_core::{DepthImage, ImagePool, RgbImage};
 
 use crate::{FrameTextures, GpuContext, GpuError};
 
@@ -71,19 +71,29 @@ impl FrameReadback {
         ctx: &GpuContext,
         submission: wgpu::SubmissionIndex,
     ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
+        self.read_into(ctx, submission, &ImagePool::default())
+    }
+
+    /// [`FrameReadback::read`] into buffers `images` was handed back, where it has them.
+    pub fn read_into(
+        &self,
+        ctx: &GpuContext,
+        submission: wgpu::SubmissionIndex,
+        images: &ImagePool,
+    ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
         // A failed submission shows up here first, with the real cause.
         ctx.check()?;
         map_and_wait(ctx, self.buffers(), submission)?;
         let padded = self.padded_row_bytes as usize;
         let color = {
             let view = self.color.get_mapped_range(..).map_err(readback_failed)?;
-            RgbImage::from_rgba_rows(self.width, self.height, &view, padded)
+            images.rgb_from_rgba_rows(self.width, self.height, &view, padded)
         };
         self.color.unmap();
         let depth = match &self.depth {
             Some(buffer) => {
                 let view = buffer.get_mapped_range(..).map_err(readback_failed)?;
-                let depth = DepthImage::from_f32_rows(self.width, self.height, &view, padded);
+                let depth = images.depth_from_f32_rows(self.width, self.height, &view, padded);
                 drop(view);
                 buffer.unmap();
                 Some(depth)

@@ -5,11 +5,30 @@ use std::sync::mpsc::{sync_channel, Receiver};
 use std::thread::JoinHandle;
 
 use rayon::prelude::*;
+use rslam_core::RgbImage;
 
 use crate::PipelineError;
 
 /// Frames decoded together, in parallel.
 const DECODE_AHEAD: usize = 4;
+
+/// A decoded colour image in the GPU texture's RGBA layout: converted on the decoding threads, so
+/// that the frame loop's upload is one copy.
+pub struct RgbaFrame {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+}
+
+impl From<RgbImage> for RgbaFrame {
+    fn from(image: RgbImage) -> Self {
+        Self {
+            width: image.width,
+            height: image.height,
+            rgba: image.to_rgba(),
+        }
+    }
+}
 
 pub struct DecodeAhead<T> {
     frames: Option<Receiver<Result<T, PipelineError>>>,

@@ -12,12 +12,12 @@ use std::sync::Arc;
 use rslam_core::dataset::{
     encode_rgb_like, read_image_size, read_rgb, ContentWriter, DepthPng, Manifest,
 };
-use rslam_core::{CoreError, RgbImage};
+use rslam_core::{CoreError, ImagePool, RgbImage};
 use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Perturber};
 
 use crate::dataset_run::RunReport;
-use crate::decode_ahead::DecodeAhead;
+use crate::decode_ahead::{DecodeAhead, RgbaFrame};
 use crate::encoder_pool::EncoderPool;
 use crate::frame_loop::FrameRun;
 use crate::manifest::ManifestParts;
@@ -203,6 +203,7 @@ fn run_images(
         .map(|&i| read_image_size(&files[i]))
         .collect::<Result<Vec<_>, _>>()?;
     let pool = EncoderPool::per_core();
+    let images = Arc::new(ImagePool::default());
     progress.start(indices.len(), "perturbing");
     let mut perturbers: HashMap<(u32, u32), Perturber> = HashMap::new();
     for run in runs_of_equal_size(&sizes) {
@@ -216,13 +217,14 @@ fn run_images(
         };
         let sources: Vec<usize> = indices[run].to_vec();
         let paths: Vec<PathBuf> = sources.iter().map(|&i| files[i].clone()).collect();
-        let decoder = DecodeAhead::start(paths, |file| Ok(read_rgb(file)?));
+        let decoder = DecodeAhead::start(paths, |file| Ok(RgbaFrame::from(read_rgb(file)?)));
         FrameRun {
             ctx,
             width,
             height,
             sources: &sources,
             with_depth: false,
+            images: images.clone(),
         }
         .run(
             progress,
@@ -237,13 +239,17 @@ fn run_images(
                         ),
                     ));
                 }
-                frame.upload(ctx, &color, None);
+                frame.upload_rgba(ctx, &color.rgba, None);
                 perturber.encode(ctx, encoder, frame, index as u32)?;
                 Ok(())
             },
             |frame| {
-                let destination = destination.clone();
-                pool.submit(move || destination.write(frame.index, &frame.color))
+                let (destination, images) = (destination.clone(), images.clone());
+                pool.submit(move || {
+                    destination.write(frame.index, &frame.color)?;
+                    images.give_rgb(frame.color);
+                    Ok(())
+                })
             },
         )?;
     }

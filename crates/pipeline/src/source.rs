@@ -11,7 +11,7 @@ use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
-use crate::decode_ahead::{next_frame, DecodeAhead};
+use crate::decode_ahead::{next_frame, DecodeAhead, RgbaFrame};
 use crate::lens_render::LensRender;
 use crate::shutter_render::ShutterRender;
 use crate::PipelineError;
@@ -178,7 +178,7 @@ impl FrameSource for SceneSource {
 }
 
 struct Decoded {
-    color: RgbImage,
+    color: RgbaFrame,
     depth: Option<DepthImage>,
 }
 
@@ -224,7 +224,7 @@ impl FrameSource for DatasetSource {
         let scale = self.depth_scale;
         self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
             let decoded = Decoded {
-                color: read_rgb(&frame.rgb)?,
+                color: read_rgb(&frame.rgb)?.into(),
                 depth: match &frame.depth {
                     Some(path) => Some(decode_depth_png(path, scale)?),
                     None => None,
@@ -253,7 +253,7 @@ impl FrameSource for DatasetSource {
         if let (Some(path), Some(depth)) = (&file.depth, &decoded.depth) {
             check_size(path, depth.width, depth.height, self.intrinsics)?;
         }
-        frame.upload(ctx, &decoded.color, decoded.depth.as_ref());
+        frame.upload_rgba(ctx, &decoded.color.rgba, decoded.depth.as_ref());
         Ok(())
     }
 }

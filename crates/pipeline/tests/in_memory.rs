@@ -214,3 +214,54 @@ fn buffers_with_their_camera_take_depth_sensor_as_the_render_does() {
     let wrong = buffers().with_camera(other).err().unwrap().to_string();
     assert!(wrong.contains("expected the frames' size"), "{wrong}");
 }
+
+/// A dataset run reads frames back into the image buffers its encoders hand back once written;
+/// in memory every frame gets fresh ones. Enough frames that each buffer goes round several times
+/// whatever the number of encoder threads (at most two frames per thread and the ring's three
+/// are out at once).
+#[test]
+fn a_long_render_through_reused_image_buffers_writes_the_frames_made_one_at_a_time() {
+    let ctx = context();
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let count = 4 * (2 * threads + 4);
+    let job = SceneJob {
+        frames: Some(count),
+        ..scene_job("gaussian_noise:2@dynamic,depth_noise:3")
+    };
+    let mut frames = FramesInMemory::scene(ctx, &job).unwrap();
+    let all = collect(&mut frames, 0..count);
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ds");
+    render_dataset(
+        ctx,
+        &RenderJob {
+            scene: job,
+            out: out.clone(),
+            format: DatasetFormat::Tum,
+            depth_png: DepthPng::Fast,
+            force: false,
+            command: vec!["test".into()],
+        },
+        &Silent,
+    )
+    .unwrap();
+    for frame in &all {
+        let png = out.join(format!("rgb/{:.6}.png", frame.rgb_time));
+        assert_eq!(
+            read_rgb(&png).unwrap(),
+            frame.color,
+            "frame {}",
+            frame.index
+        );
+        let depth_png = out.join(format!("depth/{:.6}.png", frame.depth_time));
+        let written = decode_depth_png(&depth_png, 5000.0).unwrap();
+        let depth = frame.depth.as_ref().expect("scenes have depth");
+        let off = written
+            .data
+            .iter()
+            .zip(&depth.data)
+            .filter(|(a, b)| (*a - b.min(65535.0 / 5000.0)).abs() > DEPTH_STEP_M)
+            .count();
+        assert_eq!(off, 0, "frame {}: depth pixels off", frame.index);
+    }
+}

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::EurocWriter;
-use rslam_core::{DepthImage, RgbImage};
+use rslam_core::{DepthImage, ImagePool, RgbImage};
 
 use crate::encoder_pool::EncoderPool;
 use crate::sink::FrameSink;
@@ -19,6 +19,8 @@ pub struct EurocCameraSink {
     camera: usize,
     times_ns: Arc<Vec<u64>>,
     pool: EncoderPool,
+    /// Images handed back once written.
+    images: Arc<ImagePool>,
 }
 
 impl EurocCameraSink {
@@ -29,6 +31,7 @@ impl EurocCameraSink {
             times_ns: Arc::new(times_ns),
             // One worker keeps the frames in order; a queue of four lets the GPU run ahead.
             pool: EncoderPool::new(1, 4),
+            images: Arc::default(),
         }
     }
 
@@ -44,6 +47,10 @@ impl FrameSink for EurocCameraSink {
         false
     }
 
+    fn image_pool(&self) -> Arc<ImagePool> {
+        self.images.clone()
+    }
+
     fn accept(
         &mut self,
         source: usize,
@@ -56,8 +63,11 @@ impl FrameSink for EurocCameraSink {
                 self.camera
             )));
         };
-        let (writer, camera) = (self.writer.clone(), self.camera);
-        self.pool
-            .submit(move || Ok(writer.write_frame_ns(camera, t_ns, &color)?))
+        let (writer, camera, images) = (self.writer.clone(), self.camera, self.images.clone());
+        self.pool.submit(move || {
+            writer.write_frame_ns(camera, t_ns, &color)?;
+            images.give_rgb(color);
+            Ok(())
+        })
     }
 }

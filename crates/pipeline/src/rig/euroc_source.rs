@@ -7,10 +7,10 @@ use std::path::Path;
 
 use rslam_core::dataset::euroc::{CameraColour, EurocFrame};
 use rslam_core::dataset::{read_grey16_high_byte, read_rgb8};
-use rslam_core::{Intrinsics, RgbImage};
+use rslam_core::Intrinsics;
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
-use crate::decode_ahead::{next_frame, DecodeAhead};
+use crate::decode_ahead::{next_frame, DecodeAhead, RgbaFrame};
 use crate::source::{check_in_range, FrameSource};
 use crate::PipelineError;
 
@@ -20,7 +20,7 @@ pub struct EurocCameraSource {
     intrinsics: Intrinsics,
     colour: CameraColour,
     /// Each needed frame's colour, decoded with its source index.
-    decoder: Option<DecodeAhead<(usize, RgbImage)>>,
+    decoder: Option<DecodeAhead<(usize, RgbaFrame)>>,
 }
 
 impl EurocCameraSource {
@@ -58,7 +58,7 @@ impl FrameSource for EurocCameraSource {
             CameraColour::Grey | CameraColour::Rgb => read_rgb8,
         };
         self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
-            Ok((*index, read(&frame.path)?))
+            Ok((*index, RgbaFrame::from(read(&frame.path)?)))
         }));
         Ok(())
     }
@@ -72,12 +72,12 @@ impl FrameSource for EurocCameraSource {
     ) -> Result<(), PipelineError> {
         let color = next_frame(self.decoder.as_ref(), index)?;
         check_size(&self.frames[index].path, &color, self.intrinsics)?;
-        frame.upload(ctx, &color, None);
+        frame.upload_rgba(ctx, &color.rgba, None);
         Ok(())
     }
 }
 
-fn check_size(path: &Path, image: &RgbImage, camera: Intrinsics) -> Result<(), PipelineError> {
+fn check_size(path: &Path, image: &RgbaFrame, camera: Intrinsics) -> Result<(), PipelineError> {
     if (image.width, image.height) == (camera.width, camera.height) {
         return Ok(());
     }

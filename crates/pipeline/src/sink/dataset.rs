@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use rslam_core::dataset::{DatasetWriter, Manifest};
-use rslam_core::{DepthImage, RgbImage, Trajectory};
+use rslam_core::{DepthImage, ImagePool, RgbImage, Trajectory};
 
 use super::FrameSink;
 use crate::encoder_pool::EncoderPool;
@@ -20,6 +20,8 @@ pub const STATE_FILE: &str = "sensor_state.csv";
 pub struct DatasetSink<'a> {
     writer: Arc<DatasetWriter>,
     pool: EncoderPool,
+    /// Images handed back once every file made from them is written.
+    images: Arc<ImagePool>,
     plan: &'a FramePlan,
     outputs: HashMap<usize, SourceOutputs>,
     state: Option<StateTable>,
@@ -30,6 +32,7 @@ impl<'a> DatasetSink<'a> {
         Self {
             writer: Arc::new(writer),
             pool: EncoderPool::per_core(),
+            images: Arc::default(),
             outputs: plan.outputs_by_source(),
             plan,
             state: None,
@@ -88,6 +91,10 @@ fn state_csv(table: &StateTable, plan: &FramePlan) -> String {
 }
 
 impl FrameSink for DatasetSink<'_> {
+    fn image_pool(&self) -> Arc<ImagePool> {
+        self.images.clone()
+    }
+
     fn accept_state(&mut self, table: StateTable) -> Result<(), PipelineError> {
         self.state = Some(table);
         Ok(())
@@ -105,8 +112,14 @@ impl FrameSink for DatasetSink<'_> {
         let color = Arc::new(color);
         for &j in &outputs.rgb {
             let (writer, color, frame) = (self.writer.clone(), color.clone(), self.plan.frames[j]);
-            self.pool
-                .submit(move || Ok(writer.write_rgb(j, &frame, &color)?))?;
+            let images = self.images.clone();
+            self.pool.submit(move || {
+                writer.write_rgb(j, &frame, &color)?;
+                if let Some(color) = Arc::into_inner(color) {
+                    images.give_rgb(color);
+                }
+                Ok(())
+            })?;
         }
         let depth_outputs: Vec<_> = outputs
             .depth
@@ -114,9 +127,12 @@ impl FrameSink for DatasetSink<'_> {
             .map(|&j| (j, self.plan.frames[j]))
             .collect();
         if let (Some(depth), false) = (depth, depth_outputs.is_empty()) {
-            let writer = self.writer.clone();
-            self.pool
-                .submit(move || Ok(writer.write_depth(&depth_outputs, &depth)?))?;
+            let (writer, images) = (self.writer.clone(), self.images.clone());
+            self.pool.submit(move || {
+                writer.write_depth(&depth_outputs, &depth)?;
+                images.give_depth(depth);
+                Ok(())
+            })?;
         }
         Ok(())
     }

@@ -7,7 +7,9 @@ mod memory;
 pub use dataset::DatasetSink;
 pub use memory::{MemorySink, RgbdFrame};
 
-use rslam_core::{DepthImage, RgbImage};
+use std::sync::Arc;
+
+use rslam_core::{DepthImage, ImagePool, RgbImage};
 
 use crate::state_log::StateTable;
 use crate::PipelineError;
@@ -16,6 +18,11 @@ pub trait FrameSink {
     /// Whether it uses depth: a sink that drops it spares the frame loop its readback.
     fn wants_depth(&self) -> bool {
         true
+    }
+    /// Where the frame loop takes the buffers it reads frames back into: a sink that hands the
+    /// images it was given back to this pool once written spares the loop fresh memory.
+    fn image_pool(&self) -> Arc<ImagePool> {
+        Arc::default()
     }
     /// Source frame `source`, read back; `depth` is `None` for inputs without depth.
     fn accept(
