@@ -2,6 +2,7 @@
 //! range, one at a time, or written as a dataset; buffers go through the GPU unchanged when
 //! nothing perturbs them.
 
+use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFormat, DepthPng};
@@ -71,6 +72,51 @@ fn buffers_of(frames: &[RgbdFrame]) -> BufferSource {
     .unwrap()
 }
 
+/// `job` rendered as a TUM dataset into a new folder: the folder, the dataset in it, its frames.
+fn render_tum(job: SceneJob) -> (tempfile::TempDir, PathBuf, usize) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ds");
+    let report = render_dataset(
+        context(),
+        &RenderJob {
+            scene: job,
+            out: out.clone(),
+            format: DatasetFormat::Tum,
+            depth_png: DepthPng::Fast,
+            force: false,
+            command: vec!["test".into()],
+        },
+        &Silent,
+    )
+    .unwrap();
+    (dir, out, report.frames)
+}
+
+/// The TUM dataset at `out` holds `frame`: its colour exactly, its depth to the PNG's step.
+fn assert_written(out: &Path, frame: &RgbdFrame) {
+    let png = out.join(format!("rgb/{:.6}.png", frame.rgb_time));
+    assert_eq!(
+        read_rgb(&png).unwrap(),
+        frame.color,
+        "frame {}",
+        frame.index
+    );
+    let depth_png = out.join(format!("depth/{:.6}.png", frame.depth_time));
+    let written = decode_depth_png(&depth_png, 5000.0).unwrap();
+    let depth = frame.depth.as_ref().expect("scenes have depth");
+    let off = written
+        .data
+        .iter()
+        .zip(&depth.data)
+        .filter(|(a, b)| (*a - b.min(65535.0 / 5000.0)).abs() > DEPTH_STEP_M)
+        .count();
+    assert_eq!(
+        off, 0,
+        "frame {}: depth pixels off by more than a step",
+        frame.index
+    );
+}
+
 #[test]
 fn scene_frames_in_memory_are_the_frames_a_render_writes() {
     let ctx = context();
@@ -88,40 +134,10 @@ fn scene_frames_in_memory_are_the_frames_a_render_writes() {
         "a frame does not depend on which others were made"
     );
 
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("ds");
-    let report = render_dataset(
-        ctx,
-        &RenderJob {
-            scene: job,
-            out: out.clone(),
-            format: DatasetFormat::Tum,
-            depth_png: DepthPng::Fast,
-            force: false,
-            command: vec!["test".into()],
-        },
-        &Silent,
-    )
-    .unwrap();
-    assert_eq!(report.frames, 4);
+    let (_dir, out, written) = render_tum(job);
+    assert_eq!(written, 4);
     for frame in &all {
-        let png = out.join(format!("rgb/{:.6}.png", frame.rgb_time));
-        assert_eq!(
-            read_rgb(&png).unwrap(),
-            frame.color,
-            "frame {}",
-            frame.index
-        );
-        let depth_png = out.join(format!("depth/{:.6}.png", frame.depth_time));
-        let written = decode_depth_png(&depth_png, 5000.0).unwrap();
-        let depth = frame.depth.as_ref().expect("scenes have depth");
-        for (a, b) in written.data.iter().zip(&depth.data) {
-            assert!(
-                (a - b.min(65535.0 / 5000.0)).abs() <= DEPTH_STEP_M,
-                "frame {}: {a} vs {b}",
-                frame.index
-            );
-        }
+        assert_written(&out, frame);
     }
     // misalign:1 on the fast stream: output 2 carries the depth captured with output 1, and
     // output 1 that of output 0, which output 0 (clamped at the start) carries too.
@@ -230,38 +246,8 @@ fn a_long_render_through_reused_image_buffers_writes_the_frames_made_one_at_a_ti
     };
     let mut frames = FramesInMemory::scene(ctx, &job).unwrap();
     let all = collect(&mut frames, 0..count);
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("ds");
-    render_dataset(
-        ctx,
-        &RenderJob {
-            scene: job,
-            out: out.clone(),
-            format: DatasetFormat::Tum,
-            depth_png: DepthPng::Fast,
-            force: false,
-            command: vec!["test".into()],
-        },
-        &Silent,
-    )
-    .unwrap();
+    let (_dir, out, _) = render_tum(job);
     for frame in &all {
-        let png = out.join(format!("rgb/{:.6}.png", frame.rgb_time));
-        assert_eq!(
-            read_rgb(&png).unwrap(),
-            frame.color,
-            "frame {}",
-            frame.index
-        );
-        let depth_png = out.join(format!("depth/{:.6}.png", frame.depth_time));
-        let written = decode_depth_png(&depth_png, 5000.0).unwrap();
-        let depth = frame.depth.as_ref().expect("scenes have depth");
-        let off = written
-            .data
-            .iter()
-            .zip(&depth.data)
-            .filter(|(a, b)| (*a - b.min(65535.0 / 5000.0)).abs() > DEPTH_STEP_M)
-            .count();
-        assert_eq!(off, 0, "frame {}: depth pixels off", frame.index);
+        assert_written(&out, frame);
     }
 }
