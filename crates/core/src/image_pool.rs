@@ -5,9 +5,9 @@ use std::sync::{Mutex, MutexGuard};
 use crate::{DepthImage, RgbImage};
 
 /// Buffers of images that were handed back, reused for the next frames: a fresh buffer of a few
-/// megabytes a frame costs the reading thread a page fault and the zeroing of every page (over
-/// half of the frame loop's CPU time in a whole `rslam render`), while a reused one is already
-/// in memory. It keeps every buffer handed back; a run hands back at most as many as it has
+/// megabytes a frame costs the reading thread a page fault and the zeroing of every page (about
+/// a third of the frame loop's CPU time in a whole `rslam render` on lavapipe), while a reused
+/// one is already in memory. It keeps every buffer handed back; a run hands back at most as many as it has
 /// frames in flight and queued for encoding at once.
 #[derive(Default)]
 pub struct ImagePool {
