@@ -1,8 +1,10 @@
 // snow, pass 2 of 2: motion-blur the snow layer along the frame's angle (line taps, edges of the
 // zoomed layer replicated), round it to 8 bits, lighten the image toward max(x, 1.5 gray + 0.5)
 // by (1 - blend) and add the layer and the layer rotated by 180 degrees (imagecorruptions `snow`).
-// Each invocation writes a run of 8 pixels of a row; the rotated layer's run is the mirrored run
-// of the mirrored row.
+// Each invocation blurs the layer for a run of 8 pixels of a row and for the mirrored run of the
+// mirrored row, and writes both runs: each pixel adds the one blur as its direct flakes and the
+// other as its rotated ones, so every blur is computed once. The middle row of an odd height is
+// its own mirror: there each invocation writes its own run only.
 #include "common/color.wgsl"
 #include "perturb/image/filter.wgsl"
 
@@ -24,6 +26,9 @@ fn flake(x: i32, y: i32) -> f32 {
 }
 
 fn composite(p: vec2<i32>, direct: f32, rotated: f32) {
+    if (p.x < 0 || p.x >= i32(textureDimensions(source).x)) {
+        return;
+    }
     let x = textureLoad(source, p, 0).rgb;
     let gray = dot(x, vec3<f32>(0.299, 0.587, 0.114));
     let lightened = snow.blend * x + (1.0 - snow.blend) * max(x, vec3<f32>(gray * 1.5 + 0.5));
@@ -36,12 +41,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<i32>(textureDimensions(source));
     let x0 = i32(id.x) * 8;
     let y = i32(id.y);
-    if (x0 >= size.x || y >= size.y) {
+    let mirrored_y = size.y - 1 - y;
+    if (x0 >= size.x || y > mirrored_y) {
         return;
     }
     // Pixel (x0 + o, y) adds the layer at (x0 + o, y) and at (W - 1 - x0 - o, H - 1 - y).
     let mirrored_x = size.x - 1 - x0;
-    let mirrored_y = size.y - 1 - y;
     var d0 = 0.0;
     var r0 = 0.0;
     var d1 = 0.0;
@@ -81,28 +86,23 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         d7 += t.z * flake(x + 7, row);
         r7 += t.z * flake(mx - 7, mirrored_row);
     }
-    if (x0 + 0 < size.x) {
-        composite(vec2<i32>(x0 + 0, y), d0, r0);
+    composite(vec2<i32>(x0 + 0, y), d0, r0);
+    composite(vec2<i32>(x0 + 1, y), d1, r1);
+    composite(vec2<i32>(x0 + 2, y), d2, r2);
+    composite(vec2<i32>(x0 + 3, y), d3, r3);
+    composite(vec2<i32>(x0 + 4, y), d4, r4);
+    composite(vec2<i32>(x0 + 5, y), d5, r5);
+    composite(vec2<i32>(x0 + 6, y), d6, r6);
+    composite(vec2<i32>(x0 + 7, y), d7, r7);
+    if (y == mirrored_y) {
+        return;
     }
-    if (x0 + 1 < size.x) {
-        composite(vec2<i32>(x0 + 1, y), d1, r1);
-    }
-    if (x0 + 2 < size.x) {
-        composite(vec2<i32>(x0 + 2, y), d2, r2);
-    }
-    if (x0 + 3 < size.x) {
-        composite(vec2<i32>(x0 + 3, y), d3, r3);
-    }
-    if (x0 + 4 < size.x) {
-        composite(vec2<i32>(x0 + 4, y), d4, r4);
-    }
-    if (x0 + 5 < size.x) {
-        composite(vec2<i32>(x0 + 5, y), d5, r5);
-    }
-    if (x0 + 6 < size.x) {
-        composite(vec2<i32>(x0 + 6, y), d6, r6);
-    }
-    if (x0 + 7 < size.x) {
-        composite(vec2<i32>(x0 + 7, y), d7, r7);
-    }
+    composite(vec2<i32>(mirrored_x - 0, mirrored_y), r0, d0);
+    composite(vec2<i32>(mirrored_x - 1, mirrored_y), r1, d1);
+    composite(vec2<i32>(mirrored_x - 2, mirrored_y), r2, d2);
+    composite(vec2<i32>(mirrored_x - 3, mirrored_y), r3, d3);
+    composite(vec2<i32>(mirrored_x - 4, mirrored_y), r4, d4);
+    composite(vec2<i32>(mirrored_x - 5, mirrored_y), r5, d5);
+    composite(vec2<i32>(mirrored_x - 6, mirrored_y), r6, d6);
+    composite(vec2<i32>(mirrored_x - 7, mirrored_y), r7, d7);
 }

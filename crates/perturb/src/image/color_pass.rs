@@ -1,6 +1,7 @@
 //! The common shape of a colour corruption's last pass: copy the frame's colour to scratch, run one
 //! shader that reads the copy and writes the frame, with a uniform block of parameters. The shader
-//! writes one pixel per invocation, or a run of 8 pixels of a row (see `filter.wgsl`).
+//! writes one pixel per invocation, a run of 8 pixels of a row (see `filter.wgsl`), or such a run
+//! and its mirror image in the mirrored row (pixels (x, y) and (W − 1 − x, H − 1 − y)).
 
 use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
@@ -18,6 +19,8 @@ pub struct ColorPass {
     label: &'static str,
     /// Pixels of a row each invocation writes.
     run: u32,
+    /// Whether each invocation also writes the mirror image of its run.
+    mirrored: bool,
 }
 
 /// Pixels per invocation of the shaders that write runs.
@@ -26,20 +29,32 @@ const RUN: u32 = 8;
 impl ColorPass {
     /// A shader writing one pixel per invocation.
     pub fn new<P: Pod>(kit: &Kit, shader: &'static str) -> Result<Self, PerturbError> {
-        Self::with_run::<P>(kit, shader, 1)
+        Self::with_run::<P>(kit, shader, 1, false)
     }
 
     /// A shader writing a run of 8 pixels of a row per invocation.
     pub fn runs<P: Pod>(kit: &Kit, shader: &'static str) -> Result<Self, PerturbError> {
-        Self::with_run::<P>(kit, shader, RUN)
+        Self::with_run::<P>(kit, shader, RUN, false)
     }
 
-    fn with_run<P: Pod>(kit: &Kit, shader: &'static str, run: u32) -> Result<Self, PerturbError> {
+    /// A shader writing a run of 8 pixels of row y < H / 2 and the mirrored run of row H − 1 − y
+    /// per invocation (the middle row of an odd height: its own run only).
+    pub fn mirrored_runs<P: Pod>(kit: &Kit, shader: &'static str) -> Result<Self, PerturbError> {
+        Self::with_run::<P>(kit, shader, RUN, true)
+    }
+
+    fn with_run<P: Pod>(
+        kit: &Kit,
+        shader: &'static str,
+        run: u32,
+        mirrored: bool,
+    ) -> Result<Self, PerturbError> {
         Ok(Self {
             pipeline: kit.pipeline(shader)?,
             params: kit.uniform_buffer::<P>(shader),
             label: shader,
             run,
+            mirrored,
         })
     }
 
@@ -62,13 +77,18 @@ impl ColorPass {
         ];
         resources.extend_from_slice(extra);
         let bind_group = kit.bind_group(&self.pipeline, self.label, &resources);
+        let rows = if self.mirrored {
+            kit.height.div_ceil(2)
+        } else {
+            kit.height
+        };
         kit.dispatch_grid(
             encoder,
             &self.pipeline,
             &bind_group,
             self.label,
             kit.width.div_ceil(self.run),
-            kit.height,
+            rows,
         );
     }
 }

@@ -162,7 +162,7 @@ impl Snow {
             layer_params: kit.uniform_buffer::<LayerUniform>("snow layer"),
             line: kit.uniform_buffer::<LineKernelUniform>("snow blur"),
             layer: storage_texture(kit, "snow layer", wgpu::TextureFormat::R32Float, w, h),
-            pass: ColorPass::runs::<Composite>(kit, SHADER)?,
+            pass: ColorPass::mirrored_runs::<Composite>(kit, SHADER)?,
         })
     }
 }
