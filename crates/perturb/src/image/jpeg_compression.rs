@@ -132,7 +132,9 @@ impl GpuPerturbation for JpegCompression {
                 wgpu::BindingResource::TextureView(color),
             ],
         );
-        kit.dispatch(encoder, &self.decode, &decode, "jpeg decode");
+        // One invocation per chroma sample: its 2×2 pixels.
+        let (w, h) = (kit.width.div_ceil(2), kit.height.div_ceil(2));
+        kit.dispatch_grid(encoder, &self.decode, &decode, "jpeg decode", w, h);
         Ok(())
     }
 }
