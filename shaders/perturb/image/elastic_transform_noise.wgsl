@@ -10,7 +10,7 @@ struct Noise {
     _pad2: f32,
 }
 
-@group(0) @binding(0) var fields: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(0) var fields: texture_storage_2d<rg32float, write>;
 @group(0) @binding(1) var<uniform> noise: Noise;
 
 @compute @workgroup_size(8, 8)

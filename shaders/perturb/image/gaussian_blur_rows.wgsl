@@ -4,6 +4,8 @@
 #include "perturb/image/filter.wgsl"
 #include "perturb/image/kernel_run.wgsl"
 
+alias Value = vec3<f32>;
+
 @group(0) @binding(0) var source: texture_2d<f32>;
 @group(0) @binding(1) var output: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(2) var<uniform> kernel: Kernel1d;
@@ -35,14 +37,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let v5 = textureLoad(source, vec2<i32>(clamp(first + j + 5, 0, last), fixed), 0).rgb;
         let v6 = textureLoad(source, vec2<i32>(clamp(first + j + 6, 0, last), fixed), 0).rgb;
         let v7 = textureLoad(source, vec2<i32>(clamp(first + j + 7, 0, last), fixed), 0).rgb;
-        s0 += run_output3(j, 0, v0, v1, v2, v3, v4, v5, v6, v7);
-        s1 += run_output3(j, 1, v0, v1, v2, v3, v4, v5, v6, v7);
-        s2 += run_output3(j, 2, v0, v1, v2, v3, v4, v5, v6, v7);
-        s3 += run_output3(j, 3, v0, v1, v2, v3, v4, v5, v6, v7);
-        s4 += run_output3(j, 4, v0, v1, v2, v3, v4, v5, v6, v7);
-        s5 += run_output3(j, 5, v0, v1, v2, v3, v4, v5, v6, v7);
-        s6 += run_output3(j, 6, v0, v1, v2, v3, v4, v5, v6, v7);
-        s7 += run_output3(j, 7, v0, v1, v2, v3, v4, v5, v6, v7);
+        s0 += run_output(j, 0, v0, v1, v2, v3, v4, v5, v6, v7);
+        s1 += run_output(j, 1, v0, v1, v2, v3, v4, v5, v6, v7);
+        s2 += run_output(j, 2, v0, v1, v2, v3, v4, v5, v6, v7);
+        s3 += run_output(j, 3, v0, v1, v2, v3, v4, v5, v6, v7);
+        s4 += run_output(j, 4, v0, v1, v2, v3, v4, v5, v6, v7);
+        s5 += run_output(j, 5, v0, v1, v2, v3, v4, v5, v6, v7);
+        s6 += run_output(j, 6, v0, v1, v2, v3, v4, v5, v6, v7);
+        s7 += run_output(j, 7, v0, v1, v2, v3, v4, v5, v6, v7);
     }
     // Stores written out: indexing a private array is slow on lavapipe.
     if (origin + 0 < size.x) {

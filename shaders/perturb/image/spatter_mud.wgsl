@@ -18,7 +18,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (id.x >= size.x || id.y >= size.y) {
         return;
     }
-    var m = textureLoad(mask, id.xy, 0).y;
+    var m = textureLoad(mask, id.xy, 0).x;
     if (m < 0.8) {
         m = 0.0;
     }

@@ -7,8 +7,7 @@ use rslam_gpu::FrameTextures;
 
 use super::color_pass::ColorPass;
 use super::kernels::{gaussian_half_kernel, symmetric_filter, Axis, Edge, Kernel1dUniform};
-use super::separable::{gaussian_runs, SeparableFilter};
-use super::textures::float4_frame_texture;
+use super::separable::{gaussian_runs, Channels, SeparableFilter};
 use crate::image_f32::RgbF32;
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::{uniform, RngKey};
@@ -19,6 +18,8 @@ use crate::PerturbError;
 const NAME: &str = "elastic_transform";
 const NOISE_SHADER: &str = "perturb/image/elastic_transform_noise.wgsl";
 const WARP_SHADER: &str = "perturb/image/elastic_transform.wgsl";
+/// The x and y displacement fields.
+const FIELDS: Channels = Channels::Two;
 
 /// α per severity: 250 × (0.05, 0.065, 0.085, 0.1, 0.12) (perturbations.md §3, imagecorruptions).
 pub const ALPHA: [f32; 5] = [12.5, 16.25, 21.25, 25.0, 30.0];
@@ -51,8 +52,8 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
             wgsl: "Noise",
             shader: NOISE_SHADER,
         },
-        Kernel1dUniform::layout(SeparableFilter::ROWS_SHADER),
-        Kernel1dUniform::layout(SeparableFilter::COLUMNS_SHADER),
+        Kernel1dUniform::layout(FIELDS.shaders()[0]),
+        Kernel1dUniform::layout(FIELDS.shaders()[1]),
         UniformLayout {
             rust: rust_layout!(Warp { alpha }),
             wgsl: "Warp",
@@ -105,15 +106,15 @@ impl ElasticTransform {
         let (w, h) = (kit.width as f64, kit.height as f64);
         let rows = gaussian_runs(NAME, SIGMA_FRACTION * w, TRUNCATE, Edge::Reflect)?;
         let columns = gaussian_runs(NAME, SIGMA_FRACTION * h, TRUNCATE, Edge::Reflect)?;
-        let smooth = SeparableFilter::new(kit)?;
+        let smooth = SeparableFilter::new(kit, FIELDS)?;
         smooth.set_kernels(kit, &rows, &columns);
         Ok(Self {
             noise_pipeline: kit.pipeline(NOISE_SHADER)?,
             noise: kit.uniform_buffer::<Noise>("elastic noise"),
             smooth,
             warp: ColorPass::new::<Warp>(kit, WARP_SHADER)?,
-            fields: float4_frame_texture(kit, "elastic displacement"),
-            intermediate: float4_frame_texture(kit, "elastic rows"),
+            fields: FIELDS.frame_texture(kit, "elastic displacement"),
+            intermediate: FIELDS.frame_texture(kit, "elastic rows"),
         })
     }
 }

@@ -1,13 +1,52 @@
-//! The generic separable filter in runs (`filter_rows.wgsl`, `filter_columns.wgsl`): four f32
-//! channels, replicated or reflected edges, a kernel per direction. Used for the smoothing of
-//! spatter's noise and mud mask and of elastic_transform's displacement fields.
+//! The generic separable filter in runs (`filter_rows.wgsl`, `filter_columns.wgsl`): one or two
+//! f32 channels, replicated or reflected edges, a kernel per direction. Used for the smoothing of
+//! spatter's noise and mud mask (one channel) and of elastic_transform's displacement fields
+//! (two).
 
 use super::kernels::{gaussian_half_kernel, symmetric_runs, Edge, Kernel1dUniform};
+use super::textures::storage_texture;
 use crate::perturbation::Kit;
 use crate::PerturbError;
 
 /// Pixels per invocation of the passes.
 const RUN: u32 = 8;
+
+/// The channels a [`SeparableFilter`] filters, each in its own pair of shaders: filtering only
+/// the channels used costs a half or a quarter of the arithmetic of four.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Channels {
+    One,
+    Two,
+}
+
+impl Channels {
+    /// The (rows, columns) shaders.
+    pub const fn shaders(self) -> [&'static str; 2] {
+        match self {
+            Channels::One => [
+                "perturb/image/filter_rows_r.wgsl",
+                "perturb/image/filter_columns_r.wgsl",
+            ],
+            Channels::Two => [
+                "perturb/image/filter_rows_rg.wgsl",
+                "perturb/image/filter_columns_rg.wgsl",
+            ],
+        }
+    }
+
+    /// The format of the textures the filter writes.
+    pub const fn format(self) -> wgpu::TextureFormat {
+        match self {
+            Channels::One => wgpu::TextureFormat::R32Float,
+            Channels::Two => wgpu::TextureFormat::Rg32Float,
+        }
+    }
+
+    /// A frame-sized texture the filter can write.
+    pub fn frame_texture(self, kit: &Kit, label: &str) -> wgpu::Texture {
+        storage_texture(kit, label, self.format(), kit.width, kit.height)
+    }
+}
 
 pub(crate) struct SeparableFilter {
     rows: wgpu::ComputePipeline,
@@ -32,13 +71,11 @@ pub(crate) fn gaussian_runs(
 }
 
 impl SeparableFilter {
-    pub const ROWS_SHADER: &str = "perturb/image/filter_rows.wgsl";
-    pub const COLUMNS_SHADER: &str = "perturb/image/filter_columns.wgsl";
-
-    pub fn new(kit: &Kit) -> Result<Self, PerturbError> {
+    pub fn new(kit: &Kit, channels: Channels) -> Result<Self, PerturbError> {
+        let [rows, columns] = channels.shaders();
         Ok(Self {
-            rows: kit.pipeline(Self::ROWS_SHADER)?,
-            columns: kit.pipeline(Self::COLUMNS_SHADER)?,
+            rows: kit.pipeline(rows)?,
+            columns: kit.pipeline(columns)?,
             row_kernel: kit.uniform_buffer::<Kernel1dUniform>("separable row kernel"),
             column_kernel: kit.uniform_buffer::<Kernel1dUniform>("separable column kernel"),
         })
@@ -50,7 +87,7 @@ impl SeparableFilter {
         kit.write_uniform(&self.column_kernel, columns);
     }
 
-    /// `source` → rows → `intermediate` (Rgba32Float) → columns → `target` (Rgba32Float).
+    /// `source` → rows → `intermediate` → columns → `target` (textures of its channels' format).
     pub fn encode(
         &self,
         kit: &Kit,

@@ -11,7 +11,7 @@ use rslam_gpu::FrameTextures;
 
 use super::color_pass::ColorPass;
 use super::kernels::{Edge, Kernel1dUniform};
-use super::separable::{gaussian_runs, SeparableFilter};
+use super::separable::{gaussian_runs, Channels, SeparableFilter};
 use super::textures::storage_texture;
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
@@ -80,10 +80,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
             wgsl: "Noise",
             shader: "perturb/image/spatter_noise.wgsl",
         },
-        Kernel1dUniform::layout(SeparableFilter::ROWS_SHADER),
-        Kernel1dUniform::layout(SeparableFilter::COLUMNS_SHADER),
+        Kernel1dUniform::layout(Channels::One.shaders()[0]),
+        Kernel1dUniform::layout(Channels::One.shaders()[1]),
         UniformLayout {
-            rust: rust_layout!(LiquidParams { threshold }),
+            rust: rust_layout!(LiquidParams { threshold, mask }),
             wgsl: "Liquid",
             shader: "perturb/image/spatter_liquid.wgsl",
         },
@@ -118,7 +118,9 @@ struct Noise {
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct LiquidParams {
     threshold: f32,
-    _pad: [f32; 3],
+    /// What the liquid pass writes: 0 the liquid layer (water), 1 the mud mask.
+    mask: u32,
+    _pad: [u32; 2],
 }
 
 #[repr(C)]
@@ -168,8 +170,12 @@ struct Spatter {
     mask_blur: SeparableFilter,
     /// r32float: [noise / equalised / shade, edges / distance / embossed]
     planes: [wgpu::Texture; 2],
-    /// rgba32float: [blur rows, blurred noise / blurred mask, liquid layer + mud mask]
-    layers: [wgpu::Texture; 3],
+    /// r32float: the blurs' row pass, then [blurred noise, liquid layer or mud mask] (the
+    /// mud's blurred mask back in the first)
+    rows: wgpu::Texture,
+    layers: [wgpu::Texture; 2],
+    /// rgba32float: the liquid layer's Sobel gradient (magnitude, x, y)
+    gradient: wgpu::Texture,
     /// r32uint: edges, then squared distances (ping-pong)
     seeds: [wgpu::Texture; 2],
     histogram: wgpu::Buffer,
@@ -226,17 +232,18 @@ impl Spatter {
             noise: kit.uniform_buffer::<Noise>("spatter noise"),
             threshold: kit.uniform_buffer::<LiquidParams>("spatter threshold"),
             axes,
-            liquid_blur: SeparableFilter::new(kit)?,
-            mask_blur: SeparableFilter::new(kit)?,
+            liquid_blur: SeparableFilter::new(kit, Channels::One)?,
+            mask_blur: SeparableFilter::new(kit, Channels::One)?,
             planes: [
                 texture("spatter noise", R32Float),
                 texture("spatter work", R32Float),
             ],
+            rows: texture("spatter rows", R32Float),
             layers: [
-                texture("spatter rows", Rgba32Float),
-                texture("spatter blurred", Rgba32Float),
-                texture("spatter liquid", Rgba32Float),
+                texture("spatter blurred", R32Float),
+                texture("spatter liquid", R32Float),
             ],
+            gradient: texture("spatter gradient", Rgba32Float),
             seeds: [
                 texture("spatter seeds a", R32Uint),
                 texture("spatter seeds b", R32Uint),
@@ -262,8 +269,8 @@ impl Spatter {
         use wgpu::BindingResource::TextureView as T;
         let p = &self.pipelines;
         let [spare, work] = self.planes.each_ref().map(view);
-        let liquid = view(&self.layers[2]);
-        let gradient = view(&self.layers[0]);
+        let liquid = view(&self.layers[1]);
+        let gradient = view(&self.gradient);
         let seeds = self.seeds.each_ref().map(view);
         dispatch_windows(
             kit,
@@ -363,14 +370,16 @@ impl GpuPerturbation for Spatter {
         kit.write_uniform(&self.noise, &noise);
         let liquid_params = LiquidParams {
             threshold,
-            _pad: [0.0; 3],
+            mask: (kind == Liquid::Mud) as u32,
+            _pad: [0; 2],
         };
         kit.write_uniform(&self.threshold, &liquid_params);
         let blur = gaussian_runs(NAME, sigma, TRUNCATE, Edge::Replicate)?;
         self.liquid_blur.set_kernels(kit, &blur, &blur);
         let p = &self.pipelines;
         let noise_plane = view(&self.planes[0]);
-        let [rows, blurred, liquid] = self.layers.each_ref().map(view);
+        let rows = view(&self.rows);
+        let [blurred, liquid] = self.layers.each_ref().map(view);
         let resources = [T(&noise_plane), self.noise.as_entire_binding()];
         let bind_group = kit.bind_group(&p.noise, "spatter noise", &resources);
         kit.dispatch(encoder, &p.noise, &bind_group, "spatter noise");

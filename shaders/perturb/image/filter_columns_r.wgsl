@@ -1,0 +1,2 @@
+#include "perturb/image/filter_r.wgsl"
+#include "perturb/image/filter_columns.wgsl"
