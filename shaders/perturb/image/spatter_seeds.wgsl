@@ -5,7 +5,7 @@
 @group(0) @binding(0) var classes: texture_2d<f32>;
 @group(0) @binding(1) var seeds: texture_storage_2d<r32uint, write>;
 
-// spatter_squared_distance.wgsl's NONE.
+// spatter_column_distance.wgsl's and spatter_squared_distance.wgsl's NONE.
 const NONE: u32 = 1024u;
 
 fn frame_size() -> vec2<i32> {

@@ -24,7 +24,6 @@ pub use twin::twin;
 const NAME: &str = "spatter";
 const WATER_SHADER: &str = "perturb/image/spatter.wgsl";
 const MUD_SHADER: &str = "perturb/image/spatter_mud.wgsl";
-const SQUARED_DISTANCE_SHADER: &str = "perturb/image/spatter_squared_distance.wgsl";
 
 /// Water or mud.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -88,11 +87,6 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
             shader: "perturb/image/spatter_liquid.wgsl",
         },
         UniformLayout {
-            rust: rust_layout!(Axis { axis }),
-            wgsl: "Axis",
-            shader: SQUARED_DISTANCE_SHADER,
-        },
-        UniformLayout {
             rust: rust_layout!(Water { color, intensity }),
             wgsl: "Water",
             shader: WATER_SHADER,
@@ -125,14 +119,6 @@ struct LiquidParams {
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct Axis {
-    /// 0 along rows, 1 along columns.
-    axis: i32,
-    _pad: [i32; 3],
-}
-
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
 struct Water {
     color: [f32; 4],
     intensity: f32,
@@ -151,6 +137,7 @@ struct Pipelines {
     edges: wgpu::ComputePipeline,
     suppress: wgpu::ComputePipeline,
     seeds: wgpu::ComputePipeline,
+    column_distance: wgpu::ComputePipeline,
     squared_distance: wgpu::ComputePipeline,
     distance: wgpu::ComputePipeline,
     equalize: wgpu::ComputePipeline,
@@ -163,8 +150,6 @@ struct Spatter {
     pipelines: Pipelines,
     noise: wgpu::Buffer,
     threshold: wgpu::Buffer,
-    /// The squared distance pass along columns, then along rows.
-    axes: [wgpu::Buffer; 2],
     /// The noise blur and the mud mask blur (each with its own kernel uniforms).
     liquid_blur: SeparableFilter,
     mask_blur: SeparableFilter,
@@ -192,8 +177,9 @@ fn image_pipeline(kit: &Kit, pass: &str) -> Result<wgpu::ComputePipeline, Pertur
     kit.pipeline(&format!("perturb/image/spatter_{pass}.wgsl"))
 }
 
-/// A pass of `window_runs.wgsl`'s 3×3 windows: runs of 8 pixels of a row per invocation.
-fn dispatch_windows(
+/// A pass in runs of 8 pixels of a row per invocation: `window_runs.wgsl`'s 3×3 windows and the
+/// squared distance along rows.
+fn dispatch_row_runs(
     kit: &Kit,
     encoder: &mut wgpu::CommandEncoder,
     pipeline: &wgpu::ComputePipeline,
@@ -213,25 +199,20 @@ impl Spatter {
             edges: image_pipeline(kit, "edges")?,
             suppress: image_pipeline(kit, "suppress")?,
             seeds: image_pipeline(kit, "seeds")?,
-            squared_distance: kit.pipeline(SQUARED_DISTANCE_SHADER)?,
+            column_distance: image_pipeline(kit, "column_distance")?,
+            squared_distance: image_pipeline(kit, "squared_distance")?,
             distance: image_pipeline(kit, "distance")?,
             equalize: image_pipeline(kit, "equalize")?,
             lut: image_pipeline(kit, "lut")?,
             emboss: image_pipeline(kit, "emboss")?,
             shade: image_pipeline(kit, "shade")?,
         };
-        let axes = [1, 0].map(|axis| {
-            let buffer = kit.uniform_buffer::<Axis>("spatter distance axis");
-            kit.write_uniform(&buffer, &Axis { axis, _pad: [0; 3] });
-            buffer
-        });
         let texture = |label, format| storage_texture(kit, label, format, kit.width, kit.height);
         use wgpu::TextureFormat::{R32Float, R32Uint, Rgba32Float};
         Ok(Self {
             pipelines,
             noise: kit.uniform_buffer::<Noise>("spatter noise"),
             threshold: kit.uniform_buffer::<LiquidParams>("spatter threshold"),
-            axes,
             liquid_blur: SeparableFilter::new(kit, Channels::One)?,
             mask_blur: SeparableFilter::new(kit, Channels::One)?,
             planes: [
@@ -272,44 +253,47 @@ impl Spatter {
         let liquid = view(&self.layers[1]);
         let gradient = view(&self.gradient);
         let seeds = self.seeds.each_ref().map(view);
-        dispatch_windows(
+        dispatch_row_runs(
             kit,
             encoder,
             &p.edges,
             "spatter edges",
             &[T(&liquid), T(&gradient)],
         );
-        dispatch_windows(
+        dispatch_row_runs(
             kit,
             encoder,
             &p.suppress,
             "spatter suppress",
             &[T(&gradient), T(&work)],
         );
-        dispatch_windows(
+        dispatch_row_runs(
             kit,
             encoder,
             &p.seeds,
             "spatter seeds",
             &[T(&work), T(&seeds[0])],
         );
-        // Runs of 8 along columns, then along rows.
-        let grids = [
-            (kit.width, kit.height.div_ceil(8)),
-            (kit.width.div_ceil(8), kit.height),
-        ];
-        for (i, (buffer, (w, h))) in self.axes.iter().zip(grids).enumerate() {
-            let (from, to) = (&seeds[i % 2], &seeds[(i + 1) % 2]);
-            let resources = [T(from), T(to), buffer.as_entire_binding()];
-            let label = "spatter squared distance";
-            let pass = kit.bind_group(&p.squared_distance, label, &resources);
-            kit.dispatch_grid(encoder, &p.squared_distance, &pass, label, w, h);
-        }
-        let nearest = &seeds[self.axes.len() % 2];
+        // Runs of 8 down columns, then along rows.
+        let label = "spatter column distance";
+        let columns = kit.bind_group(&p.column_distance, label, &[T(&seeds[0]), T(&seeds[1])]);
+        let runs = kit.height.div_ceil(8);
+        kit.dispatch_grid(
+            encoder,
+            &p.column_distance,
+            &columns,
+            label,
+            kit.width,
+            runs,
+        );
+        let resources = [T(&seeds[1]), T(&seeds[0])];
+        let label = "spatter squared distance";
+        dispatch_row_runs(kit, encoder, &p.squared_distance, label, &resources);
+        let nearest = &seeds[0];
         encoder.clear_buffer(&self.histogram, 0, None);
         encoder.clear_buffer(&self.maximum, 0, None);
         let resources = [T(nearest), T(&work), self.histogram.as_entire_binding()];
-        dispatch_windows(kit, encoder, &p.distance, "spatter distance", &resources);
+        dispatch_row_runs(kit, encoder, &p.distance, "spatter distance", &resources);
         let resources = [
             self.histogram.as_entire_binding(),
             self.lut.as_entire_binding(),
@@ -326,7 +310,7 @@ impl Spatter {
         let resources = [T(&work), T(&spare), self.lut_uniform.as_entire_binding()];
         let lut = kit.bind_group(&p.lut, "spatter lut", &resources);
         kit.dispatch(encoder, &p.lut, &lut, "spatter lut");
-        dispatch_windows(
+        dispatch_row_runs(
             kit,
             encoder,
             &p.emboss,
@@ -339,7 +323,7 @@ impl Spatter {
             T(&spare),
             self.maximum.as_entire_binding(),
         ];
-        dispatch_windows(kit, encoder, &p.shade, "spatter shade", &resources);
+        dispatch_row_runs(kit, encoder, &p.shade, "spatter shade", &resources);
         let params = Water {
             color: [WATER_COLOR[0], WATER_COLOR[1], WATER_COLOR[2], 0.0],
             intensity,

@@ -111,8 +111,8 @@ const NONE: u32 = 1024;
 /// The truncation distance of the distance transform.
 const REACH: i64 = 20;
 
-/// Squared distance to the nearest edge pixel, NONE-capped, as `spatter_seeds` and the two
-/// `spatter_squared_distance` passes (columns, then rows).
+/// Squared distance to the nearest edge pixel, NONE-capped, as `spatter_seeds`,
+/// `spatter_column_distance` and `spatter_squared_distance` (columns, then rows).
 fn squared_distances(classes: &Plane) -> Vec<u32> {
     let (w, h) = (classes.width, classes.height);
     let seeds: Vec<u32> = (0..h)
