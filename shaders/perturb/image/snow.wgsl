@@ -1,4 +1,4 @@
-// snow, pass 2 of 2: motion-blur the snow layer along the frame's angle (line taps, edges of the
+// snow, pass 3 of 3: motion-blur the snow layer along the frame's angle (line taps, edges of the
 // zoomed layer replicated), round it to 8 bits, lighten the image toward max(x, 1.5 gray + 0.5)
 // by (1 - blend) and add the layer and the layer rotated by 180 degrees (imagecorruptions `snow`).
 // Each invocation blurs the layer for a run of 8 pixels of a row and for the mirrored run of the

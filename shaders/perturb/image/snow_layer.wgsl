@@ -1,29 +1,26 @@
-// snow, pass 1 of 2: imagecorruptions' snow layer before its motion blur: Gaussian noise
-// N(mean, std) on the H x W grid, `clipped_zoom`ed (centre crop scaled up by SciPy zoom(order=1),
-// corner-aligned), values below the threshold set to 0, clipped to [0, 1]. Written for the whole
-// zoomed size round(crop * z), which is at least H x W (the blur sees its edges).
-#include "common/rng.wgsl"
+// snow, pass 2 of 3: imagecorruptions' snow layer before its motion blur: the noise of pass 1
+// `clipped_zoom`ed (centre crop scaled up by SciPy zoom(order=1), corner-aligned), values below
+// the threshold set to 0, clipped to [0, 1]. Written for the whole zoomed size round(crop * z),
+// which is at least H x W (the blur sees its edges).
 
 struct Layer {
-    key: vec4<u32>,
     // (top x, top y, scale x, scale y) of the zoom
     window: vec4<f32>,
-    // zoomed layer size, noise grid size
+    // zoomed layer size, grid cell of noise cell (0, 0)
     zoomed: vec2<u32>,
-    grid: vec2<u32>,
-    mean: f32,
-    deviation: f32,
+    origin: vec2<i32>,
     threshold: f32,
-    _pad: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
 }
 
 @group(0) @binding(0) var layer: texture_storage_2d<r32float, write>;
 @group(0) @binding(1) var<uniform> params: Layer;
+@group(0) @binding(2) var cells: texture_2d<f32>;
 
-fn noise(p: vec2<i32>) -> f32 {
-    let q = vec2<u32>(clamp(p, vec2<i32>(0), vec2<i32>(params.grid) - 1));
-    let bits = rng_draw(params.key, vec4<u32>(q, 0u, 0u));
-    return params.mean + params.deviation * rng_normal_pair(bits.x, bits.y).x;
+fn noise(q: vec2<i32>) -> f32 {
+    return textureLoad(cells, q - params.origin, 0).x;
 }
 
 @compute @workgroup_size(8, 8)

@@ -19,6 +19,7 @@ use crate::uniform_layout::{rust_layout, UniformLayout};
 use crate::PerturbError;
 
 const NAME: &str = "snow";
+const NOISE_SHADER: &str = "perturb/image/snow_noise.wgsl";
 const LAYER_SHADER: &str = "perturb/image/snow_layer.wgsl";
 const SHADER: &str = "perturb/image/snow.wgsl";
 
@@ -85,13 +86,22 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     twin_tolerance: Tolerance::ONE_LEVEL,
     uniforms: &[
         UniformLayout {
-            rust: rust_layout!(LayerUniform {
+            rust: rust_layout!(NoiseUniform {
                 key,
+                origin,
+                grid,
+                extent,
+                mean,
+                deviation
+            }),
+            wgsl: "Noise",
+            shader: NOISE_SHADER,
+        },
+        UniformLayout {
+            rust: rust_layout!(LayerUniform {
                 window,
                 zoomed,
-                grid,
-                mean,
-                deviation,
+                origin,
                 threshold
             }),
             wgsl: "Layer",
@@ -108,15 +118,23 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct LayerUniform {
+struct NoiseUniform {
     key: [u32; 4],
-    window: [f32; 4],
-    zoomed: [u32; 2],
+    origin: [u32; 2],
     grid: [u32; 2],
+    extent: [u32; 2],
     mean: f32,
     deviation: f32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct LayerUniform {
+    window: [f32; 4],
+    zoomed: [u32; 2],
+    origin: [i32; 2],
     threshold: f32,
-    _pad: f32,
+    _pad: [f32; 3],
 }
 
 #[repr(C)]
@@ -147,9 +165,13 @@ fn plan(p: &SnowParams, seed: u64, frame: u32, width: u32, height: u32) -> Frame
 }
 
 struct Snow {
+    noise_pipeline: wgpu::ComputePipeline,
+    noise_params: wgpu::Buffer,
     layer_pipeline: wgpu::ComputePipeline,
     layer_params: wgpu::Buffer,
     line: wgpu::Buffer,
+    /// The noise at the grid cells the zoom reads (at most the frame and one cell more).
+    cells: wgpu::Texture,
     layer: wgpu::Texture,
     pass: ColorPass,
 }
@@ -157,7 +179,17 @@ struct Snow {
 impl Snow {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         let (w, h) = (kit.width + LAYER_MARGIN, kit.height + LAYER_MARGIN);
+        let cells = storage_texture(
+            kit,
+            "snow noise",
+            wgpu::TextureFormat::R32Float,
+            kit.width + 1,
+            kit.height + 1,
+        );
         Ok(Self {
+            noise_pipeline: kit.pipeline(NOISE_SHADER)?,
+            noise_params: kit.uniform_buffer::<NoiseUniform>("snow noise"),
+            cells,
             layer_pipeline: kit.pipeline(LAYER_SHADER)?,
             layer_params: kit.uniform_buffer::<LayerUniform>("snow layer"),
             line: kit.uniform_buffer::<LineKernelUniform>("snow blur"),
@@ -182,15 +214,38 @@ impl GpuPerturbation for Snow {
             message: format!("{} blur taps do not fit the shader", plan.taps.len()),
         })?;
         kit.write_uniform(&self.line, &line);
-        let layer = LayerUniform {
+        let origin = [plan.x.top as u32, plan.y.top as u32];
+        let extent = [plan.x.crop + 1, plan.y.crop + 1];
+        let noise = NoiseUniform {
             key: plan.noise.0,
-            window: [plan.x.top, plan.y.top, plan.x.scale, plan.y.scale],
-            zoomed: [plan.x.zoomed, plan.y.zoomed],
+            origin,
             grid: [kit.width, kit.height],
+            extent,
             mean: p.mean,
             deviation: p.std,
+        };
+        kit.write_uniform(&self.noise_params, &noise);
+        let cells = view(&self.cells);
+        let resources = [
+            wgpu::BindingResource::TextureView(&cells),
+            self.noise_params.as_entire_binding(),
+        ];
+        let bind_group = kit.bind_group(&self.noise_pipeline, "snow noise", &resources);
+        let label = "snow noise";
+        kit.dispatch_grid(
+            encoder,
+            &self.noise_pipeline,
+            &bind_group,
+            label,
+            extent[0],
+            extent[1],
+        );
+        let layer = LayerUniform {
+            window: [plan.x.top, plan.y.top, plan.x.scale, plan.y.scale],
+            zoomed: [plan.x.zoomed, plan.y.zoomed],
+            origin: origin.map(|o| o as i32),
             threshold: p.threshold,
-            _pad: 0.0,
+            _pad: [0.0; 3],
         };
         kit.write_uniform(&self.layer_params, &layer);
         let layer_view = view(&self.layer);
@@ -200,6 +255,7 @@ impl GpuPerturbation for Snow {
             &[
                 wgpu::BindingResource::TextureView(&layer_view),
                 self.layer_params.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&cells),
             ],
         );
         let (zw, zh) = (plan.x.zoomed, plan.y.zoomed);

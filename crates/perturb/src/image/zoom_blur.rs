@@ -70,6 +70,8 @@ pub(crate) struct AxisWindow {
     pub top: f32,
     pub scale: f32,
     pub zoomed: u32,
+    /// Source pixels the window reads: top .. top + crop.
+    pub crop: u32,
 }
 
 /// `clipped_zoom` along one axis: crop ceil(size/z) centred, zoomed to round(crop·z) samples
@@ -82,6 +84,7 @@ pub(crate) fn axis_window(size: u32, zoom: f64) -> AxisWindow {
         top: top as f32,
         scale: ((crop - 1) as f64 / (zoomed - 1).max(1) as f64) as f32,
         zoomed: zoomed as u32,
+        crop: crop as u32,
     }
 }
 
@@ -190,10 +193,12 @@ mod tests {
         assert_eq!(w.top, 30.0);
         assert!((w.scale - 618.0 / 680.0).abs() < 1e-7);
         assert_eq!(w.zoomed, 681);
+        assert_eq!(w.crop, 619);
         let identity = AxisWindow {
             top: 0.0,
             scale: 1.0,
             zoomed: 680,
+            crop: 680,
         };
         assert_eq!(axis_window(680, 1.0), identity);
     }
