@@ -1,6 +1,7 @@
 // contrast, pass 2: (x - mean) * c + mean with the per-channel means of the frame
 // (imagecorruptions `contrast`).
 #include "common/color.wgsl"
+#include "perturb/image/pointwise_runs.wgsl"
 
 struct Params {
     key: vec4<u32>,
@@ -14,13 +15,7 @@ struct Params {
 // (sum r, sum g, sum b, pixel count) from contrast_mean.wgsl
 @group(0) @binding(3) var<uniform> sums: vec4<f32>;
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(source);
-    if (id.x >= size.x || id.y >= size.y) {
-        return;
-    }
+fn corrupt(p: vec2<u32>, x: vec3<f32>) -> vec3<f32> {
     let mean = sums.rgb / sums.w;
-    let x = textureLoad(source, id.xy, 0).rgb;
-    textureStore(output, id.xy, vec4<f32>(truncate8((x - mean) * params.values.x + mean), 1.0));
+    return (x - mean) * params.values.x + mean;
 }

@@ -1,6 +1,7 @@
 // elastic_transform, final pass: resample the image at (x, y) + α·(smoothed fields), bilinearly
 // with reflected edges (SciPy map_coordinates(order=1, mode='reflect')).
 #include "common/color.wgsl"
+#include "perturb/image/pointwise_runs.wgsl"
 
 struct Warp {
     alpha: f32,
@@ -28,18 +29,14 @@ fn pixel(x: i32, y: i32, size: vec2<i32>) -> vec3<f32> {
     return textureLoad(source, vec2<i32>(reflect(x, size.x), reflect(y, size.y)), 0).rgb;
 }
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+// `x`, the pixel itself, is not used: the warp reads around the displaced point.
+fn corrupt(p: vec2<u32>, x: vec3<f32>) -> vec3<f32> {
     let size = vec2<i32>(textureDimensions(source));
-    let p = vec2<i32>(id.xy);
-    if (p.x >= size.x || p.y >= size.y) {
-        return;
-    }
     let at = vec2<f32>(p) + warp.alpha * textureLoad(fields, p, 0).xy;
     let base = floor(at);
     let f = at - base;
     let q = vec2<i32>(base);
     let upper = mix(pixel(q.x, q.y, size), pixel(q.x + 1, q.y, size), f.x);
     let lower = mix(pixel(q.x, q.y + 1, size), pixel(q.x + 1, q.y + 1, size), f.x);
-    textureStore(output, p, vec4<f32>(truncate8(mix(upper, lower, f.y)), 1.0));
+    return mix(upper, lower, f.y);
 }

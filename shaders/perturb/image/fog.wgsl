@@ -1,6 +1,7 @@
 // fog, final pass: x + amplitude * normalised plasma (the map's top-left H x W crop), rescaled by
 // max / (max + amplitude) where max is the image's maximum (imagecorruptions `fog`).
 #include "common/color.wgsl"
+#include "perturb/image/pointwise_runs.wgsl"
 #include "perturb/image/filter.wgsl"
 
 struct Fog {
@@ -20,17 +21,11 @@ fn unordered(u: u32) -> f32 {
     return bitcast<f32>(select(~u, u & 0x7fffffffu, (u & 0x80000000u) != 0u));
 }
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(source);
-    if (id.x >= size.x || id.y >= size.y) {
-        return;
-    }
+fn corrupt(p: vec2<u32>, x: vec3<f32>) -> vec3<f32> {
     let high = unordered(range[0]);
     let low = -unordered(range[1]);
     let brightest = unordered(range[2]);
-    let plasma = (textureLoad(map, id.xy, 0).x - low) / (high - low);
-    let x = textureLoad(source, id.xy, 0).rgb + fog.amplitude * plasma;
-    let value = x * brightest / (brightest + fog.amplitude);
-    textureStore(output, id.xy, vec4<f32>(truncate8(value + SUM_EPSILON), 1.0));
+    let plasma = (textureLoad(map, p, 0).x - low) / (high - low);
+    let value = (x + fog.amplitude * plasma) * brightest / (brightest + fog.amplitude);
+    return value + SUM_EPSILON;
 }

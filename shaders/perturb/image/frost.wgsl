@@ -1,6 +1,7 @@
 // frost, per frame: a * x + b * F with the frost texture F cropped at the frame's offset
 // (imagecorruptions `frost` blends a randomly cropped frost photo the same way).
 #include "common/color.wgsl"
+#include "perturb/image/pointwise_runs.wgsl"
 
 struct Frost {
     offset: vec2<i32>,
@@ -13,14 +14,7 @@ struct Frost {
 @group(0) @binding(2) var<uniform> frost: Frost;
 @group(0) @binding(3) var ice: texture_2d<f32>;
 
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = vec2<i32>(textureDimensions(source));
-    let p = vec2<i32>(id.xy);
-    if (p.x >= size.x || p.y >= size.y) {
-        return;
-    }
-    let x = textureLoad(source, p, 0).rgb;
-    let f = textureLoad(ice, p + frost.offset, 0).rgb;
-    textureStore(output, p, vec4<f32>(truncate8(frost.image_weight * x + frost.frost_weight * f), 1.0));
+fn corrupt(p: vec2<u32>, x: vec3<f32>) -> vec3<f32> {
+    let f = textureLoad(ice, vec2<i32>(p) + frost.offset, 0).rgb;
+    return frost.image_weight * x + frost.frost_weight * f;
 }

@@ -1,7 +1,9 @@
-// The entry point of the per-pixel corruptions (driven by PointwisePass): each invocation applies
-// the includer's `fn corrupt(p, x) -> vec3<f32>` to a run of 8 pixels of a row. The includer
-// declares `source`, `output` and includes common/color.wgsl. On lavapipe this took the noises
-// from 6.6 to 4.6 ms per 1200x680 frame; one pixel per invocation paid the invocation overhead.
+// The entry point of the per-pixel corruptions (driven by PointwisePass) and of the last passes
+// of contrast, fog, frost, elastic_transform and spatter: each invocation applies the includer's
+// `fn corrupt(p, x) -> vec3<f32>` (x: the source pixel at p) to a run of 8 pixels of a row. The
+// includer declares `source`, `output` and includes common/color.wgsl. On lavapipe this took the
+// noises from 6.6 to 4.6 ms per 1200x680 frame; one pixel per invocation paid the invocation
+// overhead.
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -1,7 +1,8 @@
 //! The common shape of a colour corruption's last pass: copy the frame's colour to scratch, run one
 //! shader that reads the copy and writes the frame, with a uniform block of parameters. The shader
-//! writes one pixel per invocation, a run of 8 pixels of a row (see `filter.wgsl`), or such a run
-//! and its mirror image in the mirrored row (pixels (x, y) and (W − 1 − x, H − 1 − y)).
+//! writes a run of 8 pixels of a row per invocation (see `filter.wgsl`, `pointwise_runs.wgsl`;
+//! on lavapipe one pixel per invocation paid the invocation overhead), or such a run and its
+//! mirror image in the mirrored row (pixels (x, y) and (W − 1 − x, H − 1 − y)).
 
 use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
@@ -17,8 +18,6 @@ pub struct ColorPass {
     pipeline: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     label: &'static str,
-    /// Pixels of a row each invocation writes.
-    run: u32,
     /// Whether each invocation also writes the mirror image of its run.
     mirrored: bool,
 }
@@ -27,33 +26,26 @@ pub struct ColorPass {
 const RUN: u32 = 8;
 
 impl ColorPass {
-    /// A shader writing one pixel per invocation.
-    pub fn new<P: Pod>(kit: &Kit, shader: &'static str) -> Result<Self, PerturbError> {
-        Self::with_run::<P>(kit, shader, 1, false)
-    }
-
     /// A shader writing a run of 8 pixels of a row per invocation.
     pub fn runs<P: Pod>(kit: &Kit, shader: &'static str) -> Result<Self, PerturbError> {
-        Self::with_run::<P>(kit, shader, RUN, false)
+        Self::with_runs::<P>(kit, shader, false)
     }
 
     /// A shader writing a run of 8 pixels of row y < H / 2 and the mirrored run of row H − 1 − y
     /// per invocation (the middle row of an odd height: its own run only).
     pub fn mirrored_runs<P: Pod>(kit: &Kit, shader: &'static str) -> Result<Self, PerturbError> {
-        Self::with_run::<P>(kit, shader, RUN, true)
+        Self::with_runs::<P>(kit, shader, true)
     }
 
-    fn with_run<P: Pod>(
+    fn with_runs<P: Pod>(
         kit: &Kit,
         shader: &'static str,
-        run: u32,
         mirrored: bool,
     ) -> Result<Self, PerturbError> {
         Ok(Self {
             pipeline: kit.pipeline(shader)?,
             params: kit.uniform_buffer::<P>(shader),
             label: shader,
-            run,
             mirrored,
         })
     }
@@ -87,7 +79,7 @@ impl ColorPass {
             &self.pipeline,
             &bind_group,
             self.label,
-            kit.width.div_ceil(self.run),
+            kit.width.div_ceil(RUN),
             rows,
         );
     }

@@ -38,7 +38,7 @@ impl Contrast {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         Ok(Self {
             means: Reduction::new(kit, MEAN_SHADER)?,
-            pass: ColorPass::new::<KeyedParams>(kit, SHADER)?,
+            pass: ColorPass::runs::<KeyedParams>(kit, SHADER)?,
         })
     }
 }

@@ -112,7 +112,7 @@ impl ElasticTransform {
             noise_pipeline: kit.pipeline(NOISE_SHADER)?,
             noise: kit.uniform_buffer::<Noise>("elastic noise"),
             smooth,
-            warp: ColorPass::new::<Warp>(kit, WARP_SHADER)?,
+            warp: ColorPass::runs::<Warp>(kit, WARP_SHADER)?,
             fields: FIELDS.frame_texture(kit, "elastic displacement"),
             intermediate: FIELDS.frame_texture(kit, "elastic rows"),
         })

@@ -141,7 +141,7 @@ impl Fog {
             map,
             range: kit.storage_buffer("fog range", 16),
             range_uniform: kit.uniform_buffer::<[u32; 4]>("fog range"),
-            pass: ColorPass::new::<FogParams>(kit, SHADER)?,
+            pass: ColorPass::runs::<FogParams>(kit, SHADER)?,
             size,
         })
     }

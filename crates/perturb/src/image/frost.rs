@@ -110,7 +110,7 @@ impl Frost {
             texture_params: kit.uniform_buffer::<TextureParams>("frost texture"),
             texture: storage_texture(kit, "frost texture", wgpu::TextureFormat::Rgba8Unorm, w, h),
             generated_for: None,
-            pass: ColorPass::new::<FrostParams>(kit, SHADER)?,
+            pass: ColorPass::runs::<FrostParams>(kit, SHADER)?,
         })
     }
 }

@@ -234,8 +234,8 @@ impl Spatter {
             maximum: kit.storage_buffer("spatter maximum", 16),
             lut_uniform: kit.uniform_buffer::<[u32; 256]>("spatter equalisation"),
             maximum_uniform: kit.uniform_buffer::<[u32; 4]>("spatter maximum"),
-            water: ColorPass::new::<Water>(kit, WATER_SHADER)?,
-            mud: ColorPass::new::<Mud>(kit, MUD_SHADER)?,
+            water: ColorPass::runs::<Water>(kit, WATER_SHADER)?,
+            mud: ColorPass::runs::<Mud>(kit, MUD_SHADER)?,
         })
     }
 
