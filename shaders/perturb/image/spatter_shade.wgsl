@@ -2,11 +2,13 @@
 // BORDER_REFLECT_101) times the 8-bit liquid layer; the maximum goes to an atomic (the values are
 // non-negative, so their f32 bits order like the values).
 #include "perturb/image/window_runs.wgsl"
+#include "perturb/image/spatter_layer.wgsl"
 
 @group(0) @binding(0) var embossed: texture_2d<f32>;
-@group(0) @binding(1) var liquid_layer: texture_2d<f32>;
+@group(0) @binding(1) var blurred: texture_2d<f32>;
 @group(0) @binding(2) var output: texture_storage_2d<r32float, write>;
 @group(0) @binding(3) var<storage, read_write> maximum: array<atomic<u32>, 4>;
+@group(0) @binding(4) var<uniform> liquid: Liquid;
 
 fn frame_size() -> vec2<i32> {
     return vec2<i32>(textureDimensions(embossed));
@@ -21,8 +23,7 @@ fn pixel(p: vec2<i32>, w: Window) {
     // In row order, as the twin sums.
     let sum = w.l.x + w.c.x + w.r.x + w.l.y + w.c.y + w.r.y + w.l.z + w.c.z + w.r.z;
     let shade = round(sum / 9.0);
-    let liquid = floor(textureLoad(liquid_layer, p, 0).x * 255.0);
-    let m = liquid * shade;
+    let m = floor(liquid_layer(p) * 255.0) * shade;
     atomicMax(&maximum[0], bitcast<u32>(m));
     textureStore(output, p, vec4<f32>(m, 0.0, 0.0, 0.0));
 }

@@ -15,7 +15,7 @@ use super::separable::{gaussian_runs, Channels, SeparableFilter};
 use super::textures::storage_texture;
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
-use crate::uniform_layout::{rust_layout, UniformLayout};
+use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
 use crate::PerturbError;
 
 mod twin;
@@ -81,11 +81,9 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         },
         Kernel1dUniform::layout(Channels::One.shaders()[0]),
         Kernel1dUniform::layout(Channels::One.shaders()[1]),
-        UniformLayout {
-            rust: rust_layout!(LiquidParams { threshold, mask }),
-            wgsl: "Liquid",
-            shader: "perturb/image/spatter_liquid.wgsl",
-        },
+        LiquidParams::layout("perturb/image/spatter_mud_mask.wgsl"),
+        LiquidParams::layout("perturb/image/spatter_edges.wgsl"),
+        LiquidParams::layout("perturb/image/spatter_shade.wgsl"),
         UniformLayout {
             rust: rust_layout!(Water { color, intensity }),
             wgsl: "Water",
@@ -112,9 +110,20 @@ struct Noise {
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct LiquidParams {
     threshold: f32,
-    /// What the liquid pass writes: 0 the liquid layer (water), 1 the mud mask.
-    mask: u32,
-    _pad: [u32; 2],
+    _pad: [f32; 3],
+}
+
+impl LiquidParams {
+    const LAYOUT: RustLayout = rust_layout!(LiquidParams { threshold });
+
+    /// Its layout as `struct Liquid` (spatter_layer.wgsl) of `shader`.
+    const fn layout(shader: &'static str) -> UniformLayout {
+        UniformLayout {
+            rust: Self::LAYOUT,
+            wgsl: "Liquid",
+            shader,
+        }
+    }
 }
 
 #[repr(C)]
@@ -133,7 +142,7 @@ struct Mud {
 
 struct Pipelines {
     noise: wgpu::ComputePipeline,
-    liquid: wgpu::ComputePipeline,
+    mud_mask: wgpu::ComputePipeline,
     edges: wgpu::ComputePipeline,
     suppress: wgpu::ComputePipeline,
     seeds: wgpu::ComputePipeline,
@@ -155,8 +164,8 @@ struct Spatter {
     mask_blur: SeparableFilter,
     /// r32float: [noise / equalised / shade, edges / distance / embossed]
     planes: [wgpu::Texture; 2],
-    /// r32float: the blurs' row pass, then [blurred noise, liquid layer or mud mask] (the
-    /// mud's blurred mask back in the first)
+    /// r32float: the blurs' row pass, then [blurred noise, mud mask] (the mud's blurred mask
+    /// back in the first)
     rows: wgpu::Texture,
     layers: [wgpu::Texture; 2],
     /// rgba32float: the liquid layer's Sobel gradient (magnitude, x, y)
@@ -195,7 +204,7 @@ impl Spatter {
     fn new(kit: &Kit) -> Result<Self, PerturbError> {
         let pipelines = Pipelines {
             noise: image_pipeline(kit, "noise")?,
-            liquid: image_pipeline(kit, "liquid")?,
+            mud_mask: image_pipeline(kit, "mud_mask")?,
             edges: image_pipeline(kit, "edges")?,
             suppress: image_pipeline(kit, "suppress")?,
             seeds: image_pipeline(kit, "seeds")?,
@@ -222,7 +231,7 @@ impl Spatter {
             rows: texture("spatter rows", R32Float),
             layers: [
                 texture("spatter blurred", R32Float),
-                texture("spatter liquid", R32Float),
+                texture("spatter mud mask", R32Float),
             ],
             gradient: texture("spatter gradient", Rgba32Float),
             seeds: [
@@ -239,7 +248,8 @@ impl Spatter {
         })
     }
 
-    /// Passes 5–15: shading from the liquid layer's edges, then the turquoise composite.
+    /// Passes 5–15: shading from the liquid layer's edges, then the turquoise composite. The
+    /// liquid layer is the blurred noise cut at the threshold, applied where it is read.
     fn encode_water(
         &self,
         kit: &Kit,
@@ -250,7 +260,8 @@ impl Spatter {
         use wgpu::BindingResource::TextureView as T;
         let p = &self.pipelines;
         let [spare, work] = self.planes.each_ref().map(view);
-        let liquid = view(&self.layers[1]);
+        let blurred = view(&self.layers[0]);
+        let liquid = self.threshold.as_entire_binding();
         let gradient = view(&self.gradient);
         let seeds = self.seeds.each_ref().map(view);
         dispatch_row_runs(
@@ -258,7 +269,7 @@ impl Spatter {
             encoder,
             &p.edges,
             "spatter edges",
-            &[T(&liquid), T(&gradient)],
+            &[T(&blurred), T(&gradient), liquid.clone()],
         );
         dispatch_row_runs(
             kit,
@@ -319,9 +330,10 @@ impl Spatter {
         );
         let resources = [
             T(&work),
-            T(&liquid),
+            T(&blurred),
             T(&spare),
             self.maximum.as_entire_binding(),
+            liquid,
         ];
         dispatch_row_runs(kit, encoder, &p.shade, "spatter shade", &resources);
         let params = Water {
@@ -354,8 +366,7 @@ impl GpuPerturbation for Spatter {
         kit.write_uniform(&self.noise, &noise);
         let liquid_params = LiquidParams {
             threshold,
-            mask: (kind == Liquid::Mud) as u32,
-            _pad: [0; 2],
+            _pad: [0.0; 3],
         };
         kit.write_uniform(&self.threshold, &liquid_params);
         let blur = gaussian_runs(NAME, sigma, TRUNCATE, Edge::Replicate)?;
@@ -363,22 +374,26 @@ impl GpuPerturbation for Spatter {
         let p = &self.pipelines;
         let noise_plane = view(&self.planes[0]);
         let rows = view(&self.rows);
-        let [blurred, liquid] = self.layers.each_ref().map(view);
+        let [blurred, mud_mask] = self.layers.each_ref().map(view);
         let resources = [T(&noise_plane), self.noise.as_entire_binding()];
         let bind_group = kit.bind_group(&p.noise, "spatter noise", &resources);
         kit.dispatch(encoder, &p.noise, &bind_group, "spatter noise");
         self.liquid_blur
             .encode(kit, encoder, &noise_plane, &rows, &blurred);
-        let resources = [T(&blurred), T(&liquid), self.threshold.as_entire_binding()];
-        let bind_group = kit.bind_group(&p.liquid, "spatter liquid", &resources);
-        kit.dispatch(encoder, &p.liquid, &bind_group, "spatter liquid");
         match kind {
             Liquid::Water => self.encode_water(kit, encoder, frame, intensity),
             Liquid::Mud => {
+                let resources = [
+                    T(&blurred),
+                    T(&mud_mask),
+                    self.threshold.as_entire_binding(),
+                ];
+                let bind_group = kit.bind_group(&p.mud_mask, "spatter mud mask", &resources);
+                kit.dispatch(encoder, &p.mud_mask, &bind_group, "spatter mud mask");
                 let mask = gaussian_runs(NAME, intensity as f64, TRUNCATE, Edge::Replicate)?;
                 self.mask_blur.set_kernels(kit, &mask, &mask);
                 self.mask_blur
-                    .encode(kit, encoder, &liquid, &rows, &blurred);
+                    .encode(kit, encoder, &mud_mask, &rows, &blurred);
                 let params = Mud {
                     color: [MUD_COLOR[0], MUD_COLOR[1], MUD_COLOR[2], 0.0],
                 };
