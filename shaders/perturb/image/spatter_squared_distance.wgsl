@@ -1,11 +1,12 @@
 // spatter (water), pass 9: the squared distance to the nearest edge, truncated, as the second of
 // two 1-D minimisations (Felzenszwalb & Huttenlocher 2012, "Distance transforms of sampled
 // functions"): spatter_column_distance.wgsl gives each pixel its squared vertical distance to the
-// nearest edge of its column; along rows, each output = min over |d| <= 20 of d^2 + that value at
-// offset d, in integers: the squared Euclidean distance to the nearest edge (at least 400 = 20^2,
-// the truncation, meaning "no edge within 20"). Positions outside the image hold no edge. Each
-// invocation writes a run of 8 pixels of a row, reading each of the 48 source pixels it needs
-// once.
+// nearest edge of its column; along rows, each output = min over offsets d of d^2 + that value
+// at offset d, in integers: the squared Euclidean distance to the nearest edge (at least 400 =
+// 20^2, the truncation, meaning "no edge within 20"). Positions outside the image hold no edge.
+// Each invocation writes a run of 8 pixels of a row, reading each of the 48 source pixels it
+// needs once. Offsets beyond 20 are not excluded: they add d^2 > 400, so they only change values
+// the distance pass truncates to 400 anyway.
 
 @group(0) @binding(0) var source: texture_2d<u32>;
 @group(0) @binding(1) var output: texture_storage_2d<r32uint, write>;
@@ -16,7 +17,7 @@ const NONE: u32 = 1024u;
 
 // What source value v contributes at offset d.
 fn cost(d: i32, v: u32) -> u32 {
-    return select(NONE, u32(d * d) + v, abs(d) <= REACH);
+    return u32(d * d) + v;
 }
 
 fn store(p: vec2<i32>, width: i32, best: u32) {
