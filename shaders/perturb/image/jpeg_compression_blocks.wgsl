@@ -3,7 +3,8 @@
 // averaging with alternating bias (jcsample.c h2v2), 8x8 accurate-integer forward DCT
 // (jfdctint.c), quantisation with rounding, dequantisation and accurate-integer inverse DCT
 // (jidctint.c). The image is extended by edge replication to whole 16x16 MCUs. One invocation
-// per 8x8 block: z = 0..3 the four luma blocks of an MCU, z = 4 Cb, z = 5 Cr.
+// per 8x8 luma block, z = 0..3 the four of an MCU, and at z = 4 one for both chroma blocks, which
+// share the 2x2 averages of the same pixels.
 
 struct Tables {
     // Quantisation tables in natural (row-major) order: luma [0, 16), chroma [16, 32).
@@ -206,8 +207,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         return;
     }
-    let channel = block - 4;
     let origin = vec2<i32>(id.xy) * 8;
+    var cr: array<i32, 64>;
     for (var i = 0; i < 64; i++) {
         let c = origin + vec2<i32>(i % 8, i / 8);
         let p = 2 * c;
@@ -215,12 +216,17 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             + chroma_of(rgb_at(p + vec2<i32>(0, 1))) + chroma_of(rgb_at(p + vec2<i32>(1, 1)));
         // jcsample.c h2v2_downsample: bias 1, 2, 1, 2, ... along the row.
         let bias = 1 + (c.x & 1);
-        samples[i] = ((sum[channel] + bias) >> 2u) - 128;
+        let average = ((sum + bias) >> vec2<u32>(2u)) - 128;
+        samples[i] = average.x;
+        cr[i] = average.y;
     }
     round_trip(&samples, 1);
+    round_trip(&cr, 1);
+    // Cr starts at half the plane's width.
+    let cr_offset = vec2<i32>(i32(mcus.x) * 8, 0);
     for (var i = 0; i < 64; i++) {
         let c = origin + vec2<i32>(i % 8, i / 8);
-        let plane = vec2<i32>(channel * i32(mcus.x) * 8, 0);
-        textureStore(chroma, c + plane, vec4<u32>(range_limit(samples[i]), 0u, 0u, 0u));
+        textureStore(chroma, c, vec4<u32>(range_limit(samples[i]), 0u, 0u, 0u));
+        textureStore(chroma, c + cr_offset, vec4<u32>(range_limit(cr[i]), 0u, 0u, 0u));
     }
 }

@@ -121,7 +121,7 @@ impl GpuPerturbation for JpegCompression {
             ],
         );
         let mcus = [kit.width.div_ceil(16), kit.height.div_ceil(16)];
-        let groups = [mcus[0].div_ceil(8), mcus[1].div_ceil(8), 6];
+        let groups = [mcus[0].div_ceil(8), mcus[1].div_ceil(8), 5];
         kit.dispatch_workgroups(encoder, &self.blocks, &blocks, "jpeg blocks", groups);
         let decode = kit.bind_group(
             &self.decode,
