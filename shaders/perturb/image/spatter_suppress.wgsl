@@ -3,7 +3,7 @@
 // (strong), 1 (weak) or 0.
 #include "perturb/image/window_runs.wgsl"
 
-@group(0) @binding(0) var gradient: texture_2d<f32>;
+@group(0) @binding(0) var gradient: texture_2d<u32>;
 @group(0) @binding(1) var output: texture_storage_2d<r32float, write>;
 
 const LOW: i32 = 50;
@@ -15,19 +15,26 @@ fn frame_size() -> vec2<i32> {
     return vec2<i32>(textureDimensions(gradient));
 }
 
-// The magnitude.
+// (gx, gy) from the 16-bit halves spatter_edges.wgsl packs.
+fn gradient_at(p: vec2<i32>) -> vec2<i32> {
+    let packed = i32(textureLoad(gradient, p, 0).x);
+    return vec2<i32>((packed << 16u) >> 16u, packed >> 16u);
+}
+
+// The L1 magnitude.
 fn sample(p: vec2<i32>) -> f32 {
     if (any(p < vec2<i32>(0)) || any(p >= frame_size())) {
         return 0.0;
     }
-    return textureLoad(gradient, p, 0).x;
+    let g = gradient_at(p);
+    return f32(abs(g.x) + abs(g.y));
 }
 
 fn pixel(p: vec2<i32>, w: Window) {
     let m = w.c.y;
     var kind = 0.0;
     if (m > f32(LOW)) {
-        let g = vec2<i32>(textureLoad(gradient, p, 0).yz);
+        let g = gradient_at(p);
         let ax = abs(g.x);
         let ay = abs(g.y) << 15u;
         let tg22x = ax * TG22;

@@ -168,7 +168,7 @@ struct Spatter {
     /// back in the first)
     rows: wgpu::Texture,
     layers: [wgpu::Texture; 2],
-    /// rgba32float: the liquid layer's Sobel gradient (magnitude, x, y)
+    /// r32uint: the liquid layer's Sobel gradient (x, y as 16-bit halves)
     gradient: wgpu::Texture,
     /// r32uint: edges, then squared distances (ping-pong)
     seeds: [wgpu::Texture; 2],
@@ -217,7 +217,7 @@ impl Spatter {
             shade: image_pipeline(kit, "shade")?,
         };
         let texture = |label, format| storage_texture(kit, label, format, kit.width, kit.height);
-        use wgpu::TextureFormat::{R32Float, R32Uint, Rgba32Float};
+        use wgpu::TextureFormat::{R32Float, R32Uint};
         Ok(Self {
             pipelines,
             noise: kit.uniform_buffer::<Noise>("spatter noise"),
@@ -233,7 +233,7 @@ impl Spatter {
                 texture("spatter blurred", R32Float),
                 texture("spatter mud mask", R32Float),
             ],
-            gradient: texture("spatter gradient", Rgba32Float),
+            gradient: texture("spatter gradient", R32Uint),
             seeds: [
                 texture("spatter seeds a", R32Uint),
                 texture("spatter seeds b", R32Uint),
