@@ -6,7 +6,7 @@
 const SUM_EPSILON: f32 = 4e-6;
 
 // A symmetric 1-D kernel for passes that write runs of 8 outputs per invocation
-// (gaussian_blur, filter_rows, filter_columns): taps[i].x is the weight at offset i - 8 - radius,
+// (filter_rows, filter_columns): taps[i].x is the weight at offset i - 8 - radius,
 // zero outside the kernel; `count` (a multiple of 8, at least 2 radius + 8) source pixels are read
 // per run, 8 per loop iteration. Output o of a run takes source j + m with weight
 // taps[j + m - o + 8]. Each source texel is read once per run and the loop costs one iteration

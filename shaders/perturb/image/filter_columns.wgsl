@@ -1,5 +1,5 @@
-// A separable filter's vertical pass in runs of 8 pixels per invocation (see filter.wgsl), into
-// an f32 texture. Edges and what the includer declares as filter_rows.wgsl.
+// A separable filter's vertical pass in runs of 8 pixels per invocation (see filter.wgsl). Edges
+// and what the includer declares as filter_rows.wgsl.
 #include "perturb/image/filter.wgsl"
 #include "perturb/image/kernel_run.wgsl"
 

@@ -1,8 +1,9 @@
-// A separable filter's horizontal pass in runs of 8 pixels per invocation (see filter.wgsl), into
-// an f32 texture: the blur of spatter's noise and mud mask, and of elastic_transform's
-// displacement fields. Edges: kernel.edge 0 = replicate, 1 = reflect (SciPy 'nearest' /
-// 'reflect'). The includer (filter_r.wgsl, filter_rg.wgsl) declares the channels filtered:
-// `alias Value`, `output` at binding 1, and `value` / `texel` between a texel and a Value.
+// A separable filter's horizontal pass in runs of 8 pixels per invocation (see filter.wgsl): the
+// Gaussians of gaussian_blur and glass_blur, the blur of spatter's noise and mud mask, and of
+// elastic_transform's displacement fields. Edges: kernel.edge 0 = replicate, 1 = reflect (SciPy
+// 'nearest' / 'reflect'). The includer declares the channels filtered (filter_r.wgsl,
+// filter_rg.wgsl, filter_rgb.wgsl, filter_rgb8.wgsl): `alias Value`, `output` at binding 1, and
+// `value` / `texel` between a texel and a Value.
 #include "perturb/image/filter.wgsl"
 #include "perturb/image/kernel_run.wgsl"
 

@@ -6,7 +6,7 @@ use rslam_gpu::FrameTextures;
 
 use super::kernels::{gaussian_half_kernel, store_truncated, symmetric_filter};
 use super::kernels::{symmetric_runs, Axis, Edge, Kernel1dUniform};
-use super::textures::float4_frame_texture;
+use super::separable::{Channels, SeparableFilter};
 use crate::image_f32::RgbF32;
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
@@ -16,9 +16,6 @@ const NAME: &str = "gaussian_blur";
 
 /// σ in pixels per severity (perturbations.md §3, imagecorruptions `gaussian_blur`).
 pub const SIGMA: [f64; 5] = [1.0, 2.0, 3.0, 4.0, 6.0];
-
-/// Pixels per invocation in the passes (runs, see `filter.wgsl`).
-const RUN: u32 = 8;
 
 /// SciPy's default truncation: radius = int(4σ + 0.5).
 const TRUNCATE: f64 = 4.0;
@@ -34,42 +31,35 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     // f32 weighted sums in another order (runs of 8 on the GPU).
     twin_tolerance: Tolerance::ONE_LEVEL,
     uniforms: &[
-        Kernel1dUniform::layout(GaussianPasses::ROWS_SHADER),
-        Kernel1dUniform::layout(GaussianPasses::COLUMNS_SHADER),
+        Kernel1dUniform::layout(Channels::Rgb8.shaders()[0]),
+        Kernel1dUniform::layout(Channels::Rgb8.shaders()[1]),
     ],
 };
 
 /// The two passes of a separable Gaussian: rows into an f32 texture, then columns into an
 /// `Rgba8Unorm` target, truncated to 8 bits.
 pub(crate) struct GaussianPasses {
-    rows: wgpu::ComputePipeline,
-    columns: wgpu::ComputePipeline,
-    params: wgpu::Buffer,
+    filter: SeparableFilter,
     intermediate: wgpu::Texture,
 }
 
 impl GaussianPasses {
-    pub const ROWS_SHADER: &str = "perturb/image/gaussian_blur_rows.wgsl";
-    pub const COLUMNS_SHADER: &str = "perturb/image/gaussian_blur.wgsl";
-
     pub fn new(kit: &Kit) -> Result<Self, PerturbError> {
         Ok(Self {
-            rows: kit.pipeline(Self::ROWS_SHADER)?,
-            columns: kit.pipeline(Self::COLUMNS_SHADER)?,
-            params: kit.uniform_buffer::<Kernel1dUniform>("gaussian blur weights"),
-            intermediate: float4_frame_texture(kit, "gaussian blur rows"),
+            filter: SeparableFilter::new(kit, Channels::Rgb8)?,
+            intermediate: Channels::Rgb8.frame_texture(kit, "gaussian blur rows"),
         })
     }
 
     /// Sets σ for every [`GaussianPasses::encode`] of this frame.
     pub fn set_sigma(&self, kit: &Kit, name: &str, sigma: f64) -> Result<(), PerturbError> {
         let half = gaussian_half_kernel(sigma, TRUNCATE);
-        let params =
+        let kernel =
             symmetric_runs(&half, Edge::Replicate).ok_or_else(|| PerturbError::Unsupported {
                 name: name.into(),
                 message: format!("σ={sigma} needs a kernel longer than the shaders take"),
             })?;
-        kit.write_uniform(&self.params, &params);
+        self.filter.set_kernels(kit, &kernel, &kernel);
         Ok(())
     }
 
@@ -82,29 +72,8 @@ impl GaussianPasses {
         target: &wgpu::TextureView,
     ) {
         let intermediate = view(&self.intermediate);
-        let rows = kit.bind_group(
-            &self.rows,
-            "gaussian blur rows",
-            &[
-                wgpu::BindingResource::TextureView(source),
-                wgpu::BindingResource::TextureView(&intermediate),
-                self.params.as_entire_binding(),
-            ],
-        );
-        let (w, h) = (kit.width, kit.height);
-        let label = "gaussian blur rows";
-        kit.dispatch_grid(encoder, &self.rows, &rows, label, w.div_ceil(RUN), h);
-        let columns = kit.bind_group(
-            &self.columns,
-            "gaussian blur columns",
-            &[
-                wgpu::BindingResource::TextureView(&intermediate),
-                wgpu::BindingResource::TextureView(target),
-                self.params.as_entire_binding(),
-            ],
-        );
-        let label = "gaussian blur columns";
-        kit.dispatch_grid(encoder, &self.columns, &columns, label, w, h.div_ceil(RUN));
+        self.filter
+            .encode(kit, encoder, source, &intermediate, target);
     }
 }
 

@@ -8,6 +8,7 @@ use rslam_gpu::FrameTextures;
 
 use super::gaussian_blur::{blur_twin, GaussianPasses};
 use super::kernels::Kernel1dUniform;
+use super::separable::Channels;
 use crate::image_f32::RgbF32;
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::RngKey;
@@ -43,8 +44,8 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     // The blurs' f32 weighted sums in another order; the sweeps move whole pixels.
     twin_tolerance: Tolerance::ONE_LEVEL,
     uniforms: &[
-        Kernel1dUniform::layout(GaussianPasses::ROWS_SHADER),
-        Kernel1dUniform::layout(GaussianPasses::COLUMNS_SHADER),
+        Kernel1dUniform::layout(Channels::Rgb8.shaders()[0]),
+        Kernel1dUniform::layout(Channels::Rgb8.shaders()[1]),
         UniformLayout {
             rust: rust_layout!(Sweep {
                 key,

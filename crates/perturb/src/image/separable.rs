@@ -1,7 +1,8 @@
-//! The generic separable filter in runs (`filter_rows.wgsl`, `filter_columns.wgsl`): one or two
-//! f32 channels, replicated or reflected edges, a kernel per direction. Used for the smoothing of
-//! spatter's noise and mud mask (one channel) and of elastic_transform's displacement fields
-//! (two).
+//! The generic separable filter in runs (`filter_rows.wgsl`, `filter_columns.wgsl`): one, two or
+//! three f32 channels, replicated or reflected edges, a kernel per direction. Used for the
+//! smoothing of spatter's noise and mud mask (one channel), of elastic_transform's displacement
+//! fields (two) and for the Gaussians of gaussian_blur and glass_blur (three, from and to the
+//! frame's 8-bit colour).
 
 use super::kernels::{gaussian_half_kernel, symmetric_runs, Edge, Kernel1dUniform};
 use super::textures::storage_texture;
@@ -17,6 +18,8 @@ const RUN: u32 = 8;
 pub(crate) enum Channels {
     One,
     Two,
+    /// Colour: rows into an f32 texture, columns into an `Rgba8Unorm` frame, truncated.
+    Rgb8,
 }
 
 impl Channels {
@@ -31,18 +34,23 @@ impl Channels {
                 "perturb/image/filter_rows_rg.wgsl",
                 "perturb/image/filter_columns_rg.wgsl",
             ],
+            Channels::Rgb8 => [
+                "perturb/image/gaussian_blur_rows.wgsl",
+                "perturb/image/gaussian_blur.wgsl",
+            ],
         }
     }
 
-    /// The format of the textures the filter writes.
+    /// The format of the textures the filter writes (for `Rgb8`, of its intermediate only).
     pub const fn format(self) -> wgpu::TextureFormat {
         match self {
             Channels::One => wgpu::TextureFormat::R32Float,
             Channels::Two => wgpu::TextureFormat::Rg32Float,
+            Channels::Rgb8 => wgpu::TextureFormat::Rgba32Float,
         }
     }
 
-    /// A frame-sized texture the filter can write.
+    /// A frame-sized texture of [`Channels::format`].
     pub fn frame_texture(self, kit: &Kit, label: &str) -> wgpu::Texture {
         storage_texture(kit, label, self.format(), kit.width, kit.height)
     }
@@ -87,7 +95,8 @@ impl SeparableFilter {
         kit.write_uniform(&self.column_kernel, columns);
     }
 
-    /// `source` → rows → `intermediate` → columns → `target` (textures of its channels' format).
+    /// `source` → rows → `intermediate` → columns → `target` (for `Rgb8` an 8-bit frame, else
+    /// like `intermediate` a texture of [`Channels::format`]).
     pub fn encode(
         &self,
         kit: &Kit,

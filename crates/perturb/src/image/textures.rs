@@ -13,14 +13,3 @@ pub fn storage_texture(
 ) -> wgpu::Texture {
     kit.ctx.storage_texture(label, format, (width, height))
 }
-
-/// A frame-sized `Rgba32Float` texture for full-precision intermediate results.
-pub fn float4_frame_texture(kit: &Kit, label: &str) -> wgpu::Texture {
-    storage_texture(
-        kit,
-        label,
-        wgpu::TextureFormat::Rgba32Float,
-        kit.width,
-        kit.height,
-    )
-}
