@@ -5,8 +5,8 @@
 use rslam_gpu::FrameTextures;
 
 use super::kernels::{gaussian_half_kernel, store_truncated, symmetric_filter};
-use super::kernels::{symmetric_runs, Axis, Edge, Kernel1dUniform};
-use super::separable::{Channels, SeparableFilter};
+use super::kernels::{Axis, Edge, Kernel1dUniform};
+use super::separable::{gaussian_runs, Channels, SeparableFilter};
 use crate::image_f32::RgbF32;
 use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
@@ -53,12 +53,7 @@ impl GaussianPasses {
 
     /// Sets σ for every [`GaussianPasses::encode`] of this frame.
     pub fn set_sigma(&self, kit: &Kit, name: &str, sigma: f64) -> Result<(), PerturbError> {
-        let half = gaussian_half_kernel(sigma, TRUNCATE);
-        let kernel =
-            symmetric_runs(&half, Edge::Replicate).ok_or_else(|| PerturbError::Unsupported {
-                name: name.into(),
-                message: format!("σ={sigma} needs a kernel longer than the shaders take"),
-            })?;
+        let kernel = gaussian_runs(name, sigma, TRUNCATE, Edge::Replicate)?;
         self.filter.set_kernels(kit, &kernel, &kernel);
         Ok(())
     }

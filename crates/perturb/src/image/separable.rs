@@ -13,7 +13,7 @@ use crate::PerturbError;
 const RUN: u32 = 8;
 
 /// The channels a [`SeparableFilter`] filters, each in its own pair of shaders: filtering only
-/// the channels used costs a half or a quarter of the arithmetic of four.
+/// the channels used spares the arithmetic of the unused ones.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Channels {
     One,

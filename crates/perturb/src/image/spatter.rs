@@ -164,10 +164,11 @@ struct Spatter {
     mask_blur: SeparableFilter,
     /// r32float: [noise / equalised / shade, edges / distance / embossed]
     planes: [wgpu::Texture; 2],
-    /// r32float: the blurs' row pass, then [blurred noise, mud mask] (the mud's blurred mask
-    /// back in the first)
+    /// r32float: the blurs' row pass, the blurred noise (for mud, then the blurred mask) and the
+    /// mud mask
     rows: wgpu::Texture,
-    layers: [wgpu::Texture; 2],
+    blurred: wgpu::Texture,
+    mud_mask: wgpu::Texture,
     /// r32uint: the liquid layer's Sobel gradient (x, y as 16-bit halves)
     gradient: wgpu::Texture,
     /// r32uint: edges, then squared distances (ping-pong)
@@ -229,10 +230,8 @@ impl Spatter {
                 texture("spatter work", R32Float),
             ],
             rows: texture("spatter rows", R32Float),
-            layers: [
-                texture("spatter blurred", R32Float),
-                texture("spatter mud mask", R32Float),
-            ],
+            blurred: texture("spatter blurred", R32Float),
+            mud_mask: texture("spatter mud mask", R32Float),
             gradient: texture("spatter gradient", R32Uint),
             seeds: [
                 texture("spatter seeds a", R32Uint),
@@ -260,7 +259,7 @@ impl Spatter {
         use wgpu::BindingResource::TextureView as T;
         let p = &self.pipelines;
         let [spare, work] = self.planes.each_ref().map(view);
-        let blurred = view(&self.layers[0]);
+        let blurred = view(&self.blurred);
         let liquid = self.threshold.as_entire_binding();
         let gradient = view(&self.gradient);
         let seeds = self.seeds.each_ref().map(view);
@@ -374,7 +373,7 @@ impl GpuPerturbation for Spatter {
         let p = &self.pipelines;
         let noise_plane = view(&self.planes[0]);
         let rows = view(&self.rows);
-        let [blurred, mud_mask] = self.layers.each_ref().map(view);
+        let (blurred, mud_mask) = (view(&self.blurred), view(&self.mud_mask));
         let resources = [T(&noise_plane), self.noise.as_entire_binding()];
         let bind_group = kit.bind_group(&p.noise, "spatter noise", &resources);
         kit.dispatch(encoder, &p.noise, &bind_group, "spatter noise");
