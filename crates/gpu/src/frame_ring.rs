@@ -1,29 +1,37 @@
-use std::sync::Arc;
+use std::sync::mpsc::{channel, Receiver, Sender};
 
-use rslam_core::{DepthImage, ImagePool, RgbImage};
-
+use crate::mapped_frame::MappedFrame;
 use crate::{FrameReadback, FrameTextures, GpuContext, GpuError};
 
-/// A frame read back to the CPU.
+/// A frame read back from the GPU, its staging buffers still mapped: whoever takes it unpacks
+/// its images (on its own threads), which hands the buffers back to the ring.
 pub struct ReadFrame {
     pub index: usize,
-    pub color: RgbImage,
-    /// `None` when the ring was made without depth.
-    pub depth: Option<DepthImage>,
+    /// Its depth half is `None` when the ring was made without depth.
+    pub images: MappedFrame,
+}
+
+struct Pending {
+    index: usize,
+    submission: wgpu::SubmissionIndex,
+    readback: FrameReadback,
 }
 
 struct Slot {
     textures: FrameTextures,
-    readback: FrameReadback,
-    pending: Option<(usize, wgpu::SubmissionIndex)>,
+    pending: Option<Pending>,
 }
 
-/// Several frames in flight: frame `i` uses slot `i % n`; its textures and staging buffers are
-/// allocated once and reused. Submitting into a busy slot first reads the older frame back, into
-/// image buffers the ring's pool was handed back where it has them.
+/// Several frames in flight: frame `i` is drawn into the textures of slot `i % n`, made once and
+/// reused. Its readback copy goes into staging buffers lent until the frame's images are
+/// unpacked, so the frame loop records the next frames while other threads unpack and encode.
+/// The ring makes `2n + 1` sets of them once: for the `n` frames in flight, the one being
+/// recorded, and up to `n` frames handed out but not yet unpacked; with more than that still
+/// out, it waits for one to come back.
 pub struct FrameRing {
     slots: Vec<Slot>,
-    images: Arc<ImagePool>,
+    free: Receiver<FrameReadback>,
+    home: Sender<FrameReadback>,
 }
 
 impl FrameRing {
@@ -33,16 +41,20 @@ impl FrameRing {
         height: u32,
         in_flight: usize,
         with_depth: bool,
-        images: Arc<ImagePool>,
     ) -> Self {
-        let slots = (0..in_flight.max(1))
+        let in_flight = in_flight.max(1);
+        let slots = (0..in_flight)
             .map(|_| Slot {
                 textures: FrameTextures::new(ctx, width, height),
-                readback: FrameReadback::new(ctx, width, height, with_depth),
                 pending: None,
             })
             .collect();
-        Self { slots, images }
+        let (home, free) = channel();
+        for _ in 0..2 * in_flight + 1 {
+            // The receiver is alive: it is in `free`.
+            let _ = home.send(FrameReadback::new(ctx, width, height, with_depth));
+        }
+        Self { slots, free, home }
     }
 
     /// Records frame `index` through `record` (render, perturb …) followed by the readback copy,
@@ -53,53 +65,52 @@ impl FrameRing {
         index: usize,
         record: impl FnOnce(&mut wgpu::CommandEncoder, &FrameTextures) -> Result<(), E>,
     ) -> Result<Option<ReadFrame>, E> {
+        let readback = self.free.recv().map_err(|_| GpuError::Readback {
+            message: "the ring's staging buffers were lost".into(),
+        })?;
         let n = self.slots.len();
         let slot = &mut self.slots[index % n];
-        let finished = match slot.pending.take() {
-            Some((old, submission)) => Some(read_slot(ctx, slot, old, submission, &self.images)?),
-            None => None,
-        };
+        // The GPU runs submissions in order: this frame's drawing into the slot's textures
+        // starts after the previous frame's copy out of them.
+        let previous = slot.pending.take();
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("frame"),
             });
         record(&mut encoder, &slot.textures)?;
-        slot.readback.encode_copy(&mut encoder, &slot.textures);
+        readback.encode_copy(&mut encoder, &slot.textures);
         let submission = ctx.queue.submit([encoder.finish()]);
         ctx.check()?;
-        slot.pending = Some((index, submission));
-        Ok(finished)
+        slot.pending = Some(Pending {
+            index,
+            submission,
+            readback,
+        });
+        Ok(match previous {
+            Some(pending) => Some(self.map(ctx, pending)?),
+            None => None,
+        })
     }
 
     /// Reads back every frame still in flight, oldest first.
     pub fn drain(&mut self, ctx: &GpuContext) -> Result<Vec<ReadFrame>, GpuError> {
-        let mut order: Vec<usize> = (0..self.slots.len())
-            .filter(|&i| self.slots[i].pending.is_some())
+        let mut pending: Vec<Pending> = self
+            .slots
+            .iter_mut()
+            .filter_map(|s| s.pending.take())
             .collect();
-        order.sort_by_key(|&i| self.slots[i].pending.as_ref().map(|p| p.0));
-        let mut frames = Vec::with_capacity(order.len());
-        for i in order {
-            let slot = &mut self.slots[i];
-            if let Some((index, submission)) = slot.pending.take() {
-                frames.push(read_slot(ctx, slot, index, submission, &self.images)?);
-            }
-        }
-        Ok(frames)
+        pending.sort_by_key(|p| p.index);
+        pending.into_iter().map(|p| self.map(ctx, p)).collect()
     }
-}
 
-fn read_slot(
-    ctx: &GpuContext,
-    slot: &Slot,
-    index: usize,
-    submission: wgpu::SubmissionIndex,
-    images: &ImagePool,
-) -> Result<ReadFrame, GpuError> {
-    let (color, depth) = slot.readback.read_into(ctx, submission, images)?;
-    Ok(ReadFrame {
-        index,
-        color,
-        depth,
-    })
+    fn map(&self, ctx: &GpuContext, pending: Pending) -> Result<ReadFrame, GpuError> {
+        let images = pending
+            .readback
+            .into_mapped(ctx, pending.submission, self.home.clone())?;
+        Ok(ReadFrame {
+            index: pending.index,
+            images,
+        })
+    }
 }

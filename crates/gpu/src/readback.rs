@@ -1,17 +1,18 @@
-use std::sync::mpsc;
+use std::sync::mpsc::{self, Sender};
 
 use rslam_core::{DepthImage, ImagePool, RgbImage};
 
+use crate::mapped_frame::MappedFrame;
 use crate::{FrameTextures, GpuContext, GpuError};
 
 /// Staging buffers for one frame's colour and, when asked for, its depth; rows padded to wgpu's
 /// 256-byte alignment.
 pub struct FrameReadback {
-    width: u32,
-    height: u32,
-    padded_row_bytes: u32,
-    color: wgpu::Buffer,
-    depth: Option<wgpu::Buffer>,
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) padded_row_bytes: u32,
+    pub(crate) color: wgpu::Buffer,
+    pub(crate) depth: Option<wgpu::Buffer>,
 }
 
 /// Both colour and depth are 4 bytes per pixel, so one padded row length serves both.
@@ -71,37 +72,47 @@ impl FrameReadback {
         ctx: &GpuContext,
         submission: wgpu::SubmissionIndex,
     ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
-        self.read_into(ctx, submission, &ImagePool::default())
+        self.map(ctx, submission)?;
+        let images = ImagePool::default();
+        let padded = self.padded_row_bytes as usize;
+        let color = unpack(&self.color, |rows| {
+            images.rgb_from_rgba_rows(self.width, self.height, rows, padded)
+        });
+        let depth = self.depth.as_ref().map(|buffer| {
+            unpack(buffer, |rows| {
+                images.depth_from_f32_rows(self.width, self.height, rows, padded)
+            })
+        });
+        Ok((color?, depth.transpose()?))
     }
 
-    /// [`FrameReadback::read`] into buffers `images` was handed back, where it has them.
-    pub fn read_into(
-        &self,
+    /// Waits for `submission` and maps the buffers, leaving them mapped: into a frame whose
+    /// halves are unpacked wherever it is handed to, and which goes back through `home` then.
+    pub(crate) fn into_mapped(
+        self,
         ctx: &GpuContext,
         submission: wgpu::SubmissionIndex,
-        images: &ImagePool,
-    ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
+        home: Sender<FrameReadback>,
+    ) -> Result<MappedFrame, GpuError> {
+        self.map(ctx, submission)?;
+        Ok(MappedFrame::new(self, home))
+    }
+
+    fn map(&self, ctx: &GpuContext, submission: wgpu::SubmissionIndex) -> Result<(), GpuError> {
         // A failed submission shows up here first, with the real cause.
         ctx.check()?;
-        map_and_wait(ctx, self.buffers(), submission)?;
-        let padded = self.padded_row_bytes as usize;
-        let color = {
-            let view = self.color.get_mapped_range(..).map_err(readback_failed)?;
-            images.rgb_from_rgba_rows(self.width, self.height, &view, padded)
-        };
-        self.color.unmap();
-        let depth = match &self.depth {
-            Some(buffer) => {
-                let view = buffer.get_mapped_range(..).map_err(readback_failed)?;
-                let depth = images.depth_from_f32_rows(self.width, self.height, &view, padded);
-                drop(view);
-                buffer.unmap();
-                Some(depth)
-            }
-            None => None,
-        };
-        Ok((color, depth))
+        map_and_wait(ctx, self.buffers(), submission)
     }
+}
+
+/// `read`'s result over the mapped contents of `buffer`, which is unmapped afterwards.
+fn unpack<T>(buffer: &wgpu::Buffer, read: impl FnOnce(&[u8]) -> T) -> Result<T, GpuError> {
+    let result = buffer
+        .get_mapped_range(..)
+        .map(|rows| read(&rows))
+        .map_err(readback_failed);
+    buffer.unmap();
+    result
 }
 
 /// Reads a whole buffer (made with `COPY_SRC`) back to the CPU; blocks until the GPU is done.
@@ -117,12 +128,7 @@ pub fn read_buffer(ctx: &GpuContext, source: &wgpu::Buffer) -> Result<Vec<u8>, G
     encoder.copy_buffer_to_buffer(source, 0, &staging, 0, None);
     let submission = ctx.queue.submit([encoder.finish()]);
     map_and_wait(ctx, [&staging], submission)?;
-    let bytes = staging
-        .get_mapped_range(..)
-        .map_err(readback_failed)?
-        .to_vec();
-    staging.unmap();
-    Ok(bytes)
+    unpack(&staging, <[u8]>::to_vec)
 }
 
 /// Reads single texels of 4-byte formats (`Rgba8Unorm`, `R32Float`): each `(texture, x, y)` in
@@ -164,19 +170,17 @@ pub fn read_texels(
     }
     let submission = ctx.queue.submit([encoder.finish()]);
     map_and_wait(ctx, [&buffer], submission)?;
-    let view = buffer.get_mapped_range(..).map_err(readback_failed)?;
-    let out = (0..texels.len())
-        .map(|i| {
-            let at = i * stride as usize;
-            [view[at], view[at + 1], view[at + 2], view[at + 3]]
-        })
-        .collect();
-    drop(view);
-    buffer.unmap();
-    Ok(out)
+    unpack(&buffer, |view| {
+        (0..texels.len())
+            .map(|i| {
+                let at = i * stride as usize;
+                [view[at], view[at + 1], view[at + 2], view[at + 3]]
+            })
+            .collect()
+    })
 }
 
-fn readback_failed(e: impl std::fmt::Display) -> GpuError {
+pub(crate) fn readback_failed(e: impl std::fmt::Display) -> GpuError {
     GpuError::Readback {
         message: e.to_string(),
     }

@@ -1,9 +1,6 @@
 //! The frame loop: every source frame is recorded (drawn or uploaded, then perturbed), read back
 //! once through the ring of frames in flight, and delivered in order.
 
-use std::sync::Arc;
-
-use rslam_core::ImagePool;
 use rslam_gpu::{wgpu, FrameRing, FrameTextures, GpuContext, ReadFrame};
 
 use crate::progress::Progress;
@@ -21,8 +18,6 @@ pub struct FrameRun<'a> {
     pub sources: &'a [usize],
     /// Read depth back as well as colour.
     pub with_depth: bool,
-    /// Where read-back frames take their buffers from.
-    pub images: Arc<ImagePool>,
 }
 
 impl FrameRun<'_> {
@@ -44,7 +39,6 @@ impl FrameRun<'_> {
             self.height,
             FRAMES_IN_FLIGHT,
             self.with_depth,
-            self.images.clone(),
         );
         let mut deliver = |frame| -> Result<(), PipelineError> {
             deliver(frame)?;

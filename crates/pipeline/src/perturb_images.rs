@@ -224,7 +224,6 @@ fn run_images(
             height,
             sources: &sources,
             with_depth: false,
-            images: images.clone(),
         }
         .run(
             progress,
@@ -246,8 +245,9 @@ fn run_images(
             |frame| {
                 let (destination, images) = (destination.clone(), images.clone());
                 pool.submit(move || {
-                    destination.write(frame.index, &frame.color)?;
-                    images.give_rgb(frame.color);
+                    let color = frame.images.color.unpack(&images)?;
+                    destination.write(frame.index, &color)?;
+                    images.give_rgb(color);
                     Ok(())
                 })
             },

@@ -131,7 +131,6 @@ impl<S: FrameSource> Pipeline<S> {
             height,
             sources,
             with_depth: source.has_depth() && sink.wants_depth(),
-            images: sink.image_pool(),
         }
         .run(
             progress,
@@ -144,7 +143,7 @@ impl<S: FrameSource> Pipeline<S> {
                 position += 1;
                 Ok(())
             },
-            |frame| sink.accept(frame.index, frame.color, frame.depth),
+            |frame| sink.accept(frame.index, frame.images),
         )?;
         match log {
             Some(log) => sink.accept_state(log.read(ctx)?),

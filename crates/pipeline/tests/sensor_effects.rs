@@ -5,8 +5,8 @@
 use std::sync::OnceLock;
 
 use glam::{DQuat, DVec3};
-use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
-use rslam_gpu::{AdapterChoice, GpuContext};
+use rslam_core::{DepthImage, ImagePool, Intrinsics, Pose, RgbImage};
+use rslam_gpu::{AdapterChoice, GpuContext, MappedFrame};
 use rslam_perturb::image_f32::srgb_to_linear;
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::sink::FrameSink;
@@ -81,12 +81,8 @@ fn checker_scene() -> Scene {
 struct Collect(Vec<(RgbImage, DepthImage)>);
 
 impl FrameSink for Collect {
-    fn accept(
-        &mut self,
-        _source: usize,
-        color: RgbImage,
-        depth: Option<DepthImage>,
-    ) -> Result<(), PipelineError> {
+    fn accept(&mut self, _source: usize, frame: MappedFrame) -> Result<(), PipelineError> {
+        let (color, depth) = frame.unpack(&ImagePool::default())?;
         self.0.push((color, depth.expect("scenes have depth")));
         Ok(())
     }

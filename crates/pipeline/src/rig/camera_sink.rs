@@ -4,7 +4,8 @@
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::EurocWriter;
-use rslam_core::{DepthImage, ImagePool, RgbImage};
+use rslam_core::ImagePool;
+use rslam_gpu::MappedFrame;
 
 use crate::encoder_pool::EncoderPool;
 use crate::sink::FrameSink;
@@ -47,16 +48,7 @@ impl FrameSink for EurocCameraSink {
         false
     }
 
-    fn image_pool(&self) -> Arc<ImagePool> {
-        self.images.clone()
-    }
-
-    fn accept(
-        &mut self,
-        source: usize,
-        color: RgbImage,
-        _depth: Option<DepthImage>,
-    ) -> Result<(), PipelineError> {
+    fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError> {
         let Some(&t_ns) = self.times_ns.get(source) else {
             return Err(PipelineError::Worker(format!(
                 "camera {}: frame {source} has no timestamp",
@@ -64,7 +56,9 @@ impl FrameSink for EurocCameraSink {
             )));
         };
         let (writer, camera, images) = (self.writer.clone(), self.camera, self.images.clone());
+        let color = frame.color;
         self.pool.submit(move || {
+            let color = color.unpack(&images)?;
             writer.write_frame_ns(camera, t_ns, &color)?;
             images.give_rgb(color);
             Ok(())

@@ -6,7 +6,8 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use rslam_core::dataset::{DatasetWriter, Manifest};
-use rslam_core::{DepthImage, ImagePool, RgbImage, Trajectory};
+use rslam_core::{ImagePool, Trajectory};
+use rslam_gpu::MappedFrame;
 
 use super::FrameSink;
 use crate::encoder_pool::EncoderPool;
@@ -91,44 +92,36 @@ fn state_csv(table: &StateTable, plan: &FramePlan) -> String {
 }
 
 impl FrameSink for DatasetSink<'_> {
-    fn image_pool(&self) -> Arc<ImagePool> {
-        self.images.clone()
-    }
-
     fn accept_state(&mut self, table: StateTable) -> Result<(), PipelineError> {
         self.state = Some(table);
         Ok(())
     }
 
-    fn accept(
-        &mut self,
-        source: usize,
-        color: RgbImage,
-        depth: Option<DepthImage>,
-    ) -> Result<(), PipelineError> {
+    /// Colour and depth are unpacked on the encoder threads, each in the job that encodes it (a
+    /// source frame repeated in several output frames is encoded into each by that one job).
+    fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError> {
         let Some(outputs) = self.outputs.get(&source) else {
             return Ok(());
         };
-        let color = Arc::new(color);
-        for &j in &outputs.rgb {
-            let (writer, color, frame) = (self.writer.clone(), color.clone(), self.plan.frames[j]);
-            let images = self.images.clone();
+        let with_times = |outputs: &[usize]| -> Vec<_> {
+            outputs.iter().map(|&j| (j, self.plan.frames[j])).collect()
+        };
+        let (rgb_outputs, depth_outputs) = (with_times(&outputs.rgb), with_times(&outputs.depth));
+        if !rgb_outputs.is_empty() {
+            let (writer, images, color) = (self.writer.clone(), self.images.clone(), frame.color);
             self.pool.submit(move || {
-                writer.write_rgb(j, &frame, &color)?;
-                if let Some(color) = Arc::into_inner(color) {
-                    images.give_rgb(color);
+                let color = color.unpack(&images)?;
+                for (j, times) in &rgb_outputs {
+                    writer.write_rgb(*j, times, &color)?;
                 }
+                images.give_rgb(color);
                 Ok(())
             })?;
         }
-        let depth_outputs: Vec<_> = outputs
-            .depth
-            .iter()
-            .map(|&j| (j, self.plan.frames[j]))
-            .collect();
-        if let (Some(depth), false) = (depth, depth_outputs.is_empty()) {
+        if let (Some(depth), false) = (frame.depth, depth_outputs.is_empty()) {
             let (writer, images) = (self.writer.clone(), self.images.clone());
             self.pool.submit(move || {
+                let depth = depth.unpack(&images)?;
                 writer.write_depth(&depth_outputs, &depth)?;
                 images.give_depth(depth);
                 Ok(())

@@ -4,7 +4,8 @@
 use std::collections::HashMap;
 use std::ops::Range;
 
-use rslam_core::{DepthImage, RgbImage};
+use rslam_core::{DepthImage, ImagePool, RgbImage};
+use rslam_gpu::MappedFrame;
 
 use super::FrameSink;
 use crate::plan::FramePlan;
@@ -95,12 +96,9 @@ fn take<T: Clone>(map: &mut HashMap<usize, T>, key: usize, last_use: bool) -> Op
 }
 
 impl<F: FnMut(RgbdFrame) -> Result<(), PipelineError>> FrameSink for MemorySink<'_, F> {
-    fn accept(
-        &mut self,
-        source: usize,
-        color: RgbImage,
-        depth: Option<DepthImage>,
-    ) -> Result<(), PipelineError> {
+    /// Unpacks on the frame loop's thread: the frames leave through the callback there.
+    fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError> {
+        let (color, depth) = frame.unpack(&ImagePool::default())?;
         let outputs = self.outputs.clone();
         if outputs.clone().any(|j| self.plan.rgb_source[j] == source) {
             self.colors.insert(source, color);

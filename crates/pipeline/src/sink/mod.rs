@@ -7,9 +7,7 @@ mod memory;
 pub use dataset::DatasetSink;
 pub use memory::{MemorySink, RgbdFrame};
 
-use std::sync::Arc;
-
-use rslam_core::{DepthImage, ImagePool, RgbImage};
+use rslam_gpu::MappedFrame;
 
 use crate::state_log::StateTable;
 use crate::PipelineError;
@@ -19,18 +17,10 @@ pub trait FrameSink {
     fn wants_depth(&self) -> bool {
         true
     }
-    /// Where the frame loop takes the buffers it reads frames back into: a sink that hands the
-    /// images it was given back to this pool once written spares the loop fresh memory.
-    fn image_pool(&self) -> Arc<ImagePool> {
-        Arc::default()
-    }
-    /// Source frame `source`, read back; `depth` is `None` for inputs without depth.
-    fn accept(
-        &mut self,
-        source: usize,
-        color: RgbImage,
-        depth: Option<DepthImage>,
-    ) -> Result<(), PipelineError>;
+    /// Source frame `source`, read back into staging buffers that stay mapped until its images
+    /// are unpacked: a sink with worker threads unpacks them there, sparing the frame loop's
+    /// thread. Its depth is `None` for inputs without depth.
+    fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError>;
     /// The state stateful perturbations made each source frame with, once after the last
     /// frame; a sink that writes no dataset drops it.
     fn accept_state(&mut self, _table: StateTable) -> Result<(), PipelineError> {
