@@ -13,4 +13,6 @@ pub enum GpuError {
     Validation { message: String },
     #[error("GPU readback failed: {message}")]
     Readback { message: String },
+    #[error("GPU upload failed: {message}")]
+    Upload { message: String },
 }

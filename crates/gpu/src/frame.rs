@@ -73,22 +73,18 @@ impl FrameTextures {
         }
     }
 
-    /// Uploads a frame read from disk (the `rslam perturb` path). Without depth the depth texture
-    /// keeps whatever it held: image-only inputs run image corruptions only, which never read it.
+    /// Uploads a frame held in memory (arrays from Python, the viewer's frames). Without depth
+    /// the depth texture keeps whatever it held: image-only inputs run image corruptions only,
+    /// which never read it. Frames decoded from disk go through [`crate::FrameUploads`] instead.
     pub fn upload(&self, ctx: &GpuContext, color: &RgbImage, depth: Option<&DepthImage>) {
-        self.upload_rgba(ctx, &color.to_rgba(), depth);
-    }
-
-    /// [`FrameTextures::upload`] of colour already in the texture's RGBA layout (`width × height ×
-    /// 4` bytes), converted where it was decoded.
-    pub fn upload_rgba(&self, ctx: &GpuContext, rgba: &[u8], depth: Option<&DepthImage>) {
         let layout = |bytes_per_pixel: u32| wgpu::TexelCopyBufferLayout {
             offset: 0,
             bytes_per_row: Some(self.width * bytes_per_pixel),
             rows_per_image: Some(self.height),
         };
+        let rgba = color.to_rgba();
         ctx.queue
-            .write_texture(self.color.as_image_copy(), rgba, layout(4), self.size());
+            .write_texture(self.color.as_image_copy(), &rgba, layout(4), self.size());
         if let Some(depth) = depth {
             ctx.queue.write_texture(
                 self.depth.as_image_copy(),

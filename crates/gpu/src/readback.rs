@@ -15,8 +15,9 @@ pub struct FrameReadback {
     pub(crate) depth: Option<wgpu::Buffer>,
 }
 
-/// Both colour and depth are 4 bytes per pixel, so one padded row length serves both.
-fn padded_row_bytes(width: u32) -> u32 {
+/// Both colour and depth are 4 bytes per pixel, so one padded row length serves both (and the
+/// uploads, which the same copy alignment applies to).
+pub(crate) fn padded_row_bytes(width: u32) -> u32 {
     let unpadded = width * 4;
     let align = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     unpadded.div_ceil(align) * align

@@ -1,33 +1,23 @@
 //! Frames decoded on a background thread, a few at a time in parallel, ahead of the GPU, and
-//! handed over in order.
+//! handed over in order; decoded images go straight into upload buffers there.
 
 use std::sync::mpsc::{sync_channel, Receiver};
 use std::thread::JoinHandle;
 
 use rayon::prelude::*;
-use rslam_core::RgbImage;
+use rslam_gpu::{FrameUploads, GpuContext};
 
 use crate::PipelineError;
 
 /// Frames decoded together, in parallel.
 const DECODE_AHEAD: usize = 4;
 
-/// A decoded colour image in the GPU texture's RGBA layout: converted on the decoding threads, so
-/// that the frame loop's upload is one copy.
-pub struct RgbaFrame {
-    pub width: u32,
-    pub height: u32,
-    pub rgba: Vec<u8>,
-}
-
-impl From<RgbImage> for RgbaFrame {
-    fn from(image: RgbImage) -> Self {
-        Self {
-            width: image.width,
-            height: image.height,
-            rgba: image.to_rgba(),
-        }
-    }
+/// Upload buffers for frames of `width × height` that a [`DecodeAhead`] fills. While a frame is
+/// being filled, at most `DECODE_AHEAD` frames wait in the channel, `DECODE_AHEAD - 1` more of
+/// its chunk are filled, and the frame loop holds two (the one it records, the one before): one
+/// more than that keeps a buffer free for it.
+pub fn frame_uploads(ctx: &GpuContext, width: u32, height: u32, with_depth: bool) -> FrameUploads {
+    FrameUploads::new(ctx, width, height, with_depth, 2 * DECODE_AHEAD + 2)
 }
 
 pub struct DecodeAhead<T> {

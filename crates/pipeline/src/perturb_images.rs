@@ -17,7 +17,7 @@ use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Perturber};
 
 use crate::dataset_run::RunReport;
-use crate::decode_ahead::{DecodeAhead, RgbaFrame};
+use crate::decode_ahead::{frame_uploads, DecodeAhead};
 use crate::encoder_pool::EncoderPool;
 use crate::frame_loop::FrameRun;
 use crate::manifest::ManifestParts;
@@ -217,7 +217,21 @@ fn run_images(
         };
         let sources: Vec<usize> = indices[run].to_vec();
         let paths: Vec<PathBuf> = sources.iter().map(|&i| files[i].clone()).collect();
-        let decoder = DecodeAhead::start(paths, |file| Ok(RgbaFrame::from(read_rgb(file)?)));
+        let mut uploads = frame_uploads(ctx, width, height, false);
+        let filler = uploads.filler();
+        let decoder = DecodeAhead::start(paths, move |file| {
+            let color = read_rgb(file)?;
+            if (color.width, color.height) != (width, height) {
+                return Err(PipelineError::input(
+                    file,
+                    format!(
+                        "image is {}x{} but its header says {width}x{height}",
+                        color.width, color.height
+                    ),
+                ));
+            }
+            Ok(filler.fill(&color, None)?)
+        });
         FrameRun {
             ctx,
             width,
@@ -228,17 +242,7 @@ fn run_images(
         .run(
             progress,
             |index, encoder, frame| {
-                let color = decoder.next()?;
-                if (color.width, color.height) != (width, height) {
-                    return Err(PipelineError::input(
-                        &files[index],
-                        format!(
-                            "image is {}x{} but its header says {width}x{height}",
-                            color.width, color.height
-                        ),
-                    ));
-                }
-                frame.upload_rgba(ctx, &color.rgba, None);
+                uploads.record(encoder, frame, decoder.next()?);
                 perturber.encode(ctx, encoder, frame, index as u32)?;
                 Ok(())
             },

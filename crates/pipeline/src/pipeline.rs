@@ -91,7 +91,7 @@ impl<S: FrameSource> Pipeline<S> {
         }
         if redraw {
             let sources: Vec<usize> = frames.iter().map(|f| f.0).collect();
-            self.source.prepare(&sources)?;
+            self.source.prepare(ctx, &sources)?;
         }
         for (index, clean, perturbed) in frames {
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -121,7 +121,7 @@ impl<S: FrameSource> Pipeline<S> {
         sink: &mut dyn FrameSink,
     ) -> Result<(), PipelineError> {
         let (width, height) = self.source.size();
-        self.source.prepare(sources)?;
+        self.source.prepare(ctx, sources)?;
         let (source, perturber) = (&mut self.source, &mut self.perturber);
         let log = StateLog::new(ctx, perturber, sources);
         let mut position = 0;

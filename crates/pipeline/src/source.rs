@@ -6,12 +6,12 @@ use std::collections::HashMap;
 
 use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFrame, SourceDataset};
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
-use rslam_gpu::{wgpu, FrameTextures, GpuContext};
+use rslam_gpu::{wgpu, FilledUpload, FrameTextures, FrameUploads, GpuContext};
 use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
-use crate::decode_ahead::{next_frame, DecodeAhead, RgbaFrame};
+use crate::decode_ahead::{frame_uploads, next_frame, DecodeAhead};
 use crate::lens_render::LensRender;
 use crate::shutter_render::ShutterRender;
 use crate::PipelineError;
@@ -26,7 +26,7 @@ pub trait FrameSource {
     fn camera(&self) -> Option<Intrinsics>;
     /// Called once per run with the source frames it will record, in that order (decoding
     /// starts here).
-    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError>;
+    fn prepare(&mut self, ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError>;
     /// Records source frame `index` into `frame`.
     fn record(
         &mut self,
@@ -148,7 +148,7 @@ impl FrameSource for SceneSource {
         Some(self.camera)
     }
 
-    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+    fn prepare(&mut self, _ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
         check_in_range(sources, self.poses.len(), "poses of the path")
     }
 
@@ -177,18 +177,15 @@ impl FrameSource for SceneSource {
     }
 }
 
-struct Decoded {
-    color: RgbaFrame,
-    depth: Option<DepthImage>,
-}
-
 /// The frames of a dataset on disk, decoded ahead of the GPU on worker threads.
 pub struct DatasetSource {
     frames: Vec<DatasetFrame>,
     intrinsics: Intrinsics,
     depth_scale: f64,
-    /// Each needed frame, decoded with its source index.
-    decoder: Option<DecodeAhead<(usize, Decoded)>>,
+    /// Made at the first run, kept for the next.
+    uploads: Option<FrameUploads>,
+    /// Each needed frame, decoded into upload buffers with its source index.
+    decoder: Option<DecodeAhead<(usize, FilledUpload)>>,
 }
 
 impl DatasetSource {
@@ -197,6 +194,7 @@ impl DatasetSource {
             frames: dataset.frames.clone(),
             intrinsics: dataset.intrinsics,
             depth_scale: dataset.format.depth_scale(),
+            uploads: None,
             decoder: None,
         }
     }
@@ -215,45 +213,50 @@ impl FrameSource for DatasetSource {
         Some(self.intrinsics)
     }
 
-    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+    fn prepare(&mut self, ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
         check_in_range(sources, self.frames.len(), "frames of the dataset")?;
         let needed: Vec<(usize, DatasetFrame)> = sources
             .iter()
             .map(|&s| (s, self.frames[s].clone()))
             .collect();
-        let scale = self.depth_scale;
+        // Dropping the decoder of a run before hands its buffers back.
+        self.decoder = None;
+        let (width, height) = self.size();
+        let any_depth = self.frames.iter().any(|f| f.depth.is_some());
+        let filler = self
+            .uploads
+            .get_or_insert_with(|| frame_uploads(ctx, width, height, any_depth))
+            .filler();
+        let (scale, camera) = (self.depth_scale, self.intrinsics);
         self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
-            let decoded = Decoded {
-                color: read_rgb(&frame.rgb)?.into(),
-                depth: match &frame.depth {
-                    Some(path) => Some(decode_depth_png(path, scale)?),
-                    None => None,
-                },
+            let color = read_rgb(&frame.rgb)?;
+            check_size(&frame.rgb, color.width, color.height, camera)?;
+            let depth = match &frame.depth {
+                Some(path) => {
+                    let depth = decode_depth_png(path, scale)?;
+                    check_size(path, depth.width, depth.height, camera)?;
+                    Some(depth)
+                }
+                None => None,
             };
-            Ok((*index, decoded))
+            Ok((*index, filler.fill(&color, depth.as_ref())?))
         }));
         Ok(())
     }
 
     fn record(
         &mut self,
-        ctx: &GpuContext,
-        _encoder: &mut wgpu::CommandEncoder,
+        _ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        let decoded = next_frame(self.decoder.as_ref(), index)?;
-        let file = &self.frames[index];
-        check_size(
-            &file.rgb,
-            decoded.color.width,
-            decoded.color.height,
-            self.intrinsics,
-        )?;
-        if let (Some(path), Some(depth)) = (&file.depth, &decoded.depth) {
-            check_size(path, depth.width, depth.height, self.intrinsics)?;
-        }
-        frame.upload_rgba(ctx, &decoded.color.rgba, decoded.depth.as_ref());
+        let upload = next_frame(self.decoder.as_ref(), index)?;
+        let uploads = self
+            .uploads
+            .as_mut()
+            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
+        uploads.record(encoder, frame, upload);
         Ok(())
     }
 }
@@ -420,7 +423,7 @@ impl FrameSource for BufferSource {
         self.camera
     }
 
-    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+    fn prepare(&mut self, _ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
         match sources.iter().find(|s| !self.buffer_of.contains_key(s)) {
             Some(s) => Err(PipelineError::option(
                 "frame",

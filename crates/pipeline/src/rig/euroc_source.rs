@@ -7,10 +7,10 @@ use std::path::Path;
 
 use rslam_core::dataset::euroc::{CameraColour, EurocFrame};
 use rslam_core::dataset::{read_grey16_high_byte, read_rgb8};
-use rslam_core::Intrinsics;
-use rslam_gpu::{wgpu, FrameTextures, GpuContext};
+use rslam_core::{Intrinsics, RgbImage};
+use rslam_gpu::{wgpu, FilledUpload, FrameTextures, FrameUploads, GpuContext};
 
-use crate::decode_ahead::{next_frame, DecodeAhead, RgbaFrame};
+use crate::decode_ahead::{frame_uploads, next_frame, DecodeAhead};
 use crate::source::{check_in_range, FrameSource};
 use crate::PipelineError;
 
@@ -19,8 +19,10 @@ pub struct EurocCameraSource {
     frames: Vec<EurocFrame>,
     intrinsics: Intrinsics,
     colour: CameraColour,
-    /// Each needed frame's colour, decoded with its source index.
-    decoder: Option<DecodeAhead<(usize, RgbaFrame)>>,
+    /// Made at the first run, kept for the next.
+    uploads: Option<FrameUploads>,
+    /// Each needed frame's colour, decoded into upload buffers with its source index.
+    decoder: Option<DecodeAhead<(usize, FilledUpload)>>,
 }
 
 impl EurocCameraSource {
@@ -29,6 +31,7 @@ impl EurocCameraSource {
             frames,
             intrinsics,
             colour,
+            uploads: None,
             decoder: None,
         }
     }
@@ -47,7 +50,7 @@ impl FrameSource for EurocCameraSource {
         Some(self.intrinsics)
     }
 
-    fn prepare(&mut self, sources: &[usize]) -> Result<(), PipelineError> {
+    fn prepare(&mut self, ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
         check_in_range(sources, self.frames.len(), "frames of the camera")?;
         let needed: Vec<(usize, EurocFrame)> = sources
             .iter()
@@ -57,27 +60,40 @@ impl FrameSource for EurocCameraSource {
             CameraColour::Grey16 => read_grey16_high_byte,
             CameraColour::Grey | CameraColour::Rgb => read_rgb8,
         };
+        // Dropping the decoder of a run before hands its buffers back.
+        self.decoder = None;
+        let (width, height) = self.size();
+        let filler = self
+            .uploads
+            .get_or_insert_with(|| frame_uploads(ctx, width, height, false))
+            .filler();
+        let camera = self.intrinsics;
         self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
-            Ok((*index, RgbaFrame::from(read(&frame.path)?)))
+            let color = read(&frame.path)?;
+            check_size(&frame.path, &color, camera)?;
+            Ok((*index, filler.fill(&color, None)?))
         }));
         Ok(())
     }
 
     fn record(
         &mut self,
-        ctx: &GpuContext,
-        _encoder: &mut wgpu::CommandEncoder,
+        _ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        let color = next_frame(self.decoder.as_ref(), index)?;
-        check_size(&self.frames[index].path, &color, self.intrinsics)?;
-        frame.upload_rgba(ctx, &color.rgba, None);
+        let upload = next_frame(self.decoder.as_ref(), index)?;
+        let uploads = self
+            .uploads
+            .as_mut()
+            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
+        uploads.record(encoder, frame, upload);
         Ok(())
     }
 }
 
-fn check_size(path: &Path, image: &RgbaFrame, camera: Intrinsics) -> Result<(), PipelineError> {
+fn check_size(path: &Path, image: &RgbImage, camera: Intrinsics) -> Result<(), PipelineError> {
     if (image.width, image.height) == (camera.width, camera.height) {
         return Ok(());
     }
