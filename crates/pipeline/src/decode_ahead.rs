@@ -1,24 +1,15 @@
 //! Frames decoded on a background thread, a few at a time in parallel, ahead of the GPU, and
-//! handed over in order; decoded images go straight into upload buffers there.
+//! handed over in order.
 
 use std::sync::mpsc::{sync_channel, Receiver};
 use std::thread::JoinHandle;
 
 use rayon::prelude::*;
-use rslam_gpu::{FrameUploads, GpuContext};
 
 use crate::PipelineError;
 
-/// Frames decoded together, in parallel.
-const DECODE_AHEAD: usize = 4;
-
-/// Upload buffers for frames of `width × height` that a [`DecodeAhead`] fills. While a frame is
-/// being filled, at most `DECODE_AHEAD` frames wait in the channel, `DECODE_AHEAD - 1` more of
-/// its chunk are filled, and the frame loop holds two (the one it records, the one before): one
-/// more than that keeps a buffer free for it.
-pub fn frame_uploads(ctx: &GpuContext, width: u32, height: u32, with_depth: bool) -> FrameUploads {
-    FrameUploads::new(ctx, width, height, with_depth, 2 * DECODE_AHEAD + 2)
-}
+/// Frames decoded together, in parallel; as many more wait decoded.
+pub const DECODE_AHEAD: usize = 4;
 
 pub struct DecodeAhead<T> {
     frames: Option<Receiver<Result<T, PipelineError>>>,
@@ -58,24 +49,6 @@ impl<T: Send + 'static> DecodeAhead<T> {
             .recv()
             .map_err(|_| stopped())?
     }
-}
-
-/// The next frame `decoder` (`None` before the source was prepared) hands over, which must be
-/// source frame `index`: frames are recorded in the order they were given to
-/// [`DecodeAhead::start`], each decoded with its source index.
-pub fn next_frame<T: Send + 'static>(
-    decoder: Option<&DecodeAhead<(usize, T)>>,
-    index: usize,
-) -> Result<T, PipelineError> {
-    let decoder =
-        decoder.ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
-    let (decoded, frame) = decoder.next()?;
-    if decoded != index {
-        return Err(PipelineError::Worker(format!(
-            "decoder delivered frame {decoded} where frame {index} was expected"
-        )));
-    }
-    Ok(frame)
 }
 
 impl<T> Drop for DecodeAhead<T> {

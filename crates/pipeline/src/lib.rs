@@ -41,6 +41,7 @@ mod shutter_render;
 pub mod sink;
 pub mod source;
 mod state_log;
+mod upload_ahead;
 
 pub use agents::{agent_folders, agent_scene_job};
 pub use dataset_run::RunReport;

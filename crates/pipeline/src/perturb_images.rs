@@ -17,13 +17,13 @@ use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Perturber};
 
 use crate::dataset_run::RunReport;
-use crate::decode_ahead::{frame_uploads, DecodeAhead};
 use crate::encoder_pool::EncoderPool;
 use crate::frame_loop::FrameRun;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, FolderState};
 use crate::plan::FramePlan;
 use crate::progress::Progress;
+use crate::upload_ahead::UploadAhead;
 use crate::PipelineError;
 
 /// JPEG quality of perturbed JPEG images.
@@ -216,10 +216,9 @@ fn run_images(
             )?),
         };
         let sources: Vec<usize> = indices[run].to_vec();
-        let paths: Vec<PathBuf> = sources.iter().map(|&i| files[i].clone()).collect();
-        let mut uploads = frame_uploads(ctx, width, height, false);
-        let filler = uploads.filler();
-        let decoder = DecodeAhead::start(paths, move |file| {
+        let paths: Vec<(usize, PathBuf)> = sources.iter().map(|&i| (i, files[i].clone())).collect();
+        let mut frames_ahead = UploadAhead::new(width, height, false);
+        frames_ahead.start(ctx, paths, move |file, filler| {
             let color = read_rgb(file)?;
             if (color.width, color.height) != (width, height) {
                 return Err(PipelineError::input(
@@ -242,7 +241,7 @@ fn run_images(
         .run(
             progress,
             |index, encoder, frame| {
-                uploads.record(encoder, frame, decoder.next()?);
+                frames_ahead.record(encoder, frame, index)?;
                 perturber.encode(ctx, encoder, frame, index as u32)?;
                 Ok(())
             },

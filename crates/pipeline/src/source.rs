@@ -6,14 +6,14 @@ use std::collections::HashMap;
 
 use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFrame, SourceDataset};
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
-use rslam_gpu::{wgpu, FilledUpload, FrameTextures, FrameUploads, GpuContext};
+use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
-use crate::decode_ahead::{frame_uploads, next_frame, DecodeAhead};
 use crate::lens_render::LensRender;
 use crate::shutter_render::ShutterRender;
+use crate::upload_ahead::UploadAhead;
 use crate::PipelineError;
 
 pub trait FrameSource {
@@ -182,10 +182,8 @@ pub struct DatasetSource {
     frames: Vec<DatasetFrame>,
     intrinsics: Intrinsics,
     depth_scale: f64,
-    /// Made at the first run, kept for the next.
-    uploads: Option<FrameUploads>,
-    /// Each needed frame, decoded into upload buffers with its source index.
-    decoder: Option<DecodeAhead<(usize, FilledUpload)>>,
+    /// Each needed frame, decoded ahead into upload buffers.
+    frames_ahead: UploadAhead,
 }
 
 impl DatasetSource {
@@ -194,8 +192,11 @@ impl DatasetSource {
             frames: dataset.frames.clone(),
             intrinsics: dataset.intrinsics,
             depth_scale: dataset.format.depth_scale(),
-            uploads: None,
-            decoder: None,
+            frames_ahead: UploadAhead::new(
+                dataset.intrinsics.width,
+                dataset.intrinsics.height,
+                dataset.frames.iter().any(|f| f.depth.is_some()),
+            ),
         }
     }
 }
@@ -219,16 +220,8 @@ impl FrameSource for DatasetSource {
             .iter()
             .map(|&s| (s, self.frames[s].clone()))
             .collect();
-        // Dropping the decoder of a run before hands its buffers back.
-        self.decoder = None;
-        let (width, height) = self.size();
-        let any_depth = self.frames.iter().any(|f| f.depth.is_some());
-        let filler = self
-            .uploads
-            .get_or_insert_with(|| frame_uploads(ctx, width, height, any_depth))
-            .filler();
         let (scale, camera) = (self.depth_scale, self.intrinsics);
-        self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
+        self.frames_ahead.start(ctx, needed, move |frame, filler| {
             let color = read_rgb(&frame.rgb)?;
             check_size(&frame.rgb, color.width, color.height, camera)?;
             let depth = match &frame.depth {
@@ -239,8 +232,8 @@ impl FrameSource for DatasetSource {
                 }
                 None => None,
             };
-            Ok((*index, filler.fill(&color, depth.as_ref())?))
-        }));
+            Ok(filler.fill(&color, depth.as_ref())?)
+        });
         Ok(())
     }
 
@@ -251,13 +244,7 @@ impl FrameSource for DatasetSource {
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        let upload = next_frame(self.decoder.as_ref(), index)?;
-        let uploads = self
-            .uploads
-            .as_mut()
-            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
-        uploads.record(encoder, frame, upload);
-        Ok(())
+        self.frames_ahead.record(encoder, frame, index)
     }
 }
 

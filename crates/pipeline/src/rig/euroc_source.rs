@@ -8,10 +8,10 @@ use std::path::Path;
 use rslam_core::dataset::euroc::{CameraColour, EurocFrame};
 use rslam_core::dataset::{read_grey16_high_byte, read_rgb8};
 use rslam_core::{Intrinsics, RgbImage};
-use rslam_gpu::{wgpu, FilledUpload, FrameTextures, FrameUploads, GpuContext};
+use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
-use crate::decode_ahead::{frame_uploads, next_frame, DecodeAhead};
 use crate::source::{check_in_range, FrameSource};
+use crate::upload_ahead::UploadAhead;
 use crate::PipelineError;
 
 /// The frames of one `mav0/camN/` folder, in time order; source frame `i` is `frames[i]`.
@@ -19,10 +19,8 @@ pub struct EurocCameraSource {
     frames: Vec<EurocFrame>,
     intrinsics: Intrinsics,
     colour: CameraColour,
-    /// Made at the first run, kept for the next.
-    uploads: Option<FrameUploads>,
-    /// Each needed frame's colour, decoded into upload buffers with its source index.
-    decoder: Option<DecodeAhead<(usize, FilledUpload)>>,
+    /// Each needed frame's colour, decoded ahead into upload buffers.
+    frames_ahead: UploadAhead,
 }
 
 impl EurocCameraSource {
@@ -31,8 +29,7 @@ impl EurocCameraSource {
             frames,
             intrinsics,
             colour,
-            uploads: None,
-            decoder: None,
+            frames_ahead: UploadAhead::new(intrinsics.width, intrinsics.height, false),
         }
     }
 }
@@ -60,19 +57,12 @@ impl FrameSource for EurocCameraSource {
             CameraColour::Grey16 => read_grey16_high_byte,
             CameraColour::Grey | CameraColour::Rgb => read_rgb8,
         };
-        // Dropping the decoder of a run before hands its buffers back.
-        self.decoder = None;
-        let (width, height) = self.size();
-        let filler = self
-            .uploads
-            .get_or_insert_with(|| frame_uploads(ctx, width, height, false))
-            .filler();
         let camera = self.intrinsics;
-        self.decoder = Some(DecodeAhead::start(needed, move |(index, frame)| {
+        self.frames_ahead.start(ctx, needed, move |frame, filler| {
             let color = read(&frame.path)?;
             check_size(&frame.path, &color, camera)?;
-            Ok((*index, filler.fill(&color, None)?))
-        }));
+            Ok(filler.fill(&color, None)?)
+        });
         Ok(())
     }
 
@@ -83,13 +73,7 @@ impl FrameSource for EurocCameraSource {
         frame: &FrameTextures,
         index: usize,
     ) -> Result<(), PipelineError> {
-        let upload = next_frame(self.decoder.as_ref(), index)?;
-        let uploads = self
-            .uploads
-            .as_mut()
-            .ok_or_else(|| PipelineError::Worker("frames recorded before prepare".into()))?;
-        uploads.record(encoder, frame, upload);
-        Ok(())
+        self.frames_ahead.record(encoder, frame, index)
     }
 }
 
