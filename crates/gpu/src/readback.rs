@@ -7,6 +7,7 @@ use crate::{FrameTextures, GpuContext, GpuError};
 
 /// Staging buffers for one frame's colour and, when asked for, its depth; rows padded to wgpu's
 /// 256-byte alignment.
+#[derive(Clone)]
 pub struct FrameReadback {
     pub(crate) width: u32,
     pub(crate) height: u32,
@@ -73,18 +74,11 @@ impl FrameReadback {
         ctx: &GpuContext,
         submission: wgpu::SubmissionIndex,
     ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
-        self.map(ctx, submission)?;
-        let images = ImagePool::default();
-        let padded = self.padded_row_bytes as usize;
-        let color = unpack(&self.color, |rows| {
-            images.rgb_from_rgba_rows(self.width, self.height, rows, padded)
-        });
-        let depth = self.depth.as_ref().map(|buffer| {
-            unpack(buffer, |rows| {
-                images.depth_from_f32_rows(self.width, self.height, rows, padded)
-            })
-        });
-        Ok((color?, depth.transpose()?))
+        // The clone holds the same buffers; it goes back to a ring no one keeps.
+        let (home, _) = mpsc::channel();
+        self.clone()
+            .into_mapped(ctx, submission, home)?
+            .unpack(&ImagePool::default())
     }
 
     /// Waits for `submission` and maps the buffers, leaving them mapped: into a frame whose

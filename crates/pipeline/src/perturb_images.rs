@@ -205,19 +205,20 @@ fn run_images(
     let pool = EncoderPool::per_core();
     let images = Arc::new(ImagePool::default());
     progress.start(indices.len(), "perturbing");
-    let mut perturbers: HashMap<(u32, u32), Perturber> = HashMap::new();
+    // Made once per image size, for every run of that size.
+    let mut per_size: HashMap<(u32, u32), (Perturber, UploadAhead)> = HashMap::new();
     for run in runs_of_equal_size(&sizes) {
         let (width, height) = sizes[run.start];
-        let perturber = match perturbers.entry((width, height)) {
+        let (perturber, frames_ahead) = match per_size.entry((width, height)) {
             Entry::Occupied(e) => e.into_mut(),
-            // Image files carry no camera.
-            Entry::Vacant(e) => e.insert(Perturber::new(
-                ctx, &job.spec, width, height, job.seed, None,
-            )?),
+            Entry::Vacant(e) => e.insert((
+                // Image files carry no camera.
+                Perturber::new(ctx, &job.spec, width, height, job.seed, None)?,
+                UploadAhead::new(width, height, false),
+            )),
         };
         let sources: Vec<usize> = indices[run].to_vec();
         let paths: Vec<(usize, PathBuf)> = sources.iter().map(|&i| (i, files[i].clone())).collect();
-        let mut frames_ahead = UploadAhead::new(width, height, false);
         frames_ahead.start(ctx, paths, move |file, filler| {
             let color = read_rgb(file)?;
             if (color.width, color.height) != (width, height) {
