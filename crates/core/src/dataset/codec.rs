@@ -46,17 +46,33 @@ fn png_encoder(out: &mut Vec<u8>) -> PngEncoder<&mut Vec<u8>> {
     PngEncoder::new_with_quality(out, CompressionType::Fast, FilterType::Paeth)
 }
 
-/// `Small` is zlib level 2 with adaptive filtering, the knee on rendered depth (the
-/// `depth_png_settings` example; README, "Performance"): a third of `Fast`'s bytes for 2.3–2.7×
-/// its time. Level 1 is 38 % larger; level 3 saves 13 % more for 1.75× the time, level 9 27 %
-/// for 8×.
-fn depth_png_encoder(out: &mut Vec<u8>, encoding: DepthPng) -> PngEncoder<&mut Vec<u8>> {
+/// Depth goes to the png crate itself, as big-endian samples, with the settings the image crate's
+/// encoder would pass: the image crate takes native-endian samples and swaps every byte pair
+/// into a second buffer first. `Small` is zlib level 2 with adaptive filtering, the knee on
+/// rendered depth (the `depth_png_settings` example; README, "Performance"): a third of `Fast`'s
+/// bytes for 2.3–2.7× its time. Level 1 is 38 % larger; level 3 saves 13 % more for 1.75× the
+/// time, level 9 27 % for 8×.
+fn write_depth_png(
+    out: &mut Vec<u8>,
+    (width, height): (u32, u32),
+    samples: &[u8],
+    encoding: DepthPng,
+) -> Result<(), png::EncodingError> {
+    let mut encoder = png::Encoder::new(out, width, height);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.set_depth(png::BitDepth::Sixteen);
     match encoding {
-        DepthPng::Fast => png_encoder(out),
+        DepthPng::Fast => {
+            encoder.set_compression(png::Compression::Fast);
+            encoder.set_filter(png::Filter::Paeth);
+        }
         DepthPng::Small => {
-            PngEncoder::new_with_quality(out, CompressionType::Level(2), FilterType::Adaptive)
+            encoder.set_compression(png::Compression::Fast);
+            encoder.set_deflate_compression(png::DeflateCompression::Level(2));
+            encoder.set_filter(png::Filter::Adaptive);
         }
     }
+    encoder.write_header()?.write_image_data(samples)
 }
 
 pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
@@ -130,12 +146,9 @@ pub fn encode_depth_png(
     scale: f64,
     encoding: DepthPng,
 ) -> Result<Vec<u8>, CoreError> {
-    // The image crate takes 16-bit samples in native byte order and writes PNG's big-endian.
-    let samples = depth.to_u16(scale);
-    let native: &[u8] = bytemuck::cast_slice(&samples);
+    let samples = depth.to_u16_be_bytes(scale);
     let mut out = Vec::new();
-    depth_png_encoder(&mut out, encoding)
-        .write_image(native, depth.width, depth.height, ExtendedColorType::L16)
+    write_depth_png(&mut out, (depth.width, depth.height), &samples, encoding)
         .map_err(|e| encode_failed("depth PNG", e))?;
     Ok(out)
 }
