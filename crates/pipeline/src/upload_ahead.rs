@@ -3,12 +3,14 @@
 
 use rslam_gpu::{wgpu, FilledUpload, FrameTextures, FrameUploads, GpuContext, UploadFiller};
 
-use crate::decode_ahead::{DecodeAhead, DECODE_AHEAD};
+use crate::decode_ahead::{self, DecodeAhead};
 use crate::PipelineError;
 
 pub struct UploadAhead {
     size: (u32, u32),
     with_depth: bool,
+    /// Frames decoded together in parallel.
+    ahead: usize,
     /// Made by the first run, kept for the next.
     uploads: Option<FrameUploads>,
     /// Each frame of the run, filled with its source index.
@@ -21,6 +23,7 @@ impl UploadAhead {
         Self {
             size: (width, height),
             with_depth,
+            ahead: decode_ahead::frames_per_core(),
             uploads: None,
             decoder: None,
         }
@@ -39,17 +42,15 @@ impl UploadAhead {
     ) {
         // Dropping the run before first hands its buffers back.
         self.decoder = None;
-        // While a frame is being filled, at most DECODE_AHEAD frames wait decoded,
-        // DECODE_AHEAD - 1 more of its chunk are filled, and the frame loop holds two (the one it
-        // records, the one before): one buffer more than that is free for it.
-        let ((width, height), with_depth) = (self.size, self.with_depth);
+        // While a frame is being filled, at most `ahead` frames wait decoded, `ahead - 1` more of
+        // its chunk are filled, and the frame loop holds two (the one it records, the one
+        // before): one buffer more than that is free for it.
+        let ((width, height), with_depth, ahead) = (self.size, self.with_depth, self.ahead);
         let filler = self
             .uploads
-            .get_or_insert_with(|| {
-                FrameUploads::new(ctx, width, height, with_depth, 2 * DECODE_AHEAD + 2)
-            })
+            .get_or_insert_with(|| FrameUploads::new(ctx, width, height, with_depth, 2 * ahead + 2))
             .filler();
-        self.decoder = Some(DecodeAhead::start(items, move |(index, item)| {
+        self.decoder = Some(DecodeAhead::start(items, ahead, move |(index, item)| {
             Ok((*index, decode(item, &filler)?))
         }));
     }
