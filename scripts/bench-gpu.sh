@@ -7,6 +7,8 @@
 # BIN_DIR holds `rslam`, `png_roundtrip` (cargo build --release -p rslam-core --example
 # png_roundtrip) and the bench binaries `render` and `corruptions` (cargo bench --no-run -p
 # rslam-render -p rslam-perturb; copied out of target/release/deps without their hash suffix).
+# `rslam` links fontconfig and freetype (plot fonts): a machine without them needs libfontconfig1
+# and libfreetype6 unpacked somewhere on LD_LIBRARY_PATH.
 # Prints, in order: GPU time per corruption at severity 3 and the readbacks; render only and
 # render + readback of room0; whole `rslam render` of room0's 2000 frames in the Replica and TUM
 # layouts (frames/s and bytes per frame, encoding on all cores); then, where this python has
