@@ -22,14 +22,16 @@ fn encode_failed(what: &str, e: impl std::fmt::Display) -> CoreError {
 /// encoder takes about a third of `jpeg-encoder`'s time for the same quantisation tables, sizes
 /// and PSNR (README, "Performance"). libjpeg allows at most 65,500 pixels a side.
 pub fn encode_jpeg(image: &RgbImage, quality: u8) -> Result<Vec<u8>, CoreError> {
-    let size = format!("{}x{} image", image.width, image.height);
+    let failed = |e: String| {
+        encode_failed(
+            "JPEG",
+            format!("{}x{} image: {e}", image.width, image.height),
+        )
+    };
     let expected = 3 * image.width as usize * image.height as usize;
     if image.data.len() != expected {
         let got = image.data.len();
-        return Err(encode_failed(
-            "JPEG",
-            format!("{size}: {got} bytes of RGB, expected {expected}"),
-        ));
+        return Err(failed(format!("{got} bytes of RGB, expected {expected}")));
     }
     let pixels = turbojpeg::Image {
         pixels: image.data.as_slice(),
@@ -43,7 +45,7 @@ pub fn encode_jpeg(image: &RgbImage, quality: u8) -> Result<Vec<u8>, CoreError> 
         .set_quality(i32::from(quality))
         .and_then(|()| compressor.set_subsamp(turbojpeg::Subsamp::None))
         .and_then(|()| compressor.compress_to_vec(pixels))
-        .map_err(|e| encode_failed("JPEG", format!("{size}: {e}")))
+        .map_err(|e| failed(e.to_string()))
 }
 
 /// Fast deflate (Default takes 10–40× longer). Paeth alone gave the same sizes as per-row
