@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Takes the README's screenshot of `rslam view` from the real program in a real window under
-# Xvfb (a virtual X server; lavapipe renders when there is no GPU) and writes docs/viewer.png.
+# Takes the screenshot of `rslam view` from the real program in a real window under
+# Xvfb (a virtual X server; lavapipe renders when there is no GPU) and writes
+# docs/src/images/viewer.png (the picture in the book's viewer chapter).
 # Run: scripts/viewer-screenshot.sh [OUT.png]   (needs the xvfb package: apt-get install xvfb)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${1:-docs/viewer.png}
+out=${1:-docs/src/images/viewer.png}
 command -v xvfb-run >/dev/null || { echo "xvfb-run not found: apt-get install xvfb" >&2; exit 1; }
 # The dev profile compiles dependencies at opt-level 3 (root Cargo.toml), enough for a picture.
 cargo build -p rslam-cli
