@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Speed figures on a machine with a real GPU and no Rust toolchain, from release binaries built
-# elsewhere (the README's "Performance" section holds what it printed on an H100):
+# elsewhere (docs/src/performance.md holds what it printed on an H100, with date and driver):
 #
 #   scripts/bench-gpu.sh BIN_DIR [WORK_DIR [bench_corruptions.py options]]
 #
@@ -27,7 +27,7 @@ summary() {
          /time:/ { for (i = 1; i <= NF; i++) if ($i == "time:") print name, $(i + 3), $(i + 4) }'
 }
 
-echo "== cores: $(nproc); GPU: $(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null || echo '?')"
+echo "== $(date -u +%F); cores: $(nproc); GPU, driver: $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null || echo '?')"
 echo "== GPU work per corruption (record, submit, wait), severity 3; readbacks"
 "$bin/corruptions" --bench 'gpu_1200x680/.*/3$|readback' 2>&1 | tee "$work/corruptions.log" | summary
 echo "== room0 render (render bench)"
