@@ -10,8 +10,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-10}
 shift || true
-cargo build --quiet -p rslam-fuzz
+# A dev build, or the binary in $RSLAM_BIN_DIR (CI: the one scripts/test.sh built).
+fuzz=$(scripts/built-binary.sh rslam-fuzz rslam-fuzz --quiet)
 if [ "$seconds" = 0 ]; then
-    exec target/debug/rslam-fuzz list
+    exec "$fuzz" list
 fi
-exec target/debug/rslam-fuzz run --seconds "$seconds" --out target/fuzz "$@"
+exec "$fuzz" run --seconds "$seconds" --out target/fuzz "$@"

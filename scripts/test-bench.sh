@@ -18,8 +18,8 @@ strong_floor=0.01
 fail() { echo "test-bench: $*" >&2; exit 1; }
 
 scripts/install-system-deps.sh
-cargo build --release -p rslam-cli
-rslam=$PWD/target/release/rslam
+# A release build, or the binary in $RSLAM_BIN_DIR (CI: the one scripts/test.sh built).
+rslam=$(scripts/built-binary.sh rslam rslam-cli --release)
 venv=$PWD/target/methods-venv
 [ -x "$venv/bin/python3" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet -r examples/methods/requirements.txt

@@ -10,8 +10,8 @@ timeout=${SLURM_TEST_TIMEOUT:-900}
 fail() { echo "test-slurm: $*" >&2; exit 1; }
 
 scripts/install-system-deps.sh
-cargo build --release -p rslam-cli
-rslam=$PWD/target/release/rslam
+# A release build, or the binary in $RSLAM_BIN_DIR (CI: the one scripts/test.sh built).
+rslam=$(scripts/built-binary.sh rslam rslam-cli --release)
 
 tmp=$(mktemp -d)
 cluster=$tmp/cluster
