@@ -8,6 +8,7 @@ mod depth_png;
 mod eval;
 mod eval_agents;
 mod eval_recon;
+mod golden;
 mod harness;
 mod imu_items;
 mod list;

@@ -128,7 +128,7 @@ fn imu_csv() -> String {
 
 /// Lays out a TUM-VI-style export under `root`: 16-bit frames, or with `eight_bit` their high
 /// bytes as 8-bit frames.
-fn write_tum_vi_style(root: &Path, eight_bit: bool) {
+pub(crate) fn write_tum_vi_style(root: &Path, eight_bit: bool) {
     let mav = root.join("mav0");
     for (c, cam) in ["cam0", "cam1"].into_iter().enumerate() {
         let data = mav.join(cam).join("data");
