@@ -288,7 +288,7 @@ fn table() -> Vec<Case> {
         ),
         Case {
             before: Some(|ws| {
-                copy_tree(&ws.path("tum_dynamic"), &ws.path("foreign_tum"));
+                copy_tree(&ws.path("tum_depth"), &ws.path("foreign_tum"));
                 for own in ["rslam.json", "rslam.b3sum"] {
                     std::fs::remove_file(ws.path("foreign_tum").join(own)).unwrap();
                 }
