@@ -2,6 +2,7 @@
 //! `commands/`; exit code 0 = ok, 1 = a check failed, 2 = an error.
 
 mod commands;
+mod flags;
 mod interrupt;
 mod progress_bar;
 mod suite_progress;
@@ -13,17 +14,21 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 
 #[derive(Parser)]
 #[command(
     name = "rslam",
     version,
-    about = "Robustness benchmarks for RGB-D SLAM: render, perturb, evaluate"
+    about = "Robustness benchmarks for RGB-D SLAM: render, perturb, evaluate",
+    arg_required_else_help = true
 )]
 struct Cli {
+    /// Print this command-line reference as Markdown (the book's docs/src/reference/cli.md).
+    #[arg(long, hide = true)]
+    markdown_help: bool,
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Subcommand)]
@@ -59,7 +64,18 @@ fn quiet_headless_wayland_probe() {
 fn main() -> ExitCode {
     quiet_headless_wayland_probe();
     let cli = Cli::parse();
-    let result = match cli.command {
+    let command = match (cli.command, cli.markdown_help) {
+        (_, true) => {
+            clap_markdown::print_help_markdown::<Cli>();
+            return ExitCode::SUCCESS;
+        }
+        (Some(command), false) => command,
+        (None, false) => {
+            eprintln!("{}", Cli::command().render_help());
+            return ExitCode::from(2);
+        }
+    };
+    let result = match command {
         Command::Render(args) => commands::render::run(args),
         Command::Perturb(args) => commands::perturb::run(args),
         Command::List(args) => commands::list::run(args),
@@ -72,7 +88,7 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(error) => {
-            eprintln!("error: {error:#}");
+            eprintln!("error: {}", flags::worded(&error));
             ExitCode::from(2)
         }
     }

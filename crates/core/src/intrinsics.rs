@@ -3,9 +3,9 @@ use serde::{Deserialize, Serialize};
 use crate::limits::MAX_IMAGE_SIDE;
 use crate::{printable, CoreError};
 
-/// Frame rate of the Replica camera preset and of Replica `traj.txt` files (formats.md).
+/// Frame rate of the Replica camera preset and of Replica `traj.txt` files (docs/src/formats.md, "Camera conventions").
 pub const REPLICA_RATE_HZ: f64 = 20.0;
-/// Frame rate of the TUM camera preset (formats.md).
+/// Frame rate of the TUM camera preset (docs/src/formats.md, "Camera conventions").
 pub const TUM_RATE_HZ: f64 = 30.0;
 
 /// Pinhole intrinsics, pixel centres at integer coordinates (OpenCV convention).

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use crate::association::{tracked_ground_truth, Matching};
 
-/// How much of the ground truth the estimate tracks (metrics.md, "SR"). No reference tool
+/// How much of the ground truth the estimate tracks (docs/src/metrics.md, "SR (success rate of tracking)"). No reference tool
 /// computes these; they are rslam's definitions.
 ///
 /// The evaluated span is the whole ground truth, every pose of its file: an estimate that starts

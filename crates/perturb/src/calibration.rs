@@ -10,7 +10,7 @@
 //! - `@calibration`: the sensor is where it should be, images are nominal, and the written
 //!   calibration is perturbed (what the seed paper did to the real EuRoC sequences).
 //!
-//! Draws (perturbations.md §2): a sensor's draws are keyed by (that sensor's seed, item name,
+//! Draws (docs/src/perturbations.md §2): a sensor's draws are keyed by (that sensor's seed, item name,
 //! frame, purpose); a per-sequence draw is frame 0's, so frame k's draw does not depend on how
 //! many frames there are. What each item moves:
 //! - `baseline:σ` moves cam1 by δ ~ N(0, σ) metres along cam0's x axis (the baseline axis of a

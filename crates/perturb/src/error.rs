@@ -6,8 +6,8 @@ use rslam_gpu::GpuError;
 pub enum PerturbError {
     #[error(transparent)]
     Gpu(#[from] GpuError),
-    /// A malformed or unknown item of a `--perturb` spec string.
-    #[error("--perturb item '{item}': {message}")]
+    /// A malformed or unknown item of a spec string.
+    #[error("spec item '{item}': {message}")]
     Spec { item: String, message: String },
     /// A perturbation that cannot run on these frames (e.g. a frame too small for it).
     #[error("perturbation '{name}': {message}")]

@@ -1,4 +1,4 @@
-//! The `--perturb` grammar of perturbations.md §1:
+//! The `--perturb` grammar of docs/src/perturbations.md §1:
 //!
 //! ```text
 //! spec  := item (',' item)*

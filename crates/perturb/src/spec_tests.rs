@@ -138,12 +138,12 @@ fn errors_quote_line_breaks_as_escapes() {
         .unwrap_err()
         .to_string();
     assert!(
-        err.starts_with("--perturb item 'depth_range:x\\r2': "),
+        err.starts_with("spec item 'depth_range:x\\r2': "),
         "{err}"
     );
     let err = PerturbSpec::parse("fo\ng:3").unwrap_err().to_string();
     assert!(
-        err.starts_with("--perturb item 'fo\\ng:3': unknown perturbation 'fo\\ng'"),
+        err.starts_with("spec item 'fo\\ng:3': unknown perturbation 'fo\\ng'"),
         "{err}"
     );
 }
@@ -198,7 +198,7 @@ fn imu_items_go_to_their_own_field_print_last_and_round_trip() {
     assert!(!plain.contains("calibration"), "{plain}");
     let e = err("imu_saturation:2");
     assert!(
-        e.starts_with("--perturb item 'imu_saturation:2': '2': expected GYRO/ACC"),
+        e.starts_with("spec item 'imu_saturation:2': '2': expected GYRO/ACC"),
         "{e}"
     );
     assert!(err("imu_noise:1,imu_noise:2").contains("twice"));
@@ -287,7 +287,7 @@ fn calibration_items_parse_with_their_modes_and_round_trip() {
 fn sensor_and_calibration_errors_name_the_item_and_what_was_expected() {
     let e = err("cam1:rot:1");
     assert!(
-        e.starts_with("--perturb item 'cam1:rot:1': 'rot' applies to the whole rig"),
+        e.starts_with("spec item 'cam1:rot:1': 'rot' applies to the whole rig"),
         "{e}"
     );
     let e = err("imu0:fog:3");
@@ -309,7 +309,7 @@ fn sensor_and_calibration_errors_name_the_item_and_what_was_expected() {
     assert!(err("extrinsic_rot:x").contains("degrees ≥ 0"));
     let e = err("imu0:extrinsic_rot:1@dynamic");
     assert!(
-        e.starts_with("--perturb item 'imu0:extrinsic_rot:1@dynamic': @dynamic moves a camera")
+        e.starts_with("spec item 'imu0:extrinsic_rot:1@dynamic': @dynamic moves a camera")
             && e.ends_with("use imu0:extrinsic_rot:1 (once per sequence)"),
         "{e}"
     );
@@ -342,19 +342,19 @@ fn a_one_camera_input_takes_cam0_items_and_refuses_other_sensors_and_calibration
     assert_eq!(one("cam0:fog:3,gaussian_noise:1"), None);
     let e = one("gaussian_noise:1,cam1:fog:3").unwrap();
     assert!(
-        e.starts_with("--perturb item 'cam1:fog:3': this input has one camera, cam0"),
+        e.starts_with("spec item 'cam1:fog:3': this input has one camera, cam0"),
         "{e}"
     );
     let e = one("baseline:0.01@calibration").unwrap();
     assert!(
-        e.starts_with("--perturb item 'baseline:0.01@calibration': a calibration item needs a rig"),
+        e.starts_with("spec item 'baseline:0.01@calibration': a calibration item needs a rig"),
         "{e}"
     );
     let spec = PerturbSpec::parse("cam2:fog:1,imu0:extrinsic_rot:1").unwrap();
     let e = spec.unknown_sensor(&["cam0", "cam1"]).unwrap().to_string();
     assert_eq!(
         e,
-        "--perturb item 'cam2:fog:1': no sensor 'cam2' here; the sensors are cam0, cam1"
+        "spec item 'cam2:fog:1': no sensor 'cam2' here; the sensors are cam0, cam1"
     );
     let e = spec
         .unknown_sensor(&["cam0", "cam1", "cam2"])
@@ -409,5 +409,5 @@ fn distortion_keeps_its_commas_and_round_trips() {
         assert!(e.contains(says) && !e.contains('\n'), "{bad}: {e}");
     }
     assert!(err("distortion:radtan(1,x,3,4)")
-        .starts_with("--perturb item 'distortion:radtan(1,x,3,4)'"));
+        .starts_with("spec item 'distortion:radtan(1,x,3,4)'"));
 }

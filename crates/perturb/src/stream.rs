@@ -1,4 +1,4 @@
-//! Stream operations (perturbations.md §6) as a frame plan: which source frame each output
+//! Stream operations (docs/src/perturbations.md §6) as a frame plan: which source frame each output
 //! frame's colour and depth come from.
 //!
 //! `fast:K` keeps source frames 0, K, 2K, …; the caller re-stamps them at the sensor rate.

@@ -1,4 +1,4 @@
-//! Trajectory deviations (perturbations.md §5): `rot:D` and `trans:M`, applied before rendering;
+//! Trajectory deviations (docs/src/perturbations.md §5): `rot:D` and `trans:M`, applied before rendering;
 //! the deviated path is the new ground truth.
 //!
 //! i.i.d. (the benchmark's): each pose independently, R' = R·Rx(αx)·Ry(αy)·Rz(αz) with

@@ -1,14 +1,14 @@
-//! `rslam render --agents N`: N agents in one built-in scene, each walking a path of its own
+//! N agents in one built-in scene, each walking a path of its own
 //! ([`rslam_render::agent_trajectory`]) in the scene's world frame, each written as a complete
-//! dataset of its own in `OUT/agent<k>` — the folder of agents `rslam eval --agents` reads. Agent
+//! dataset of its own in `OUT/agent<k>` — the folder of agents a multi-agent evaluation reads. Agent
 //! k draws its perturbations with seed `seed + k`, so agent 0 is exactly what `rslam render`
-//! writes without `--agents`.
+//! writes without agents.
 
 use std::path::{Path, PathBuf};
 
 use rslam_core::CoreError;
 
-use crate::{PipelineError, SceneJob};
+use crate::{JobPart, PipelineError, SceneJob};
 
 /// The scene job of agent `agent` of a multi-agent render of `scene`.
 pub fn agent_scene_job(scene: &SceneJob, agent: usize) -> SceneJob {
@@ -24,7 +24,7 @@ pub fn agent_scene_job(scene: &SceneJob, agent: usize) -> SceneJob {
 pub fn agent_folders(out: &Path, count: usize) -> Result<Vec<PathBuf>, PipelineError> {
     if count == 0 {
         return Err(PipelineError::option(
-            "--agents",
+            JobPart::Agents,
             "0: expected at least one agent",
         ));
     }
@@ -89,7 +89,7 @@ mod tests {
         assert!(agent_folders(&dir.path().join("b"), 0)
             .unwrap_err()
             .to_string()
-            .contains("--agents: 0: expected at least one agent"));
+            .contains("agents: 0: expected at least one agent"));
         assert_eq!(agent_number("agent12"), Some(12));
         assert_eq!(agent_number("agent012"), None);
         assert_eq!(agent_number("agent"), None);

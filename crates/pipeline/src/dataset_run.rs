@@ -7,7 +7,7 @@ use rslam_core::dataset::{DatasetFormat, DatasetWriter, Manifest};
 use rslam_core::{Intrinsics, Trajectory};
 use rslam_gpu::GpuContext;
 
-use crate::output_folder::{self, FolderState};
+use crate::output_folder::{make_output, FolderState, Made, Written};
 use crate::pipeline::Pipeline;
 use crate::plan::FramePlan;
 use crate::progress::Progress;
@@ -26,6 +26,17 @@ pub struct RunReport {
     pub found: FolderState,
     /// The manifest as written (as found, when the folder was complete already).
     pub manifest: Manifest,
+}
+
+impl RunReport {
+    pub(crate) fn of(frames: usize, made: Made) -> Self {
+        Self {
+            frames,
+            made: made.made,
+            found: made.found,
+            manifest: made.manifest,
+        }
+    }
 }
 
 /// One dataset to write: where, in which layout, and what it holds besides the frames.
@@ -53,40 +64,28 @@ pub fn write_dataset<S: FrameSource>(
     what: &str,
 ) -> Result<RunReport, PipelineError> {
     let plan = target.plan;
-    let found = output_folder::prepare(target.out, &target.manifest, target.force)?;
-    if found == FolderState::Complete {
-        return Ok(RunReport {
-            frames: plan.len(),
-            made: 0,
-            found,
-            manifest: Manifest::read(target.out)?,
-        });
-    }
-    let writer = DatasetWriter::open(
-        target.out,
-        target.format,
-        target.camera,
-        target.manifest.depth_png,
-    )?
-    .with_distortion(target.manifest.distortion);
-    let mut sink = DatasetSink::new(writer, plan);
-    // A stateful item (auto_exposure) gives each frame what the frames before it left, so a
-    // resumed run redoes them all rather than start its state over at the first missing one.
-    let redo_all = pipeline.perturber().carries_state();
-    let sources: Vec<usize> = plan
-        .needed_sources()
-        .into_iter()
-        .filter(|&s| redo_all || !sink.is_written(s))
-        .collect();
-    progress.start(sources.len(), what);
-    pipeline.run(ctx, &sources, progress, &mut sink)?;
-    progress.finish();
-    let manifest = sink.finish(target.ground_truth, &target.sensor_files, target.manifest)?;
-    output_folder::finish(target.out)?;
-    Ok(RunReport {
-        frames: plan.len(),
-        made: sources.len(),
-        found,
-        manifest,
-    })
+    let job = target.manifest;
+    let made = make_output(target.out, &job, target.force, |_| {
+        let writer =
+            DatasetWriter::open(target.out, target.format, target.camera, job.depth_png)?
+                .with_distortion(job.distortion);
+        let mut sink = DatasetSink::new(writer, plan);
+        // A stateful item (auto_exposure) gives each frame what the frames before it left, so a
+        // resumed run redoes them all rather than start its state over at the first missing one.
+        let redo_all = pipeline.perturber().carries_state();
+        let sources: Vec<usize> = plan
+            .needed_sources()
+            .into_iter()
+            .filter(|&s| redo_all || !sink.is_written(s))
+            .collect();
+        progress.start(sources.len(), what);
+        pipeline.run(ctx, &sources, progress, &mut sink)?;
+        progress.finish();
+        let manifest = sink.finish(target.ground_truth, &target.sensor_files, job.clone())?;
+        Ok(Written {
+            made: sources.len(),
+            manifest,
+        })
+    })?;
+    Ok(RunReport::of(plan.len(), made))
 }

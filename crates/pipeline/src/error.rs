@@ -1,3 +1,4 @@
+use std::fmt;
 use std::path::PathBuf;
 
 use rslam_core::CoreError;
@@ -16,18 +17,19 @@ pub enum PipelineError {
     Perturb(#[from] PerturbError),
     #[error(transparent)]
     Render(#[from] RenderError),
-    /// A job option that cannot work (`option` is the user-facing name, e.g. `--frames`).
-    #[error("{option}: {message}")]
-    Option { option: String, message: String },
+    /// A part of a job that cannot work as given.
+    #[error("{part}: {message}")]
+    Option { part: JobPart, message: String },
     /// An input file or folder that cannot be used as it is.
     #[error("{}: {message}", path.display())]
     Input { path: PathBuf, message: String },
     /// An output folder that this run may not write into.
     #[error("{}: {message}", path.display())]
     Output { path: PathBuf, message: String },
-    /// An output folder that holds (part of) another job's output; `--force` starts over.
-    #[error("{}: {message}", path.display())]
-    OtherJob { path: PathBuf, message: String },
+    /// An output folder that holds (part of) another job's output (`holds` says what and how it
+    /// differs); forcing the run starts over.
+    #[error("{}: holds {holds}; choose another output or force a fresh start", path.display())]
+    OtherJob { path: PathBuf, holds: String },
     #[error(
         "interrupted: the output is incomplete (no rslam.json written); run the same command again to resume"
     )]
@@ -36,10 +38,53 @@ pub enum PipelineError {
     Worker(String),
 }
 
+/// The part of a job an error is about, in the library's words (its `Display`); the CLI and
+/// Python name each by their own flag or argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JobPart {
+    /// The perturbation spec.
+    Spec,
+    /// How many poses of the camera path are drawn, or the frames given in memory.
+    Frames,
+    /// One frame, by its index.
+    Frame,
+    /// The indices of frames given in memory.
+    FrameIndices,
+    /// The rate of the path's poses.
+    Rate,
+    /// The camera: its intrinsics and image size.
+    Camera,
+    /// The rig of sensors.
+    Rig,
+    /// The camera path file.
+    Trajectory,
+    /// Camera poses given in memory.
+    Poses,
+    /// How many agents share the scene.
+    Agents,
+}
+
+impl fmt::Display for JobPart {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Spec => "spec",
+            Self::Frames => "frames",
+            Self::Frame => "frame",
+            Self::FrameIndices => "frame_indices",
+            Self::Rate => "rate",
+            Self::Camera => "camera",
+            Self::Rig => "rig",
+            Self::Trajectory => "trajectory",
+            Self::Poses => "poses",
+            Self::Agents => "agents",
+        })
+    }
+}
+
 impl PipelineError {
-    pub fn option(option: impl Into<String>, message: impl Into<String>) -> Self {
+    pub fn option(part: JobPart, message: impl Into<String>) -> Self {
         Self::Option {
-            option: option.into(),
+            part,
             message: message.into(),
         }
     }

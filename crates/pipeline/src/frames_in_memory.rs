@@ -18,8 +18,8 @@ use crate::progress::Silent;
 use crate::scene_job::SceneJob;
 use crate::shown_frame::{Held, ShownFrame, ShownSources};
 use crate::sink::{MemorySink, RgbdFrame};
-use crate::source::{BufferSource, DatasetSource, FrameSource, SceneSource};
-use crate::PipelineError;
+use crate::source::{BufferSource, FrameSource, RecordedSource, SceneSource};
+use crate::{JobPart, PipelineError};
 
 pub struct FramesInMemory<S> {
     pipeline: Pipeline<S>,
@@ -130,7 +130,7 @@ impl FramesInMemory<SceneSource> {
     }
 }
 
-impl FramesInMemory<DatasetSource> {
+impl FramesInMemory<RecordedSource> {
     /// A dataset on disk, read with `rslam_core::dataset::read_dataset`.
     pub fn dataset(
         ctx: &GpuContext,
@@ -140,7 +140,7 @@ impl FramesInMemory<DatasetSource> {
     ) -> Result<Self, PipelineError> {
         check_dataset_spec(dataset, spec)?;
         Ok(Self {
-            pipeline: Pipeline::new(ctx, DatasetSource::new(dataset), spec, seed)?,
+            pipeline: Pipeline::new(ctx, RecordedSource::dataset(dataset), spec, seed)?,
             plan: dataset_plan(dataset, spec, seed),
             spec: spec.clone(),
             seed,
@@ -153,7 +153,7 @@ impl FramesInMemory<DatasetSource> {
     pub fn ground_truth(&self) -> Trajectory {
         match &self.origin {
             Origin::Dataset(dataset) => {
-                output_ground_truth(dataset, &self.plan, self.spec.fast.is_some())
+                output_ground_truth(dataset, &self.plan, crate::plan::restamps(&self.spec))
             }
             _ => Trajectory::default(),
         }
@@ -182,10 +182,10 @@ impl FramesInMemory<DatasetSource> {
 fn check_stateless(spec: &PerturbSpec) -> Result<(), PipelineError> {
     match spec.stateful_item() {
         Some(item) => Err(PipelineError::option(
-            "--perturb",
+            JobPart::Spec,
             format!(
                 "'{}' carries its state from frame to frame, so its frames must run in capture \
-                 order from the first: use `rslam render` or `rslam perturb --input`",
+                 order from the first: make a dataset of them instead (render or perturb to a folder)",
                 item.name
             ),
         )),
@@ -223,7 +223,7 @@ impl FramesInMemory<BufferSource> {
         if source.size() != (width, height) {
             let (w, h) = source.size();
             return Err(PipelineError::option(
-                "frames",
+                JobPart::Frames,
                 format!("{w}x{h} frames given to perturbations built for {width}x{height}"),
             ));
         }
@@ -292,7 +292,7 @@ impl<S: FrameSource> FramesInMemory<S> {
     pub fn output_sources(&self, index: usize) -> Result<ShownSources, PipelineError> {
         if index >= self.plan.len() {
             return Err(PipelineError::option(
-                "frame",
+                JobPart::Frame,
                 format!("{index} is past the {} output frames", self.plan.len()),
             ));
         }
@@ -319,7 +319,7 @@ impl<S: FrameSource> FramesInMemory<S> {
     ) -> Result<(), PipelineError> {
         if shown.size() != self.size() {
             return Err(PipelineError::option(
-                "frame",
+                JobPart::Frame,
                 format!(
                     "shown frame is {:?}, the frames are {:?}",
                     shown.size(),
@@ -347,7 +347,7 @@ impl<S: FrameSource> FramesInMemory<S> {
     ) -> Result<(), PipelineError> {
         if outputs.end > self.plan.len() || outputs.start > outputs.end {
             return Err(PipelineError::option(
-                "frames",
+                JobPart::Frames,
                 format!(
                     "{}..{} is not within the {} output frames",
                     outputs.start,
@@ -376,7 +376,7 @@ impl<S: FrameSource> FramesInMemory<S> {
 fn check_depth(spec: &PerturbSpec, source: &BufferSource) -> Result<(), PipelineError> {
     if !spec.depth.is_empty() && !source.has_depth() {
         return Err(PipelineError::option(
-            "--perturb",
+            JobPart::Spec,
             format!("'{spec}': depth corruptions need depth, and the frames have none"),
         ));
     }

@@ -1,4 +1,4 @@
-//! What `rslam perturb --input` names: a dataset, a folder of images, or one image.
+//! What a perturb job's input is: a dataset, a folder of images, or one image.
 
 use std::path::{Path, PathBuf};
 

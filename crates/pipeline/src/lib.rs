@@ -46,14 +46,14 @@ mod upload_ahead;
 pub use agents::{agent_folders, agent_scene_job};
 pub use dataset_run::RunReport;
 pub use depth_colormap::DepthRange;
-pub use error::PipelineError;
+pub use error::{JobPart, PipelineError};
 pub use frames_in_memory::FramesInMemory;
 pub use input::PerturbInput;
 pub use output_folder::FolderState;
 pub use perturb_dataset::{perturb_dataset, PerturbDatasetJob};
 pub use perturb_images::{check_frame_items_only, image_files, perturb_images, PerturbImagesJob};
 pub use pipeline::Pipeline;
-pub use plan::{FramePlan, SourceOutputs, SourceTiming};
+pub use plan::{speed_up, FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
 pub use render::{render_dataset, RenderJob};
 pub use rig::{

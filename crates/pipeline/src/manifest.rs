@@ -7,7 +7,7 @@ use rslam_core::{Distortion, Intrinsics};
 use rslam_perturb::PerturbSpec;
 
 use crate::plan::FramePlan;
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 pub struct ManifestParts<'a> {
     pub command: &'a [String],
@@ -29,7 +29,7 @@ pub struct ManifestParts<'a> {
 impl ManifestParts<'_> {
     pub fn build(self) -> Result<Manifest, PipelineError> {
         let perturbation_parsed = serde_json::to_value(self.spec)
-            .map_err(|e| PipelineError::option("--perturb", e.to_string()))?;
+            .map_err(|e| PipelineError::option(JobPart::Spec, e.to_string()))?;
         Ok(Manifest {
             tool: "rslam".into(),
             tool_version: env!("CARGO_PKG_VERSION").into(),

@@ -1,7 +1,9 @@
-//! What an output folder already holds decides what a run does with it. A run writes its job
-//! (the manifest without the content digest) as `rslam.run.json` before the first frame and
-//! removes it after `rslam.json`: the same job finds its frames and goes on, another job is
-//! refused unless `force` starts over, and a folder that is not rslam's is never touched.
+//! The one life of every output folder ([`make_output`]): prepared for a job, skipped when that
+//! job finished there, written, then marked finished. What the folder already holds decides what
+//! a run does with it. A run writes its job (the manifest without the content digest) as
+//! `rslam.run.json` before the first frame and removes it after `rslam.json`: the same job finds
+//! its frames and goes on, another job is refused unless `force` starts over, and a folder that
+//! is not rslam's is never touched.
 
 use std::path::Path;
 
@@ -22,8 +24,53 @@ pub enum FolderState {
     Complete,
 }
 
+/// What a run of a job found in its output folder and did there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Made {
+    /// What the output folder held when the run began.
+    pub found: FolderState,
+    /// Source frames drawn (or perturbed, or copied) by this run: fewer than the output holds
+    /// when it resumed, none when the folder was complete already.
+    pub made: usize,
+    /// The manifest as written (as found, when the folder was complete already).
+    pub manifest: Manifest,
+}
+
+/// What a job writes into its output folder once it is prepared: given what the folder held
+/// (`Fresh` or `Resume`), the frames it made and the manifest it wrote last.
+pub struct Written {
+    pub made: usize,
+    pub manifest: Manifest,
+}
+
+/// The life of `out` for `job` (the manifest without its content digest): prepared (refused if
+/// it holds another job's output and not `force`), left as it is when the same job finished
+/// there, else written by `write`, then marked finished.
+pub fn make_output(
+    out: &Path,
+    job: &Manifest,
+    force: bool,
+    write: impl FnOnce(FolderState) -> Result<Written, PipelineError>,
+) -> Result<Made, PipelineError> {
+    let found = prepare(out, job, force)?;
+    if found == FolderState::Complete {
+        return Ok(Made {
+            found,
+            made: 0,
+            manifest: Manifest::read(out)?,
+        });
+    }
+    let written = write(found)?;
+    finish(out)?;
+    Ok(Made {
+        found,
+        made: written.made,
+        manifest: written.manifest,
+    })
+}
+
 /// Prepares `root` for `job` and says what it holds.
-pub fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, PipelineError> {
+fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, PipelineError> {
     refuse_symlinks(root, root)?;
     let state = if !root.exists() {
         FolderState::Fresh
@@ -64,7 +111,7 @@ pub fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, 
     Ok(state)
 }
 
-/// Refuses an output folder that is the input itself: `--force` would delete what is being read.
+/// Refuses an output folder that is the input itself: forcing would delete what is being read.
 pub fn check_not_input(out: &Path, input: &Path) -> Result<(), PipelineError> {
     match (out.canonicalize(), input.canonicalize()) {
         (Ok(out_path), Ok(input_path)) if out_path == input_path => Err(PipelineError::output(
@@ -76,7 +123,7 @@ pub fn check_not_input(out: &Path, input: &Path) -> Result<(), PipelineError> {
 }
 
 /// Marks the run finished: called after the manifest is written.
-pub fn finish(root: &Path) -> Result<(), PipelineError> {
+fn finish(root: &Path) -> Result<(), PipelineError> {
     let path = root.join(RUN_FILE);
     std::fs::remove_file(&path).map_err(|e| CoreError::io(&path, e))?;
     Ok(())
@@ -85,8 +132,8 @@ pub fn finish(root: &Path) -> Result<(), PipelineError> {
 fn other_job(root: &Path, earlier: &Manifest, job: &Manifest, what: &str) -> PipelineError {
     PipelineError::OtherJob {
         path: root.to_path_buf(),
-        message: format!(
-            "holds {what} of another job (`{}`, perturbation '{}', seed {}; differs in {}); choose another output or pass --force to start over",
+        holds: format!(
+            "{what} of another job (`{}`, perturbation '{}', seed {}; differs in {})",
             earlier.command.join(" "),
             earlier.perturbation,
             earlier.seed,
@@ -182,7 +229,7 @@ mod tests {
     }
 
     /// A link planted in an output folder would take frames, or the clean-up of partial files,
-    /// outside it: the folder is refused, with or without --force, and nothing outside changes.
+    /// outside it: the folder is refused, forced or not, and nothing outside changes.
     #[test]
     fn an_output_folder_holding_a_symlink_is_refused_and_nothing_outside_is_touched() {
         let out = tempfile::tempdir().unwrap();

@@ -13,12 +13,12 @@ use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
 use crate::manifest::ManifestParts;
 use crate::output_folder;
 use crate::pipeline::Pipeline;
-use crate::plan::{FramePlan, SourceTiming};
+use crate::plan::{self, FramePlan, SourceTiming};
 use crate::progress::Progress;
 use crate::rig::rgbd_imu_perturb::recorded_inertial_files;
 use crate::rig::with_imu_report;
-use crate::source::DatasetSource;
-use crate::PipelineError;
+use crate::source::RecordedSource;
+use crate::{JobPart, PipelineError};
 
 /// Largest |Δt| at which a ground-truth pose stands for a frame when re-stamping (TUM's 100 Hz
 /// motion capture has one within 5 ms of every frame).
@@ -69,14 +69,14 @@ pub fn check_dataset_spec(
 fn check_frame_items(dataset: &SourceDataset, spec: &PerturbSpec) -> Result<(), PipelineError> {
     if let Some(item) = spec.scene_items().first() {
         return Err(PipelineError::option(
-            "--perturb",
-            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter, distortion) render the frames from the camera's poses and need a scene (mesh); use `rslam render --scene NAME|MESH --perturb ...`"),
+            JobPart::Spec,
+            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter, distortion) render the frames from the camera's poses and need a scene (mesh): render the scene with them instead"),
         ));
     }
     if !spec.depth.is_empty() {
         if let Some(frame) = dataset.frames.iter().find(|f| f.depth.is_none()) {
             return Err(PipelineError::option(
-                "--perturb",
+                JobPart::Spec,
                 format!(
                     "'{spec}': depth corruptions need depth, but {} has none",
                     frame.rgb.display()
@@ -101,7 +101,7 @@ pub fn perturb_dataset(
         check_frame_items(&dataset, &job.spec)?;
     }
     let plan = dataset_plan(&dataset, &job.spec, job.seed);
-    let ground_truth = output_ground_truth(&dataset, &plan, job.spec.fast.is_some());
+    let ground_truth = output_ground_truth(&dataset, &plan, plan::restamps(&job.spec));
     let manifest = ManifestParts {
         command: &job.command,
         source: job.input.display().to_string(),
@@ -118,7 +118,7 @@ pub fn perturb_dataset(
     }
     .build()?;
     let manifest = with_imu_report(manifest, inertial.report.as_ref())?;
-    let mut pipeline = Pipeline::new(ctx, DatasetSource::new(&dataset), &job.spec, job.seed)?;
+    let mut pipeline = Pipeline::new(ctx, RecordedSource::dataset(&dataset), &job.spec, job.seed)?;
     let output = DatasetOutput {
         out: &job.out,
         format: dataset.format,

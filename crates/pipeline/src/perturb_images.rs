@@ -9,9 +9,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use rslam_core::dataset::{
-    encode_rgb_like, read_image_size, read_rgb, ContentWriter, DepthPng, Manifest,
-};
+use rslam_core::dataset::{encode_rgb_like, read_image_size, read_rgb, ContentWriter, DepthPng};
 use rslam_core::{CoreError, ImagePool, RgbImage};
 use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Perturber};
@@ -20,11 +18,11 @@ use crate::dataset_run::RunReport;
 use crate::encoder_pool::EncoderPool;
 use crate::frame_loop::FrameRun;
 use crate::manifest::ManifestParts;
-use crate::output_folder::{self, FolderState};
-use crate::plan::FramePlan;
+use crate::output_folder::{self, make_output, Written};
+use crate::plan::{restamps, FramePlan};
 use crate::progress::Progress;
 use crate::upload_ahead::UploadAhead;
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 /// JPEG quality of perturbed JPEG images.
 const JPEG_QUALITY: u8 = 95;
@@ -69,7 +67,7 @@ pub fn image_files(dir: &Path) -> Result<Vec<PathBuf>, PipelineError> {
 /// Refuses what cannot be applied to separate images.
 pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     if !spec.depth.is_empty() {
-        return Err(PipelineError::option("--perturb", format!("'{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)")));
+        return Err(PipelineError::option(JobPart::Spec, format!("'{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)")));
     }
     check_frame_items_only(spec)
 }
@@ -77,8 +75,8 @@ pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
 /// Refuses items that act on a sequence, a scene or an IMU rather than on each frame.
 pub fn check_frame_items_only(spec: &PerturbSpec) -> Result<(), PipelineError> {
     crate::rig::refuse_imu_items(spec, "a set of frames")?;
-    if spec.fast.is_some() || spec.misalign.is_some() || spec.needs_scene() {
-        return Err(PipelineError::option("--perturb", format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure, rolling_shutter and distortion on scenes; use a scene (`rslam render`) or a dataset (Replica or TUM layout) as --input")));
+    if restamps(spec) || spec.misalign.is_some() || spec.needs_scene() {
+        return Err(PipelineError::option(JobPart::Spec, format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure, rolling_shutter and distortion on scenes; render a scene or perturb a dataset (Replica or TUM layout) instead")));
     }
     Ok(())
 }
@@ -156,37 +154,27 @@ pub fn perturb_images(
     if let Some(input) = job.files.first().and_then(|f| f.parent()) {
         output_folder::check_not_input(&job.out, input)?;
     }
-    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
-    if found == FolderState::Complete {
-        return Ok(Some(RunReport {
-            frames: plan.len(),
-            made: 0,
-            found,
-            manifest: Manifest::read(&job.out)?,
-        }));
-    }
-    // As in a dataset run: a stateful item's frames follow from the ones before them.
-    let redo_all = job.spec.stateful_item().is_some();
-    let missing: Vec<usize> = (0..names.len())
-        .filter(|&i| redo_all || !job.out.join(&names[i]).is_file())
-        .collect();
-    let content = Arc::new(ContentWriter::new(&job.out));
-    let destination = Destination::Folder {
-        content: content.clone(),
-        names: Arc::new(names),
-    };
-    run_images(ctx, job, &missing, &destination, progress)?;
-    drop(destination);
-    let content = Arc::try_unwrap(content)
-        .map_err(|_| PipelineError::Worker("image writer still shared".into()))?;
-    let manifest = content.finish(manifest)?;
-    output_folder::finish(&job.out)?;
-    Ok(Some(RunReport {
-        frames: plan.len(),
-        made: missing.len(),
-        found,
-        manifest,
-    }))
+    let made = make_output(&job.out, &manifest, job.force, |_| {
+        // As in a dataset run: a stateful item's frames follow from the ones before them.
+        let redo_all = job.spec.stateful_item().is_some();
+        let missing: Vec<usize> = (0..names.len())
+            .filter(|&i| redo_all || !job.out.join(&names[i]).is_file())
+            .collect();
+        let content = Arc::new(ContentWriter::new(&job.out));
+        let destination = Destination::Folder {
+            content: content.clone(),
+            names: Arc::new(names),
+        };
+        run_images(ctx, job, &missing, &destination, progress)?;
+        drop(destination);
+        let content = Arc::try_unwrap(content)
+            .map_err(|_| PipelineError::Worker("image writer still shared".into()))?;
+        Ok(Written {
+            made: missing.len(),
+            manifest: content.finish(manifest.clone())?,
+        })
+    })?;
+    Ok(Some(RunReport::of(plan.len(), made)))
 }
 
 /// Perturbs images `indices` of the job into `destination`.

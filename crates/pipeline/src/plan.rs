@@ -39,6 +39,34 @@ pub struct SourceTiming<'a> {
     pub rate_hz: f64,
 }
 
+/// How many times faster than captured the sequence plays: `fast:K` keeps every K-th frame and
+/// re-stamps the kept ones at the sensor rate, or, in a rig, plays the body's motion K times
+/// faster. The one place `fast` is read.
+pub fn speed_up(spec: &PerturbSpec) -> u32 {
+    spec.fast.unwrap_or(1).max(1)
+}
+
+/// Whether the output frames are re-stamped (`fast`), so that the ground truth is taken at each
+/// kept frame rather than kept whole.
+pub fn restamps(spec: &PerturbSpec) -> bool {
+    spec.fast.is_some()
+}
+
+/// The spec's item that re-stamps the frames (`fast:K`), for refusals where frames keep their
+/// recorded stamps.
+pub fn restamping_item(spec: &PerturbSpec) -> Option<String> {
+    spec.fast.map(|k| format!("fast:{k}"))
+}
+
+/// The spec as one camera of a rig takes it for its frames: its items
+/// ([`PerturbSpec::for_camera`]) without `fast`, which the rig's motion has taken already.
+pub fn camera_frame_spec(spec: &PerturbSpec, camera: &str) -> PerturbSpec {
+    PerturbSpec {
+        fast: None,
+        ..spec.for_camera(camera)
+    }
+}
+
 impl FramePlan {
     /// Frames rendered along a path of `source_frames` poses at `rate_hz`, from time 0.
     pub fn rendered(source_frames: usize, rate_hz: f64, spec: &PerturbSpec, seed: u64) -> Self {

@@ -10,7 +10,7 @@ use rslam_perturb::PerturbSpec;
 use rslam_render::{load_scene, Scene};
 
 use crate::plan::FramePlan;
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 #[derive(Clone, Debug)]
 pub struct SceneJob {
@@ -24,7 +24,7 @@ pub struct SceneJob {
     pub rate_hz: f64,
     pub spec: PerturbSpec,
     pub seed: u64,
-    /// One agent of a multi-agent render (`--agents`): the built-in scene's path for that agent
+    /// One agent of a multi-agent render: the built-in scene's path for that agent
     /// instead of its default one; `None` for a single camera.
     pub agent: Option<usize>,
 }
@@ -42,7 +42,7 @@ impl SceneJob {
     pub fn resolve(&self) -> Result<ResolvedScene, PipelineError> {
         if !(self.rate_hz.is_finite() && self.rate_hz > 0.0) {
             return Err(PipelineError::option(
-                "--rate",
+                JobPart::Rate,
                 format!("{}: expected a positive number of Hz", self.rate_hz),
             ));
         }
@@ -56,12 +56,12 @@ impl SceneJob {
     pub fn resolve_along(&self, poses: Vec<Pose>) -> Result<ResolvedScene, PipelineError> {
         if !(self.rate_hz.is_finite() && self.rate_hz > 0.0) {
             return Err(PipelineError::option(
-                "--rate",
+                JobPart::Rate,
                 format!("{}: expected a positive number of Hz", self.rate_hz),
             ));
         }
         if poses.is_empty() {
-            return Err(PipelineError::option("poses", "expected at least one pose"));
+            return Err(PipelineError::option(JobPart::Poses, "expected at least one pose"));
         }
         self.resolve_path(load_scene(&self.scene)?, poses)
     }
@@ -83,15 +83,15 @@ impl SceneJob {
         let poses = match (&self.trajectory, self.agent) {
             (Some(_), Some(_)) => {
                 return Err(PipelineError::option(
-                    "--agents",
-                    "every agent would follow --traj: leave --traj out, each agent walks a path of its own in a built-in scene",
+                    JobPart::Agents,
+                    "every agent would follow the one trajectory file: leave it out, each agent walks a path of its own in a built-in scene",
                 ))
             }
             (Some(path), None) => read_trajectory(path, None)?.trajectory.poses,
             (None, Some(agent)) => rslam_render::agent_trajectory(&self.scene, agent)
                 .ok_or_else(|| {
                     PipelineError::option(
-                        "--agents",
+                        JobPart::Agents,
                         format!(
                             "scene '{}' is not a built-in one: only built-in scenes have paths for several agents",
                             self.scene
@@ -103,9 +103,9 @@ impl SceneJob {
                 Some(path) => path.poses.clone(),
                 None => {
                     return Err(PipelineError::option(
-                        "--traj",
+                        JobPart::Trajectory,
                         format!(
-                            "scene '{}' has no default trajectory: pass --traj FILE",
+                            "scene '{}' has no default trajectory: give a trajectory file",
                             self.scene
                         ),
                     ))
@@ -115,13 +115,13 @@ impl SceneJob {
         let count = match self.frames {
             Some(0) => {
                 return Err(PipelineError::option(
-                    "--frames",
+                    JobPart::Frames,
                     "0: expected at least one frame",
                 ))
             }
             Some(n) if n > poses.len() => {
                 return Err(PipelineError::option(
-                    "--frames",
+                    JobPart::Frames,
                     format!("{n}: the trajectory has only {} poses", poses.len()),
                 ))
             }

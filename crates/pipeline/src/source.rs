@@ -1,10 +1,15 @@
 //! Where source frames come from: a source records frame `index` into the frame textures on
-//! the GPU — a scene draws it from its pose, a dataset uploads its decoded images. A rig of
-//! several sensors is several sources, one per camera, each with its own plan and sink.
+//! the GPU — a scene draws it from its pose, a recording ([`RecordedSource`]: a dataset, one
+//! camera of a EuRoC recording) uploads its decoded images, buffers in memory are uploaded as
+//! they are. A rig of several sensors is several sources, one per camera, each with its own plan
+//! and sink.
+
+mod recorded;
+
+pub use recorded::{ColourReader, RecordedFrame, RecordedSource};
 
 use std::collections::HashMap;
 
-use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFrame, SourceDataset};
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 use rslam_perturb::sensor::Shutter;
@@ -13,8 +18,7 @@ use rslam_render::{Rasterizer, Scene};
 
 use crate::lens_render::LensRender;
 use crate::shutter_render::ShutterRender;
-use crate::upload_ahead::UploadAhead;
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 pub trait FrameSource {
     /// Width and height of every frame.
@@ -85,7 +89,7 @@ impl SceneSource {
             self.rasterizer.set_intrinsics(ctx, drawn);
         }
         let shutter = Shutter::of(spec);
-        let rate_hz = rate_hz * spec.fast.unwrap_or(1) as f64;
+        let rate_hz = rate_hz * f64::from(crate::plan::speed_up(spec));
         let same_shutter = !lens_changed
             && match &self.shutter {
                 Some(current) => current.is(&shutter, rate_hz),
@@ -177,77 +181,6 @@ impl FrameSource for SceneSource {
     }
 }
 
-/// The frames of a dataset on disk, decoded ahead of the GPU on worker threads.
-pub struct DatasetSource {
-    frames: Vec<DatasetFrame>,
-    intrinsics: Intrinsics,
-    depth_scale: f64,
-    /// Each needed frame, decoded ahead into upload buffers.
-    frames_ahead: UploadAhead,
-}
-
-impl DatasetSource {
-    pub fn new(dataset: &SourceDataset) -> Self {
-        Self {
-            frames: dataset.frames.clone(),
-            intrinsics: dataset.intrinsics,
-            depth_scale: dataset.format.depth_scale(),
-            frames_ahead: UploadAhead::new(
-                dataset.intrinsics.width,
-                dataset.intrinsics.height,
-                dataset.frames.iter().any(|f| f.depth.is_some()),
-            ),
-        }
-    }
-}
-
-impl FrameSource for DatasetSource {
-    fn size(&self) -> (u32, u32) {
-        (self.intrinsics.width, self.intrinsics.height)
-    }
-
-    fn has_depth(&self) -> bool {
-        self.frames.iter().all(|f| f.depth.is_some())
-    }
-
-    fn camera(&self) -> Option<Intrinsics> {
-        Some(self.intrinsics)
-    }
-
-    fn prepare(&mut self, ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
-        check_in_range(sources, self.frames.len(), "frames of the dataset")?;
-        let needed: Vec<(usize, DatasetFrame)> = sources
-            .iter()
-            .map(|&s| (s, self.frames[s].clone()))
-            .collect();
-        let (scale, camera) = (self.depth_scale, self.intrinsics);
-        self.frames_ahead.start(ctx, needed, move |frame, filler| {
-            let color = read_rgb(&frame.rgb)?;
-            check_size(&frame.rgb, color.width, color.height, camera)?;
-            let depth = match &frame.depth {
-                Some(path) => {
-                    let depth = decode_depth_png(path, scale)?;
-                    check_size(path, depth.width, depth.height, camera)?;
-                    Some(depth)
-                }
-                None => None,
-            };
-            Ok(filler.fill(&color, depth.as_ref())?)
-        });
-        Ok(())
-    }
-
-    fn record(
-        &mut self,
-        _ctx: &GpuContext,
-        encoder: &mut wgpu::CommandEncoder,
-        frame: &FrameTextures,
-        index: usize,
-    ) -> Result<(), PipelineError> {
-        self.frames_ahead.record(encoder, frame, index)
-    }
-}
-
 /// Every source frame asked for is one of the `count` there are.
 pub(crate) fn check_in_range(
     sources: &[usize],
@@ -256,29 +189,11 @@ pub(crate) fn check_in_range(
 ) -> Result<(), PipelineError> {
     match sources.iter().find(|&&s| s >= count) {
         Some(s) => Err(PipelineError::option(
-            "frame",
+            JobPart::Frame,
             format!("{s} is past the {count} {what}"),
         )),
         None => Ok(()),
     }
-}
-
-fn check_size(
-    path: &std::path::Path,
-    width: u32,
-    height: u32,
-    camera: Intrinsics,
-) -> Result<(), PipelineError> {
-    if (width, height) == (camera.width, camera.height) {
-        return Ok(());
-    }
-    Err(PipelineError::input(
-        path,
-        format!(
-            "image is {width}x{height}, but the dataset's camera is {}x{}",
-            camera.width, camera.height
-        ),
-    ))
 }
 
 /// Frames already in memory (numpy arrays from Python, images the viewer holds), all of one size.
@@ -301,7 +216,7 @@ impl BufferSource {
     pub fn new(frames: Vec<(RgbImage, Option<DepthImage>)>) -> Result<Self, PipelineError> {
         let Some((first, first_depth)) = frames.first() else {
             return Err(PipelineError::option(
-                "frames",
+                JobPart::Frames,
                 "expected at least one frame",
             ));
         };
@@ -314,7 +229,7 @@ impl BufferSource {
                     .is_none_or(|d| (d.width, d.height) == (width, height));
             if !sizes_agree || depth.is_some() != with_depth {
                 return Err(PipelineError::option(
-                    "frames",
+                    JobPart::Frames,
                     format!(
                         "frame {i}: expected {width}x{height} colour{} like frame 0",
                         if with_depth { " and depth" } else { "" }
@@ -339,7 +254,7 @@ impl BufferSource {
     pub fn with_camera(mut self, camera: Intrinsics) -> Result<Self, PipelineError> {
         if (camera.width, camera.height) != (self.width, self.height) {
             return Err(PipelineError::option(
-                "camera",
+                JobPart::Camera,
                 format!(
                     "a {}x{} camera for {}x{} frames: expected the frames' size",
                     camera.width, camera.height, self.width, self.height
@@ -359,7 +274,7 @@ impl BufferSource {
     ) -> Result<Self, PipelineError> {
         if numbers.len() != frames.len() {
             return Err(PipelineError::option(
-                "frame_indices",
+                JobPart::FrameIndices,
                 format!(
                     "{} frame indices for {} frames: expected one per frame",
                     numbers.len(),
@@ -372,7 +287,7 @@ impl BufferSource {
         for (i, &n) in numbers.iter().enumerate() {
             if buffer_of.insert(n, i).is_some() {
                 return Err(PipelineError::option(
-                    "frame_indices",
+                    JobPart::FrameIndices,
                     format!("frame index {n} is given twice"),
                 ));
             }
@@ -413,7 +328,7 @@ impl FrameSource for BufferSource {
     fn prepare(&mut self, _ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
         match sources.iter().find(|s| !self.buffer_of.contains_key(s)) {
             Some(s) => Err(PipelineError::option(
-                "frame",
+                JobPart::Frame,
                 format!("{s} is not one of the frames given"),
             )),
             None => Ok(()),
@@ -428,7 +343,7 @@ impl FrameSource for BufferSource {
         index: usize,
     ) -> Result<(), PipelineError> {
         let buffer = *self.buffer_of.get(&index).ok_or_else(|| {
-            PipelineError::option("frame", format!("{index} is not one of the frames given"))
+            PipelineError::option(JobPart::Frame, format!("{index} is not one of the frames given"))
         })?;
         let (color, depth) = &self.frames[buffer];
         frame.upload(ctx, color, depth.as_ref());

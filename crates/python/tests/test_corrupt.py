@@ -5,7 +5,7 @@ Deterministic corruptions (no random draw in the reference) are compared pixel b
 image the Rust goldens use (crates/perturb/tests/goldens/input.png) with the least PSNR those
 goldens allow (MIN_PSNR of crates/perturb/tests/goldens.rs, read from that file so the two never
 drift apart; the bounds were set on that image). Every corruption is also compared the way
-perturbations.md §3 states the fidelity target, on that image and on a second synthetic one: the
+docs/src/perturbations.md §3 states the fidelity target, on that image and on a second synthetic one: the
 PSNR of the corrupted image against the clean one is close to the reference's. Random ones are
 averaged over DRAWS seeds (rslam's seed k, the reference after np.random.seed(k)): one draw of
 fog's plasma or of spatter's droplets moves PSNR by several dB on its own. motion_blur and fog
@@ -28,7 +28,7 @@ from conftest import REPO
 SEVERITIES = (1, 3, 5)
 GOLDENS_RS = REPO / "crates/perturb/tests/goldens.rs"
 
-# perturbations.md §3: deterministic corruptions "within about 1 dB" of the reference's PSNR to
+# docs/src/perturbations.md §3: deterministic corruptions "within about 1 dB" of the reference's PSNR to
 # clean, "stochastic ones within about 2-3 dB". Measured here (mean of DRAWS): everything within
 # 2 dB except frost, 2.0-3.1 dB stronger than the reference (procedural frost textures, not the
 # reference's six photographs), hence 3.5 dB.

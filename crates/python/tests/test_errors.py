@@ -68,7 +68,7 @@ def test_perturber_unknown_item_lists_the_valid_names():
 
 @pytest.mark.parametrize("spec", ["fog:0", "fog:6"])
 def test_perturber_severity_outside_1_to_5(spec):
-    with pytest.raises(ValueError, match=f"--perturb item '{spec}': severity"):
+    with pytest.raises(ValueError, match=f"spec item '{spec}': severity"):
         rslam.Perturber(spec)
 
 

@@ -1,4 +1,4 @@
-//! The suites `rslam suite init` writes: the paper's matrix (perturbations.md §7) and a small one
+//! The suites `rslam suite init` writes: the paper's matrix (docs/src/perturbations.md §7) and a small one
 //! for smoke runs.
 
 use std::fmt;
@@ -161,7 +161,7 @@ fn setting(name: &str, spec: &str) -> Setting {
     }
 }
 
-/// perturbations.md §7: clean; 16 RGB × {1,3,5} × {static, dynamic}; 4 depth settings;
+/// docs/src/perturbations.md §7: clean; 16 RGB × {1,3,5} × {static, dynamic}; 4 depth settings;
 /// fast ∈ {2,4,8}; rot {0,1,3,5} × trans {0,0.0125,0.025,0.05} without (0,0); misalign
 /// {5,10,20} × {static, dynamic}. 125 in all.
 fn robust_slam_settings() -> Vec<Setting> {

@@ -11,8 +11,8 @@ use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::rig::{render_rgbd_imu, rgbd_imu_frame_count, rig_camera_frames};
 use rslam_pipeline::{
-    render_dataset, render_euroc, FolderState, FramePlan, PipelineError, Progress, RenderJob, Rig,
-    RigRenderJob, SceneJob,
+    render_dataset, render_euroc, speed_up, FolderState, FramePlan, PipelineError, Progress,
+    RenderJob, Rig, RigRenderJob, SceneJob,
 };
 
 use crate::layout::Layout;
@@ -212,7 +212,7 @@ impl Sequence {
             None => self.path_length(suite_dir)?,
         };
         if let Sensors::Rig(rig) = &self.sensors {
-            let frames = rig_camera_frames(rig, poses, self.rate_hz, self.spec.fast)?
+            let frames = rig_camera_frames(rig, poses, self.rate_hz, speed_up(&self.spec))?
                 .iter()
                 .map(|c| c.frames)
                 .sum();
@@ -222,7 +222,7 @@ impl Sequence {
             });
         }
         if let Sensors::Camera { imu: true, .. } = &self.sensors {
-            let frames = rgbd_imu_frame_count(poses, self.rate_hz, self.spec.fast)?;
+            let frames = rgbd_imu_frame_count(poses, self.rate_hz, speed_up(&self.spec))?;
             return Ok(FrameCounts {
                 rendered: frames,
                 written: frames,

@@ -7,7 +7,7 @@ use rslam_core::dataset::SourceDataset;
 use rslam_core::{Pose, Trajectory};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::source::{DatasetSource, SceneSource};
+use rslam_pipeline::source::{RecordedSource, SceneSource};
 use rslam_pipeline::{
     DepthRange, FramePlan, FramesInMemory, PipelineError, RgbdFrame, SceneJob, ShownFrame,
 };
@@ -19,7 +19,7 @@ pub enum Sequence {
         rate_hz: f64,
     },
     Dataset {
-        frames: Box<FramesInMemory<DatasetSource>>,
+        frames: Box<FramesInMemory<RecordedSource>>,
         name: String,
         rate_hz: f64,
     },

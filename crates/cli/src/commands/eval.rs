@@ -38,7 +38,7 @@ whole estimate (multiplied by the Sim(3) scale with --align sim3) over that of t
 truth. Jitter adds path length, so it grows when tracking gets worse and can exceed 1; it is kept
 only for comparing with the paper.
 Tracked fraction = ground-truth poses with an associated estimate pose / all ground-truth poses.
-No reference tool computes these; they are rslam's definitions (spec metrics.md).
+No reference tool computes these; they are rslam's definitions (the book's Evaluation chapter, docs/src/metrics.md, section SR).
 
 --runs DIR --datasets DIR: evaluates DIR/<method>/<sequence>.txt (or DIR/<method>/<sequence>/<repeat>.txt)
 against the ground truth in DATASETS/<sequence>/traj.txt, groundtruth.txt, (EuRoC)

@@ -40,7 +40,7 @@ pub struct PerturbArgs {
     #[arg(long)]
     rate: Option<f64>,
     /// Depth PNG compression of a dataset's output: `fast` (default), or `small` (about a third of
-    /// the size for 2–3× the encoding time; lossless either way, see the README).
+    /// the size for 2–3× the encoding time; lossless either way, see docs/src/formats.md, "Depth PNGs").
     #[arg(long)]
     depth_png: Option<DepthPng>,
     /// Replace what --out holds if it is another rslam output (never a folder of other files).

@@ -35,7 +35,7 @@ pub struct RenderArgs {
     /// Sensors: `rgbd` (one RGB-D camera, the default), `rgbd-imu` (that camera at a RealSense
     /// D435i's colour-camera pose and its 200 Hz IMU; needs --format tum), `stereo` (two 752x480
     /// grey cameras, 0.11 m apart, 20 Hz), `stereo-imu` (the same and a 200 Hz IMU) or a rig file
-    /// FILE.toml (cameras and an IMU of your own, see the README); the stereo rigs and rig files
+    /// FILE.toml (cameras and an IMU of your own, see docs/src/rigs.md, "Rig files"); the stereo rigs and rig files
     /// need --format euroc. The scene's path (or --traj) is the (first) camera's.
     #[arg(long)]
     rig: Option<String>,
@@ -48,7 +48,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value = "replica")]
     format: OutputFormat,
     /// Depth PNG compression: `fast`, or `small` (about a third of the size for 2–3× the
-    /// encoding time; lossless either way, see the README).
+    /// encoding time; lossless either way, see docs/src/formats.md, "Depth PNGs").
     #[arg(long, default_value = "fast")]
     depth_png: DepthPng,
     /// Seed of every random draw.

@@ -20,7 +20,7 @@ fn encode_failed(what: &str, e: impl std::fmt::Display) -> CoreError {
 
 /// JPEG at `quality` with full-resolution chroma (4:4:4), through libjpeg-turbo: its SIMD
 /// encoder takes about a third of `jpeg-encoder`'s time for the same quantisation tables, sizes
-/// and PSNR (README, "Performance"). libjpeg allows at most 65,500 pixels a side.
+/// and PSNR (docs/src/performance.md, "JPEG encoding"). libjpeg allows at most 65,500 pixels a side.
 pub fn encode_jpeg(image: &RgbImage, quality: u8) -> Result<Vec<u8>, CoreError> {
     let failed = |e: String| {
         encode_failed(
@@ -57,7 +57,7 @@ fn png_encoder(out: &mut Vec<u8>) -> PngEncoder<&mut Vec<u8>> {
 /// Depth goes to the png crate itself, as big-endian samples, with the settings the image crate's
 /// encoder would pass: the image crate takes native-endian samples and swaps every byte pair
 /// into a second buffer first. `Small` is zlib level 2 with adaptive filtering, the knee on
-/// rendered depth (the `depth_png_settings` example; README, "Performance"): a third of `Fast`'s
+/// rendered depth (the `depth_png_settings` example; docs/src/performance.md, "Depth PNG encoding"): a third of `Fast`'s
 /// bytes for 2.3–2.7× its time. Level 1 is 38 % larger; level 3 saves 13 % more for 1.75× the
 /// time, level 9 27 % for 8×.
 fn write_depth_png(

@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 /// How a dataset's depth PNGs are compressed. Either way they are standard 16-bit grayscale
 /// PNGs holding the same samples (deflate is lossless); `small` spends more encoding time on the
-/// worker threads for smaller files (README, "Performance").
+/// worker threads for smaller files (docs/src/performance.md, "Depth PNG encoding").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum DepthPng {

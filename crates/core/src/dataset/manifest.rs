@@ -8,7 +8,7 @@ use crate::{read_text_file, CoreError, Distortion, Intrinsics};
 /// Written last into every dataset: without it a dataset is incomplete.
 pub const MANIFEST_FILE: &str = "rslam.json";
 
-/// What lets someone regenerate a dataset bit for bit (formats.md, "Manifest").
+/// What lets someone regenerate a dataset bit for bit (docs/src/formats.md, "Manifest").
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Manifest {
     pub tool: String,

@@ -7,7 +7,7 @@ use crate::dataset::{
 use crate::trajectory_io::{write_replica, write_tum};
 use crate::{CoreError, DepthImage, Distortion, Intrinsics, RgbImage, Trajectory};
 
-/// JPEG quality of Replica-layout colour frames (formats.md: ≥ 95).
+/// JPEG quality of Replica-layout colour frames (docs/src/formats.md, "Replica layout": quality 95).
 pub const JPEG_QUALITY: u8 = 95;
 
 /// One output frame's timing: when its colour was captured and when the depth it carries was.

@@ -1,4 +1,4 @@
-//! The benchmark's tables over many runs (metrics.md, "Failure convention and CSR").
+//! The benchmark's tables over many runs (docs/src/metrics.md, "Failure convention and CSR (over many runs)").
 
 use std::collections::BTreeMap;
 

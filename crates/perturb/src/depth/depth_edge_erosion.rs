@@ -1,5 +1,5 @@
 //! depth_edge_erosion: voids every depth-edge pixel, plus a 7×7 square around a `rate` fraction
-//! of them (perturbations.md §4), like the missing depth a real sensor shows along occlusion
+//! of them (docs/src/perturbations.md §4), like the missing depth a real sensor shows along occlusion
 //! boundaries.
 //!
 //! Edges: Canny on the depth normalised to 8 bits as ⌊255·z / max z⌋ (invalid = 0, so the rims
@@ -21,7 +21,7 @@ const NAME: &str = "depth_edge_erosion";
 const SHADER: &str = "perturb/depth/depth_edge_erosion.wgsl";
 const PURPOSE_CHOICE: u32 = 0;
 
-/// Fraction of edge pixels that also void a 7×7 square (perturbations.md §4).
+/// Fraction of edge pixels that also void a 7×7 square (docs/src/perturbations.md §4).
 pub const RATE: [f32; 5] = [0.015, 0.020, 0.025, 0.030, 0.035];
 /// Canny thresholds on the L1 Sobel magnitude of the 8-bit depth (our choice, OpenCV's usual
 /// 1:2 ratio): a step of 0.25·max z / 20 ≈ 1.25% of the range is weak, twice that strong.

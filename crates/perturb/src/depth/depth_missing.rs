@@ -1,5 +1,5 @@
 //! depth_missing: voids `count` rectangles of ⌊0.1H⌋×⌊0.1W⌋ pixels whose top-left corners are
-//! uniform over the positions that keep the rectangle inside the frame (perturbations.md §4).
+//! uniform over the positions that keep the rectangle inside the frame (docs/src/perturbations.md §4).
 //! Rectangles may overlap. Positions are drawn on the CPU from the frame's key.
 
 use bytemuck::{Pod, Zeroable};
@@ -15,7 +15,7 @@ const NAME: &str = "depth_missing";
 const SHADER: &str = "perturb/depth/depth_missing.wgsl";
 const PURPOSE_RECTANGLES: u32 = 0;
 
-/// Rectangles per severity (perturbations.md §4, the Robust-SLAM benchmark).
+/// Rectangles per severity (docs/src/perturbations.md §4, the Robust-SLAM benchmark).
 pub const COUNT: [u32; 5] = [2, 4, 6, 8, 10];
 const MAX_COUNT: usize = 10;
 

@@ -1,4 +1,4 @@
-//! depth_noise: z + N(0, c·std(valid z)) per pixel, clamped at 0 (perturbations.md §4). The
+//! depth_noise: z + N(0, c·std(valid z)) per pixel, clamped at 0 (docs/src/perturbations.md §4). The
 //! std of the frame's valid depth comes from a GPU reduction in the same command buffer.
 
 use rslam_core::DepthImage;
@@ -16,7 +16,7 @@ const SHADER: &str = "perturb/depth/depth_noise.wgsl";
 const STATS_SHADER: &str = "perturb/depth/depth_noise_stats.wgsl";
 const PURPOSE_NOISE: u32 = 0;
 
-/// c per severity: σ = c × std of the frame's valid depth (perturbations.md §4).
+/// c per severity: σ = c × std of the frame's valid depth (docs/src/perturbations.md §4).
 pub const FACTOR: [f32; 5] = [0.1, 0.2, 0.3, 0.4, 0.5];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -1,5 +1,5 @@
 //! depth_range: depth outside the valid range [min, max] becomes invalid, like a sensor's
-//! working range. Severity levels from perturbations.md §4, or explicit `depth_range:MIN-MAX`.
+//! working range. Severity levels from docs/src/perturbations.md §4, or explicit `depth_range:MIN-MAX`.
 
 use rslam_core::DepthImage;
 
@@ -10,7 +10,7 @@ use crate::twin::{Tolerance, Twin};
 
 const SHADER: &str = "perturb/depth/depth_range.wgsl";
 
-/// Valid range in metres per severity (perturbations.md §4, the Robust-SLAM benchmark).
+/// Valid range in metres per severity (docs/src/perturbations.md §4, the Robust-SLAM benchmark).
 pub const RANGE: [(f32, f32); 5] = [(0.2, 4.4), (0.3, 4.2), (0.4, 4.0), (0.5, 3.8), (0.6, 3.6)];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -42,7 +42,7 @@ pub struct Level {
 /// machine-vision sensors, from a large-pixel Sony Pregius (~20 ke⁻, ~3 e⁻) through an
 /// MT9V034-class pixel (55 dB linear dynamic range: 8 ke⁻ / 12 e⁻) to small-pixel parts; the time
 /// constants span a fast machine-vision AE (2 frames) to a sluggish webcam/UVC AE (~1 s at 30 Hz).
-/// README "auto_exposure" lists the sources and what is assumed.
+/// docs/src/sensor-effects.md, "Auto exposure and the sensor", lists the sources and what is assumed.
 pub const LEVELS: [Level; 5] = [
     Level {
         time_constant_frames: 2.0,

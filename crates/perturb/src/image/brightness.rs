@@ -9,7 +9,7 @@ use crate::twin::{Tolerance, Twin};
 const NAME: &str = "brightness";
 const SHADER: &str = "perturb/image/brightness.wgsl";
 
-/// ΔV per severity (perturbations.md §3, imagecorruptions `brightness`).
+/// ΔV per severity (docs/src/perturbations.md §3, imagecorruptions `brightness`).
 pub const DELTA_V: [f32; 5] = [0.1, 0.2, 0.3, 0.4, 0.5];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -13,7 +13,7 @@ use crate::PerturbError;
 const SHADER: &str = "perturb/image/contrast.wgsl";
 const MEAN_SHADER: &str = "perturb/image/contrast_mean.wgsl";
 
-/// Contrast factor per severity (perturbations.md §3, imagecorruptions `contrast`).
+/// Contrast factor per severity (docs/src/perturbations.md §3, imagecorruptions `contrast`).
 pub const FACTOR: [f32; 5] = [0.4, 0.3, 0.2, 0.1, 0.05];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -22,7 +22,7 @@ const NAME: &str = "defocus_blur";
 const ROWS_SHADER: &str = "perturb/image/defocus_blur_rows.wgsl";
 const BOXES_SHADER: &str = "perturb/image/defocus_blur.wgsl";
 
-/// (disk radius px, anti-alias σ) per severity (perturbations.md §3, imagecorruptions).
+/// (disk radius px, anti-alias σ) per severity (docs/src/perturbations.md §3, imagecorruptions).
 pub const RADIUS_ALIAS: [(u32, f64); 5] = [(3, 0.1), (4, 0.5), (6, 0.5), (8, 0.5), (10, 0.5)];
 
 /// Boxes whose whole contribution |a|·(2k+1) is below this are dropped (at most 4e-6 of the

@@ -21,7 +21,7 @@ const WARP_SHADER: &str = "perturb/image/elastic_transform.wgsl";
 /// The x and y displacement fields.
 const FIELDS: Channels = Channels::Two;
 
-/// α per severity: 250 × (0.05, 0.065, 0.085, 0.1, 0.12) (perturbations.md §3, imagecorruptions).
+/// α per severity: 250 × (0.05, 0.065, 0.085, 0.1, 0.12) (docs/src/perturbations.md §3, imagecorruptions).
 pub const ALPHA: [f32; 5] = [12.5, 16.25, 21.25, 25.0, 30.0];
 
 /// σ of the smoothing, as a fraction of the image height (rows) and width (columns).

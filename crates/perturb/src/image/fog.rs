@@ -20,7 +20,7 @@ const NAME: &str = "fog";
 const PLASMA_SHADER: &str = "perturb/image/fog_plasma.wgsl";
 const SHADER: &str = "perturb/image/fog.wgsl";
 
-/// (amplitude, plasma wibble decay) per severity (perturbations.md §3, imagecorruptions).
+/// (amplitude, plasma wibble decay) per severity (docs/src/perturbations.md §3, imagecorruptions).
 pub const AMPLITUDE_DECAY: [(f32, f64); 5] =
     [(1.5, 2.0), (2.0, 2.0), (2.5, 1.7), (2.5, 1.5), (3.0, 1.4)];
 

@@ -21,7 +21,7 @@ const NAME: &str = "frost";
 const TEXTURE_SHADER: &str = "perturb/image/frost_texture.wgsl";
 const SHADER: &str = "perturb/image/frost.wgsl";
 
-/// (image weight, frost weight) per severity (perturbations.md §3, imagecorruptions `frost`).
+/// (image weight, frost weight) per severity (docs/src/perturbations.md §3, imagecorruptions `frost`).
 pub const WEIGHTS: [(f32, f32); 5] = [(1.0, 0.4), (0.8, 0.6), (0.7, 0.7), (0.65, 0.7), (0.6, 0.75)];
 
 /// Large crystals' cell size as a fraction of the frame height.

@@ -14,7 +14,7 @@ use crate::PerturbError;
 
 const NAME: &str = "gaussian_blur";
 
-/// σ in pixels per severity (perturbations.md §3, imagecorruptions `gaussian_blur`).
+/// σ in pixels per severity (docs/src/perturbations.md §3, imagecorruptions `gaussian_blur`).
 pub const SIGMA: [f64; 5] = [1.0, 2.0, 3.0, 4.0, 6.0];
 
 /// SciPy's default truncation: radius = int(4σ + 0.5).

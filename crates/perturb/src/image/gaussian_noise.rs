@@ -9,7 +9,7 @@ const NAME: &str = "gaussian_noise";
 const SHADER: &str = "perturb/image/gaussian_noise.wgsl";
 const PURPOSE_NOISE: u32 = 0;
 
-/// σ per severity (perturbations.md §3, imagecorruptions `gaussian_noise`).
+/// σ per severity (docs/src/perturbations.md §3, imagecorruptions `gaussian_noise`).
 pub const SIGMA: [f32; 5] = [0.08, 0.12, 0.18, 0.26, 0.38];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -1,7 +1,7 @@
 //! glass_blur: imagecorruptions' `glass_blur`: Gaussian blur (σ) truncated to 8 bits, then
 //! `iterations` sweeps that move pixels by random offsets in [−δ, δ−1], then the blur again.
 //! Their sweep swaps pixels sequentially from the bottom-right; ours is a parallel gather per
-//! sweep (perturbations.md §3 allows it), which keeps PSNR within ~1.5 dB of theirs.
+//! sweep (docs/src/perturbations.md §3 allows it), which keeps PSNR within ~1.5 dB of theirs.
 
 use bytemuck::{Pod, Zeroable};
 use rslam_gpu::FrameTextures;
@@ -19,7 +19,7 @@ use crate::PerturbError;
 const NAME: &str = "glass_blur";
 const SHADER: &str = "perturb/image/glass_blur.wgsl";
 
-/// (σ, max shift δ, iterations) per severity (perturbations.md §3, imagecorruptions).
+/// (σ, max shift δ, iterations) per severity (docs/src/perturbations.md §3, imagecorruptions).
 pub const PARAMS: [(f64, i32, u32); 5] = [
     (0.7, 1, 2),
     (0.9, 2, 1),

@@ -11,7 +11,7 @@ const NAME: &str = "impulse_noise";
 const SHADER: &str = "perturb/image/impulse_noise.wgsl";
 const PURPOSE_NOISE: u32 = 0;
 
-/// Fraction of values replaced, per severity (perturbations.md §3, imagecorruptions).
+/// Fraction of values replaced, per severity (docs/src/perturbations.md §3, imagecorruptions).
 pub const AMOUNT: [f32; 5] = [0.03, 0.06, 0.09, 0.17, 0.27];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -18,7 +18,7 @@ const NAME: &str = "jpeg_compression";
 const BLOCKS_SHADER: &str = "perturb/image/jpeg_compression_blocks.wgsl";
 const DECODE_SHADER: &str = "perturb/image/jpeg_compression.wgsl";
 
-/// JPEG quality per severity (perturbations.md §3, imagecorruptions `jpeg_compression`).
+/// JPEG quality per severity (docs/src/perturbations.md §3, imagecorruptions `jpeg_compression`).
 pub const QUALITY: [u32; 5] = [25, 18, 15, 10, 7];
 
 /// ITU T.81 Annex K luminance table (natural order), libjpeg's `std_luminance_quant_tbl`.

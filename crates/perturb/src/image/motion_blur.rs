@@ -15,7 +15,7 @@ use crate::PerturbError;
 const NAME: &str = "motion_blur";
 const SHADER: &str = "perturb/image/motion_blur.wgsl";
 
-/// (radius, σ) per severity (perturbations.md §3, imagecorruptions `motion_blur`).
+/// (radius, σ) per severity (docs/src/perturbations.md §3, imagecorruptions `motion_blur`).
 pub const RADIUS_SIGMA: [(u32, f64); 5] = [(10, 3.0), (15, 5.0), (15, 8.0), (15, 12.0), (20, 15.0)];
 
 /// The blur direction is uniform in [−45°, 45°) per frame (`np.random.uniform(-45, 45)`).

@@ -14,7 +14,7 @@ use crate::PerturbError;
 
 const SHADER: &str = "perturb/image/pixelate.wgsl";
 
-/// Scale per severity (perturbations.md §3, imagecorruptions `pixelate`).
+/// Scale per severity (docs/src/perturbations.md §3, imagecorruptions `pixelate`).
 pub const SCALE: [f64; 5] = [0.6, 0.5, 0.4, 0.3, 0.25];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

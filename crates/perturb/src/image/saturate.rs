@@ -10,7 +10,7 @@ use crate::twin::{Tolerance, Twin};
 const NAME: &str = "saturate";
 const SHADER: &str = "perturb/image/saturate.wgsl";
 
-/// (S multiplier, S offset) per severity (perturbations.md §3, imagecorruptions `saturate`).
+/// (S multiplier, S offset) per severity (docs/src/perturbations.md §3, imagecorruptions `saturate`).
 pub const SATURATION: [(f32, f32); 5] =
     [(0.3, 0.0), (0.1, 0.0), (2.0, 0.0), (5.0, 0.1), (20.0, 0.2)];
 

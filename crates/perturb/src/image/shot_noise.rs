@@ -10,7 +10,7 @@ const NAME: &str = "shot_noise";
 const SHADER: &str = "perturb/image/shot_noise.wgsl";
 const PURPOSE_NOISE: u32 = 0;
 
-/// Photons at full scale per severity (perturbations.md §3, imagecorruptions `shot_noise`).
+/// Photons at full scale per severity (docs/src/perturbations.md §3, imagecorruptions `shot_noise`).
 pub const PHOTONS: [f32; 5] = [60.0, 25.0, 12.0, 5.0, 3.0];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -23,7 +23,7 @@ const NOISE_SHADER: &str = "perturb/image/snow_noise.wgsl";
 const LAYER_SHADER: &str = "perturb/image/snow_layer.wgsl";
 const SHADER: &str = "perturb/image/snow.wgsl";
 
-/// One severity of snow (perturbations.md §3, imagecorruptions `snow`).
+/// One severity of snow (docs/src/perturbations.md §3, imagecorruptions `snow`).
 #[derive(Clone, Copy, Debug)]
 pub struct SnowParams {
     pub mean: f32,

@@ -32,7 +32,7 @@ pub enum Liquid {
     Mud,
 }
 
-/// (mean, std, blur σ, threshold, intensity, kind) per severity (perturbations.md §3,
+/// (mean, std, blur σ, threshold, intensity, kind) per severity (docs/src/perturbations.md §3,
 /// imagecorruptions `spatter`; for mud the "intensity" is the mask blur σ).
 pub const PARAMS: [(f32, f32, f64, f32, f32, Liquid); 5] = [
     (0.65, 0.3, 4.0, 0.69, 0.6, Liquid::Water),

@@ -9,7 +9,7 @@ const NAME: &str = "speckle_noise";
 const SHADER: &str = "perturb/image/speckle_noise.wgsl";
 const PURPOSE_NOISE: u32 = 0;
 
-/// σ per severity (perturbations.md §3, imagecorruptions `speckle_noise`).
+/// σ per severity (docs/src/perturbations.md §3, imagecorruptions `speckle_noise`).
 pub const SIGMA: [f32; 5] = [0.15, 0.20, 0.35, 0.45, 0.60];
 
 pub const ENTRY: CatalogueEntry = CatalogueEntry {

@@ -15,7 +15,7 @@ use crate::PerturbError;
 const NAME: &str = "zoom_blur";
 const SHADER: &str = "perturb/image/zoom_blur.wgsl";
 
-/// Zoom factors `np.arange(1, stop, step)` per severity (perturbations.md §3, imagecorruptions
+/// Zoom factors `np.arange(1, stop, step)` per severity (docs/src/perturbations.md §3, imagecorruptions
 /// `zoom_blur`).
 pub const ZOOM_RANGE: [(f64, f64); 5] = [
     (1.11, 0.01),

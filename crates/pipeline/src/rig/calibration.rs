@@ -16,7 +16,7 @@ use rslam_perturb::calibration::{move_along_baseline, CalibrationItem, Calibrati
 use rslam_perturb::{PerturbError, PerturbSpec};
 use serde_json::{json, Value};
 
-use super::euroc_render::{camera_seed, imu_seed};
+use super::seeds::{camera_seed, imu_seed};
 use super::preset::Rig;
 
 /// What the `@dynamic` items drew on every frame, beside the manifest.
@@ -507,7 +507,7 @@ mod tests {
             .to_string();
         assert_eq!(
             err,
-            "--perturb item 'cam2:extrinsic_rot:1': no sensor 'cam2' here; the sensors are cam0, cam1"
+            "spec item 'cam2:extrinsic_rot:1': no sensor 'cam2' here; the sensors are cam0, cam1"
         );
         let spec = PerturbSpec::parse("imu0:extrinsic_rot:1").unwrap();
         let err = PerturbedRig::new(&Rig::stereo(), &spec, 0)

@@ -1,4 +1,4 @@
-//! `rslam perturb --input MH_01_easy/`: a recorded EuRoC (ASL) dataset copied with its camera
+//! A perturbed copy of `MH_01_easy/`: a recorded EuRoC (ASL) dataset copied with its camera
 //! frames corrupted and its IMU perturbed.
 //!
 //! Each camera is its own source (its PNGs decoded ahead), pipeline and sink, seeded with
@@ -28,7 +28,7 @@ use rslam_core::dataset::euroc::{
     read_euroc, CameraColour, EurocCameraFrames, EurocDataset, EurocWriter, GROUND_TRUTH_DIR,
     IMU_DIR, MAV_DIR,
 };
-use rslam_core::dataset::{DepthPng, Manifest};
+use rslam_core::dataset::DepthPng;
 use rslam_core::CoreError;
 use rslam_gpu::GpuContext;
 use rslam_perturb::calibration::CalibrationMode;
@@ -36,18 +36,19 @@ use rslam_perturb::imu::{ImuOrigin, PerturbedImu};
 use rslam_perturb::PerturbSpec;
 
 use super::calibration::PerturbedRig;
-use super::camera_sink::EurocCameraSink;
-use super::euroc_render::{camera_seed, CameraFrames, RigReport};
-use super::euroc_source::EurocCameraSource;
+use super::euroc_render::{CameraFrames, RigReport};
+use super::seeds::camera_seed;
 use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::preset::Rig;
 use super::tum_vi_files::TumViFiles;
 use crate::manifest::ManifestParts;
-use crate::output_folder::{self, FolderState};
+use crate::output_folder::{self, make_output, FolderState, Written};
 use crate::pipeline::Pipeline;
-use crate::plan::{FramePlan, SourceTiming};
+use crate::plan::{restamping_item, FramePlan, SourceTiming};
 use crate::progress::Progress;
-use crate::PipelineError;
+use crate::sink::EurocCameraSink;
+use crate::source::RecordedSource;
+use crate::{JobPart, PipelineError};
 
 /// One perturbed copy of a EuRoC dataset.
 pub struct PerturbEurocJob {
@@ -78,17 +79,17 @@ pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
         let item = item.to_string();
         let base = item.split('@').next().unwrap_or(&item);
         return Err(PipelineError::option(
-            "--perturb",
+            JobPart::Spec,
             format!("'{item}': a recorded dataset cannot be re-rendered with a moved sensor; perturb its written calibration instead: {base}@calibration"),
         ));
     }
     let mut others = spec.scene_items();
     others.extend(spec.depth.iter().map(|item| item.to_string()));
-    others.extend(spec.fast.map(|k| format!("fast:{k}")));
+    others.extend(restamping_item(spec));
     others.extend(spec.misalign.map(|m| format!("misalign:{}", m.frames)));
     match others.first() {
         Some(item) => Err(PipelineError::option(
-            "--perturb",
+            JobPart::Spec,
             format!("'{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
         )),
         None => Ok(()),
@@ -218,11 +219,7 @@ fn write_camera(
         }
         return Ok(None);
     }
-    let source = EurocCameraSource::new(
-        camera.frames.clone(),
-        camera.camera.intrinsics,
-        camera.camera.colour,
-    );
+    let source = RecordedSource::euroc_camera(camera);
     let mut pipeline = Pipeline::new(ctx, source, spec, seed)?;
     let mut sink = EurocCameraSink::new(writer.clone(), index, times_ns);
     let sources: Vec<usize> = (kept..camera.frames.len()).collect();
@@ -347,72 +344,61 @@ pub fn perturb_euroc(
         })
         .collect();
 
-    let found = output_folder::prepare(&job.out, &manifest, job.force)?;
-    if found == FolderState::Complete {
-        return Ok(RigReport {
-            cameras,
-            imu_samples,
-            found,
-            made: 0,
-            manifest: Manifest::read(&job.out)?,
+    let made = make_output(&job.out, &manifest, job.force, |found| {
+        let (cameras_written, imu_written) = (
+            perturbed.written.cameras.clone(),
+            perturbed.written.imu.clone(),
+        );
+        let writer = Arc::new(match tum_vi {
+            Some(_) => {
+                EurocWriter::open_calibration_elsewhere(&job.out, cameras_written, imu_written)?
+            }
+            None => EurocWriter::open(&job.out, cameras_written, imu_written)?,
         });
-    }
-    let (cameras_written, imu_written) = (
-        perturbed.written.cameras.clone(),
-        perturbed.written.imu.clone(),
-    );
-    let writer = Arc::new(match tum_vi {
-        Some(_) => EurocWriter::open_calibration_elsewhere(&job.out, cameras_written, imu_written)?,
-        None => EurocWriter::open(&job.out, cameras_written, imu_written)?,
-    });
+        // A resumed run keeps each camera's frames up to the first one missing; an item that
+        // carries a state from frame to frame (auto_exposure) needs every frame made again.
+        let resume = found == FolderState::Resume && job.spec.stateful_item().is_none();
+        let kept = stamps
+            .iter()
+            .enumerate()
+            .map(|(i, times_ns)| match resume {
+                true => writer.keep_written_frames(i, times_ns),
+                false => Ok(0),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let made = cameras.iter().zip(&kept).map(|(c, k)| c.frames - k).sum();
+        progress.start(made, "perturbing");
+        let mut sinks = Vec::new();
+        for (i, (((camera, &seed), times_ns), spec)) in dataset
+            .cameras
+            .iter()
+            .zip(&seeds)
+            .zip(stamps)
+            .zip(&specs)
+            .enumerate()
+        {
+            let at = (i, seed, kept[i]);
+            sinks.extend(write_camera(
+                ctx, spec, camera, at, times_ns, &writer, progress,
+            )?);
+        }
+        for sink in sinks {
+            sink.finish()?;
+        }
+        progress.finish();
 
-    // A resumed run keeps each camera's frames up to the first one missing; an item that
-    // carries a state from frame to frame (auto_exposure) needs every frame made again.
-    let resume = found == FolderState::Resume && job.spec.stateful_item().is_none();
-    let kept = stamps
-        .iter()
-        .enumerate()
-        .map(|(i, times_ns)| match resume {
-            true => writer.keep_written_frames(i, times_ns),
-            false => Ok(0),
+        write_sensor_files(&dataset, &perturbed.written, imu.as_ref(), &writer)?;
+        if let Some(files) = &tum_vi {
+            files.write(&writer)?;
+        }
+        let writer = Arc::try_unwrap(writer)
+            .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
+        Ok(Written {
+            made,
+            manifest: writer.finish(manifest.clone())?,
         })
-        .collect::<Result<Vec<_>, _>>()?;
-    let made = cameras.iter().zip(&kept).map(|(c, k)| c.frames - k).sum();
-    progress.start(made, "perturbing");
-    let mut sinks = Vec::new();
-    for (i, (((camera, &seed), times_ns), spec)) in dataset
-        .cameras
-        .iter()
-        .zip(&seeds)
-        .zip(stamps)
-        .zip(&specs)
-        .enumerate()
-    {
-        let at = (i, seed, kept[i]);
-        sinks.extend(write_camera(
-            ctx, spec, camera, at, times_ns, &writer, progress,
-        )?);
-    }
-    for sink in sinks {
-        sink.finish()?;
-    }
-    progress.finish();
-
-    write_sensor_files(&dataset, &perturbed.written, imu.as_ref(), &writer)?;
-    if let Some(files) = &tum_vi {
-        files.write(&writer)?;
-    }
-    let writer = Arc::try_unwrap(writer)
-        .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
-    let manifest = writer.finish(manifest)?;
-    output_folder::finish(&job.out)?;
-    Ok(RigReport {
-        cameras,
-        imu_samples,
-        found,
-        made,
-        manifest,
-    })
+    })?;
+    Ok(RigReport::of(cameras, imu_samples, made))
 }
 
 #[cfg(test)]
@@ -441,7 +427,7 @@ mod tests {
             let err = check_euroc_spec(&spec).unwrap_err().to_string();
             assert!(
                 err.starts_with(&format!(
-                    "--perturb: '{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now"
+                    "spec: '{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now"
                 )),
                 "{err}"
             );

@@ -7,14 +7,14 @@ use rslam_core::dataset::Manifest;
 use rslam_perturb::imu::{shift_stamp, ImuOrigin, ImuReport, ImuStream, PerturbedImu};
 use rslam_perturb::PerturbSpec;
 
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 /// Refuses IMU items in a run that has no IMU, naming the first and saying what has none.
 pub fn refuse_imu_items(spec: &PerturbSpec, what: &str) -> Result<(), PipelineError> {
     match spec.imu.items().first() {
         Some(item) => Err(PipelineError::option(
-            "--perturb",
-            format!("'{item}': IMU items need an IMU, and {what} has none; use `rslam render --rig stereo-imu --format euroc` or `--rig rgbd-imu --format tum`, or a EuRoC dataset with imu0/ as --input"),
+            JobPart::Spec,
+            format!("'{item}': IMU items need an IMU, and {what} has none; render a rig with an IMU (stereo-imu in the EuRoC layout, rgbd-imu in the TUM layout, a rig file with [imu]) or perturb a EuRoC dataset with imu0/"),
         )),
         None => Ok(()),
     }
@@ -37,7 +37,7 @@ pub fn perturb_imu_stream(
     };
     spec.imu
         .apply(&stream, seed)
-        .map_err(|e| PipelineError::option("--perturb", e.to_string()))
+        .map_err(|e| PipelineError::option(JobPart::Spec, e.to_string()))
 }
 
 /// `manifest` with what the IMU items drew under `extra.imu_perturbation` (nothing without
@@ -67,7 +67,7 @@ pub fn camera_stamps(
         .map(|&t| {
             shift_stamp(t, offset).ok_or_else(|| {
                 PipelineError::option(
-                    "--perturb",
+                    JobPart::Spec,
                     format!("'cam_imu_offset:{}': {camera}'s frame at {t} ns would be stamped before 0 ns", offset as f64 / 1e6),
                 )
             })
@@ -87,7 +87,7 @@ mod tests {
             .to_string();
         assert!(
             err.starts_with(
-                "--perturb: 'imu_drop:0.1': IMU items need an IMU, and a TUM dataset has none"
+                "spec: 'imu_drop:0.1': IMU items need an IMU, and a TUM dataset has none"
             ),
             "{err}"
         );
@@ -108,7 +108,7 @@ mod tests {
             .to_string();
         assert_eq!(
             err,
-            "--perturb: 'cam_imu_offset:-1.5': cam1's frame at 1499999 ns would be stamped before 0 ns"
+            "spec: 'cam_imu_offset:-1.5': cam1's frame at 1499999 ns would be stamped before 0 ns"
         );
         let none = PerturbSpec::parse("imu_jitter:1").unwrap();
         assert_eq!(camera_stamps(&none, "cam0", &times).unwrap(), times);

@@ -1,5 +1,5 @@
 //! Multi-sensor rigs: several cameras and an IMU on one moving body, rendered into the EuRoC
-//! layout (formats.md, "EuRoC (ASL) layout").
+//! layout (docs/src/formats.md, "EuRoC (ASL) layout").
 //!
 //! Conventions: the body frame is the IMU's (EuRoC's); each camera's `body_from_camera` is its
 //! sensor.yaml `T_BS`, camera axes OpenCV's (x right, y down, z forward). The scene's path is
@@ -8,9 +8,9 @@
 //! frames with seed [`camera_seed`]`(seed, i)` (cam0: the job's seed), the IMU draws its noise
 //! with [`imu_seed`]`(seed)`.
 //!
-//! - [`rig_file`]: `--rig FILE.toml`, a rig of the user's own in the EuRoC layout.
-//! - [`preset`]: the `--rig` presets ([`RigPreset`]): `rgbd` (the one RGB-D camera of a render
-//!   without `--rig`), `rgbd-imu` ([`Rig::rgbd_imu`]), `stereo` and `stereo-imu` ([`Rig::stereo`],
+//! - [`rig_file`]: a rig file (`FILE.toml`), a rig of the user's own in the EuRoC layout.
+//! - [`preset`]: the rig presets ([`RigPreset`]): `rgbd` (the one RGB-D camera of a render
+//!   without a rig), `rgbd-imu` ([`Rig::rgbd_imu`]), `stereo` and `stereo-imu` ([`Rig::stereo`],
 //!   [`Rig::stereo_imu`]).
 //! - [`euroc_render`]: [`render_euroc`], the run of a rig in the EuRoC layout.
 //! - [`rgbd_imu_render`]: [`render_rgbd_imu`], the `rgbd-imu` run: the TUM layout plus the IMU's
@@ -33,24 +33,24 @@
 //! as a one-camera render does, and so does an unfinished EuRoC perturb.
 
 pub mod calibration;
-mod camera_sink;
 pub mod euroc_perturb;
 pub mod euroc_render;
-mod euroc_source;
 mod imu_items;
+mod imu_stream;
 mod motion;
 pub mod preset;
 pub mod rgbd_imu_perturb;
 pub mod rgbd_imu_render;
 pub mod rig_file;
+mod rig_spec;
+mod seeds;
 mod tum_vi_files;
 
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
-pub use euroc_render::{
-    camera_seed, check_rig_spec, imu_seed, render_euroc, rig_camera_frames, CameraFrames,
-    RigLayout, RigRenderJob, RigReport,
-};
+pub use euroc_render::{render_euroc, rig_camera_frames, CameraFrames, RigRenderJob, RigReport};
+pub use rig_spec::{check_rig_spec, RigLayout};
+pub use seeds::{camera_seed, imu_seed};
 pub use imu_items::{refuse_imu_items, with_imu_report};
 pub use preset::{
     d435i_imu, Rig, RigPreset, EUROC_CAM0_INTRINSICS, PRESET_NAMES, RIG_NAMES, STEREO_BASELINE_M,

@@ -5,27 +5,28 @@
 //! (the deviated path is the new ground truth, as for one camera), `fast:K` plays it K times
 //! faster (its stamps divided by K). Every sensor then samples the changed motion at its own
 //! rate, so the IMU feels what the cameras see: under `fast:K` a camera at the path's rate gets
-//! the path's frames 0, K, 2K, … (perturbations.md §6) and the IMU K× the angular velocity and
+//! the path's frames 0, K, 2K, … (docs/src/perturbations.md §6) and the IMU K× the angular velocity and
 //! K² the acceleration.
 
 use rslam_core::dataset::euroc::{
     nanoseconds_from_seconds, EurocImu, GroundTruthState, ImuSample as ImuRow,
 };
 use rslam_core::imu::{synthesize_imu, ImuNoise, ImuSample, ImuSynthesis};
-use rslam_core::{Pose, SplineSe3, Trajectory};
+use rslam_core::{CoreError, Pose, SplineSe3, Trajectory};
 
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 /// The path the body follows in a rig render: cam0's `path` (the deviated one, stamped at the
-/// job's rate as `stamps`) played `fast` times faster, carried to the body:
+/// job's rate as `stamps`) played `speed_up` times faster ([`crate::plan::speed_up`]), carried to
+/// the body:
 /// `world_from_body = world_from_cam0 ∘ body_from_cam0⁻¹`.
 pub fn body_path(
     stamps: &[f64],
     path: &[Pose],
-    fast: Option<u32>,
+    speed_up: u32,
     body_from_cam0: &Pose,
 ) -> Trajectory {
-    let speed_up = f64::from(fast.unwrap_or(1));
+    let speed_up = f64::from(speed_up);
     let cam0_from_body = body_from_cam0.inverse();
     Trajectory::new(
         stamps.iter().map(|t| t / speed_up).collect(),
@@ -86,7 +87,7 @@ pub fn imu_samples(
 pub fn nanoseconds(t: f64) -> Result<u64, PipelineError> {
     nanoseconds_from_seconds(t).ok_or_else(|| {
         PipelineError::option(
-            "--traj",
+            JobPart::Trajectory,
             format!("time {t} s: expected a finite time from 0 to about 1.8e10 s"),
         )
     })
@@ -185,4 +186,15 @@ mod tests {
         }
         assert!(nominal[1].measured != nominal[1].truth);
     }
+}
+
+/// The body's motion through its path.
+pub(super) fn motion_spline(body: &Trajectory) -> Result<SplineSe3, PipelineError> {
+    SplineSe3::from_trajectory(body).map_err(|e| match e {
+        CoreError::SplineTooShort { poses } => PipelineError::option(
+            JobPart::Frames,
+            format!("{poses} poses: a rig's motion spline needs at least 4"),
+        ),
+        other => other.into(),
+    })
 }

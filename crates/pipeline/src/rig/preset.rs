@@ -1,6 +1,6 @@
-//! Rig presets: the cameras and IMU a `--rig` name stands for, placed on the body as EuRoC
-//! places them (the body frame is the IMU's; formats.md, "EuRoC (ASL) layout"). `rgbd` is the
-//! one RGB-D camera of a render without `--rig`; `rgbd-imu` that camera on a RealSense
+//! Rig presets: the cameras and IMU a rig name stands for, placed on the body as EuRoC
+//! places them (the body frame is the IMU's; docs/src/formats.md, "EuRoC (ASL) layout"). `rgbd` is the
+//! one RGB-D camera of a render without a rig; `rgbd-imu` that camera on a RealSense
 //! D435i-like body with its IMU, written in the TUM layout with the IMU beside it.
 
 use std::path::Path;
@@ -10,16 +10,16 @@ use rslam_core::dataset::euroc::{CameraColour, EurocCamera, EurocImu, RadialTang
 use rslam_core::{Intrinsics, Pose};
 
 use super::rig_file::read_rig_file;
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 /// The names of the rigs written in the EuRoC layout ([`Rig::preset`]).
 pub const RIG_NAMES: [&str; 2] = ["stereo", "stereo-imu"];
 
-/// Every `--rig` name, in the order `rslam render --help` and the errors list them.
+/// Every rig name, in the order the help and the errors list them.
 pub const PRESET_NAMES: [&str; 4] = ["rgbd", "rgbd-imu", "stereo", "stereo-imu"];
 
 /// Distance between the two cameras' centres, along cam0's x axis (right), metres. About the
-/// EuRoC MAV's VI-Sensor baseline (formats.md).
+/// EuRoC MAV's VI-Sensor baseline (docs/src/formats.md, "EuRoC (ASL) layout").
 pub const STEREO_BASELINE_M: f64 = 0.11;
 
 /// EuRoC cam0's pinhole intrinsics (MH_01_easy `cam0/sensor.yaml`), 752×480. Rendered frames
@@ -37,7 +37,7 @@ pub const EUROC_CAM0_INTRINSICS: Intrinsics = Intrinsics {
 pub const EUROC_CAMERA_RATE_HZ: f64 = 20.0;
 
 /// EuRoC MH_01_easy cam0's `T_BS` (camera-to-body, body = IMU), row-major, as published. EuRoC's
-/// camera axes are OpenCV's (x right, y down, z forward), rslam's own (formats.md), so the
+/// camera axes are OpenCV's (x right, y down, z forward), rslam's own (docs/src/formats.md, "Camera conventions"), so the
 /// matrix is used as it is.
 const EUROC_MH01_CAM0_T_BS: [f64; 16] = [
     0.0148655429818,
@@ -101,10 +101,10 @@ pub fn d435i_imu() -> EurocImu {
     }
 }
 
-/// What a `--rig` name asks a render for.
+/// What a rig name asks a render for.
 #[derive(Clone, Debug, PartialEq)]
 pub enum RigPreset {
-    /// `rgbd`: one RGB-D camera, the render without `--rig` (any core layout).
+    /// `rgbd`: one RGB-D camera, the render without a rig (any core layout).
     Rgbd,
     /// `rgbd-imu`: [`Rig::rgbd_imu`] of the render's camera and rate, in the TUM layout.
     RgbdImu,
@@ -131,7 +131,7 @@ impl RigPreset {
 
 fn unknown_rig(name: &str, valid: &[&str]) -> PipelineError {
     PipelineError::option(
-        "--rig",
+        JobPart::Rig,
         format!(
             "'{}': expected one of {}",
             rslam_core::printable(name),
@@ -144,7 +144,7 @@ fn unknown_rig(name: &str, valid: &[&str]) -> PipelineError {
 /// optional IMU.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rig {
-    /// The `--rig` name, for the manifest.
+    /// The rig name, for the manifest.
     pub name: String,
     pub cameras: Vec<EurocCamera>,
     /// Per camera: its stamps are its capture times plus this (its clock runs ahead by it), ns.
@@ -153,7 +153,7 @@ pub struct Rig {
 }
 
 impl Rig {
-    /// A rig written in the EuRoC layout by its `--rig` name; the error lists those names.
+    /// A rig written in the EuRoC layout by its name; the error lists those names.
     pub fn preset(name: &str) -> Result<Self, PipelineError> {
         match name {
             "stereo" => Ok(Self::stereo()),
@@ -162,7 +162,7 @@ impl Rig {
         }
     }
 
-    /// `rgbd-imu`: one RGB-D camera `camera` at `rate_hz` (a render's `--camera` and `--rate`)
+    /// `rgbd-imu`: one RGB-D camera `camera` at `rate_hz` (a render's camera and rate)
     /// where a RealSense D435i has its colour camera, [`D435I_T_B_C1`], and the D435i's IMU
     /// ([`d435i_imu`]) at the body's origin.
     pub fn rgbd_imu(camera: Intrinsics, rate_hz: f64) -> Self {
@@ -240,7 +240,7 @@ mod tests {
         assert_eq!(stereo_imu.cameras, stereo.cameras);
         assert_eq!(stereo_imu.imu.as_ref().unwrap().rate_hz, 200.0);
         let err = Rig::preset("rgbd").unwrap_err().to_string();
-        assert_eq!(err, "--rig: 'rgbd': expected one of stereo, stereo-imu");
+        assert_eq!(err, "rig: 'rgbd': expected one of stereo, stereo-imu");
         assert_eq!(RigPreset::by_name("rgbd").unwrap(), RigPreset::Rgbd);
         assert_eq!(RigPreset::by_name("rgbd-imu").unwrap(), RigPreset::RgbdImu);
         assert_eq!(
@@ -250,7 +250,7 @@ mod tests {
         let err = RigPreset::by_name("mono").unwrap_err().to_string();
         assert_eq!(
             err,
-            "--rig: 'mono': expected one of rgbd, rgbd-imu, stereo, stereo-imu, a rig file (FILE.toml)"
+            "rig: 'mono': expected one of rgbd, rgbd-imu, stereo, stereo-imu, a rig file (FILE.toml)"
         );
     }
 

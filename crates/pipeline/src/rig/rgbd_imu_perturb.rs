@@ -1,4 +1,4 @@
-//! `rslam perturb --input` of an `rgbd-imu` output (a TUM dataset with `imu0/` beside it): its
+//! A perturbed copy of an `rgbd-imu` output (a TUM dataset with `imu0/` beside it): its
 //! frames go through the dataset path like any TUM input, and its inertial files
 //! (`imu0/data.csv`, `imu0/sensor.yaml`, `state_groundtruth_estimate0/data.csv`,
 //! `orbslam3_rgbd_inertial.yaml`) go with them, so the copy is still an RGB-D-inertial dataset.
@@ -19,7 +19,8 @@ use rslam_perturb::PerturbSpec;
 
 use super::imu_items::perturb_imu_stream;
 use super::rgbd_imu_render::ORBSLAM3_RGBD_INERTIAL_FILE;
-use crate::PipelineError;
+use crate::plan::restamping_item;
+use crate::{JobPart, PipelineError};
 
 /// The inertial files of a perturbed copy, and what the IMU items drew.
 #[derive(Debug, Default)]
@@ -40,14 +41,14 @@ pub fn recorded_inertial_files(
     let (Some(imu), ground_truth) = read_inertial(root)? else {
         return Ok(RecordedInertial::default());
     };
-    let refused = spec.fast.map(|k| format!("fast:{k}")).or_else(|| {
+    let refused = restamping_item(spec).or_else(|| {
         spec.imu
             .cam_imu_offset_ns()
             .map(|ns| format!("cam_imu_offset:{}", ns as f64 / 1e6))
     });
     if let Some(item) = refused {
         return Err(PipelineError::option(
-            "--perturb",
+            JobPart::Spec,
             format!(
                 "'{item}': {} has an IMU (imu0/) that cannot follow re-stamped frames; on this layout frame corruptions, misalign and the IMU stream items (imu_noise, imu_bias_step, imu_saturation, imu_drop, imu_jitter) apply",
                 root.display()

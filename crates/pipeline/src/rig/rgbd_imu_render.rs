@@ -1,10 +1,10 @@
-//! `rslam render --rig rgbd-imu --format tum`: one RGB-D camera (`--camera`, at the path's
+//! The `rgbd-imu` rig in the TUM layout: one RGB-D camera (the job's camera, at the path's
 //! rate) on a RealSense D435i-like body with its IMU, written in the TUM layout as a one-camera
 //! render writes it, plus the IMU and the body's ground truth as the EuRoC layout has them
 //! (`imu0/data.csv`, `imu0/sensor.yaml`, `state_groundtruth_estimate0/data.csv`) and ORB-SLAM3's
 //! RGB-D-inertial settings (`orbslam3_rgbd_inertial.yaml`).
 //!
-//! The motion is the EuRoC rig render's: the path (the scene's or `--traj`) is the camera's, the
+//! The motion is the EuRoC rig render's: the path (the scene's or a trajectory file) is the camera's, the
 //! body follows it at `body_from_camera⁻¹` along a cubic B-spline, the camera samples it at its
 //! rate and the IMU at 200 Hz over the spline's valid range, both from its start (a camera frame
 //! every 1/rate s, an IMU sample every 5 ms; no frame after the IMU's last sample). `groundtruth.txt` is the camera's
@@ -17,21 +17,21 @@ use rslam_core::{SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
 
 use super::calibration::{PerturbedRig, PER_FRAME_FILE};
-use super::euroc_render::{
-    camera_frame_spec, check_rig_spec, imu_and_ground_truth, imu_seed, motion_spline, RigLayout,
-};
+use super::imu_stream::imu_and_ground_truth;
+use super::rig_spec::{check_rig_spec, RigLayout};
+use super::seeds::imu_seed;
 use super::imu_items::{camera_stamps, with_imu_report};
-use super::motion::{body_path, camera_poses, nanoseconds, sample_times};
+use super::motion::{body_path, camera_poses, motion_spline, nanoseconds, sample_times};
 use super::preset::Rig;
 use crate::agents::record_agent;
 use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
-use crate::plan::{FramePlan, SourceTiming};
+use crate::plan::{self, camera_frame_spec, FramePlan, SourceTiming};
 use crate::progress::Progress;
 use crate::render::RenderJob;
 use crate::source::SceneSource;
-use crate::PipelineError;
+use crate::{JobPart, PipelineError};
 
 /// ORB-SLAM3 v1.0 RGB-D-inertial settings of the `rgbd-imu` rig, in the dataset root.
 pub const ORBSLAM3_RGBD_INERTIAL_FILE: &str = "orbslam3_rgbd_inertial.yaml";
@@ -51,16 +51,17 @@ fn frame_times(spline: &SplineSe3, rig: &Rig) -> Vec<f64> {
 }
 
 /// The frames an `rgbd-imu` render of `poses` path poses at `rate_hz` (the camera's rate),
-/// played `fast` times faster, writes, without the scene (for a plan).
+/// played `speed_up` times faster ([`crate::plan::speed_up`]), writes, without the scene (for a
+/// plan).
 pub fn rgbd_imu_frame_count(
     poses: usize,
     rate_hz: f64,
-    fast: Option<u32>,
+    speed_up: u32,
 ) -> Result<usize, PipelineError> {
     let rig = Rig::rgbd_imu(rslam_core::Intrinsics::TUM, rate_hz);
     let times: Vec<f64> = (0..poses).map(|i| i as f64 / rate_hz).collect();
     let path = vec![rslam_core::Pose::IDENTITY; poses];
-    let spline = motion_spline(&body_path(&times, &path, fast, &rslam_core::Pose::IDENTITY))?;
+    let spline = motion_spline(&body_path(&times, &path, speed_up, &rslam_core::Pose::IDENTITY))?;
     Ok(frame_times(&spline, &rig).len())
 }
 
@@ -75,8 +76,8 @@ pub fn render_rgbd_imu(
 ) -> Result<RunReport, PipelineError> {
     if job.format != DatasetFormat::Tum {
         return Err(PipelineError::option(
-            "--rig",
-            "'rgbd-imu': needs --format tum (the TUM layout with imu0/ beside it)",
+            JobPart::Rig,
+            "'rgbd-imu': needs the TUM layout (with imu0/ beside it)",
         ));
     }
     let scene = &job.scene;
@@ -90,7 +91,7 @@ pub fn render_rgbd_imu(
     let spline = motion_spline(&body_path(
         &resolved.clean.timestamps,
         &resolved.poses,
-        spec.fast,
+        plan::speed_up(spec),
         &camera.body_from_camera,
     ))?;
     let times_s = frame_times(&spline, &rig);
@@ -194,10 +195,10 @@ mod tests {
     fn a_plan_counts_the_frames_a_render_writes() {
         // 7 poses at 30 Hz: the spline is valid for 4/30 s, which the IMU covers to 0.130 s,
         // so the frame at 0.133 s is left out (the frames `rig_rgbd.rs` reads back).
-        assert_eq!(rgbd_imu_frame_count(7, 30.0, None).unwrap(), 4);
+        assert_eq!(rgbd_imu_frame_count(7, 30.0, 1).unwrap(), 4);
         // 400 poses at 30 Hz: 397/30 s = 13.233 s, frames every 1/30 s up to the IMU's last
         // sample at 13.230 s.
-        assert_eq!(rgbd_imu_frame_count(400, 30.0, None).unwrap(), 397);
-        assert_eq!(rgbd_imu_frame_count(400, 30.0, Some(2)).unwrap(), 199);
+        assert_eq!(rgbd_imu_frame_count(400, 30.0, 1).unwrap(), 397);
+        assert_eq!(rgbd_imu_frame_count(400, 30.0, 2).unwrap(), 199);
     }
 }

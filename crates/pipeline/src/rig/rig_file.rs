@@ -1,4 +1,4 @@
-//! `--rig FILE.toml`: a rig of the user's own, written in the EuRoC layout. Cameras are `cam0`,
+//! A rig file (`FILE.toml`): a rig of the user's own, written in the EuRoC layout. Cameras are `cam0`,
 //! `cam1`, … in the order given; the keys are those of EuRoC's sensor.yaml (`T_BS` camera-to-body
 //! row-major, `rate_hz`, `resolution`, `intrinsics`) and Kalibr's IMU noise names:
 //!

@@ -1,10 +1,12 @@
-//! Where read-back source frames go: into a dataset on disk, or assembled into output frames
-//! handed to a callback in memory.
+//! Where read-back source frames go: into a dataset on disk (a Replica or TUM dataset, or one
+//! camera of a EuRoC one), or assembled into output frames handed to a callback in memory.
 
 mod dataset;
+mod euroc_camera;
 mod memory;
 
 pub use dataset::DatasetSink;
+pub use euroc_camera::EurocCameraSink;
 pub use memory::{MemorySink, RgbdFrame};
 
 use rslam_gpu::MappedFrame;

@@ -1,4 +1,4 @@
-"""Trajectory evaluation with the numbers of ``rslam eval`` (evo 1.38.1's, see metrics.md).
+"""Trajectory evaluation with the numbers of ``rslam eval`` (evo 1.38.1's, see docs/src/metrics.md).
 
 ``est`` and ``gt`` are each a trajectory file (TUM, Replica traj.txt, KITTI, EuRoC; detected
 from the content), an Nx8 array of TUM rows ``t tx ty tz qx qy qz qw``, or an Nx4x4 array of

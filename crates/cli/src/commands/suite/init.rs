@@ -6,7 +6,7 @@ use rslam_suite::{write_suite, InitOptions, Preset};
 
 #[derive(clap::Args)]
 pub struct InitArgs {
-    /// robust-slam: perturbations.md §7, 125 settings × 8 scenes; mini: 7 settings on room0, 200 frames.
+    /// robust-slam: docs/src/perturbations.md §7, 125 settings × 8 scenes; mini: 7 settings on room0, 200 frames.
     #[arg(long, default_value = "robust-slam")]
     preset: Preset,
     /// The suite folder to create (suite.toml goes there; datasets/ later).
@@ -22,7 +22,7 @@ pub struct InitArgs {
     #[arg(long, default_value = "replica")]
     format: DatasetFormat,
     /// Depth PNG compression: fast, or small (lossless, about 40 % smaller datasets on clean
-    /// depth, more CPU per frame; see the README).
+    /// depth, more CPU per frame; see docs/src/formats.md, "Depth PNGs").
     #[arg(long, default_value = "fast")]
     depth_png: DepthPng,
     /// Suite seed; each sequence's seed is derived from it and the sequence's name.

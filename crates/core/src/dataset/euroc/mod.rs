@@ -1,4 +1,4 @@
-//! The EuRoC MAV (ASL) dataset layout (formats.md, "EuRoC (ASL) layout"), for rigs with cameras
+//! The EuRoC MAV (ASL) dataset layout (docs/src/formats.md, "EuRoC (ASL) layout"), for rigs with cameras
 //! and an IMU; ORB-SLAM3's stereo(-inertial) examples, OpenVINS, VINS-Fusion, Kalibr and evo
 //! read it.
 //!

@@ -1,5 +1,5 @@
 //! What the sensor.yaml files of a EuRoC dataset describe: each camera and the IMU, with their
-//! placement on the body (the IMU's frame, formats.md).
+//! placement on the body (the IMU's frame, docs/src/formats.md, "EuRoC (ASL) layout").
 
 use crate::imu::ImuNoise;
 use crate::{Intrinsics, Pose};
@@ -67,7 +67,7 @@ pub struct EurocCamera {
 pub struct EurocImu {
     /// `comment:` of sensor.yaml (free text, one line).
     pub comment: String,
-    /// `T_BS`: the identity when the body frame is the IMU's (formats.md).
+    /// `T_BS`: the identity when the body frame is the IMU's (docs/src/formats.md, "EuRoC (ASL) layout").
     pub body_from_imu: Pose,
     pub rate_hz: f64,
     /// rad / s / √Hz
@@ -81,7 +81,7 @@ pub struct EurocImu {
 }
 
 impl EurocImu {
-    /// EuRoC's own ADIS16448 at 200 Hz (imu0/sensor.yaml of the published dataset; formats.md).
+    /// EuRoC's own ADIS16448 at 200 Hz (imu0/sensor.yaml of the published dataset; docs/src/formats.md, "EuRoC (ASL) layout").
     pub fn adis16448() -> Self {
         Self {
             comment: "VI-Sensor IMU (ADIS16448)".into(),

@@ -1,4 +1,4 @@
-//! One rig camera's read-back frames into the EuRoC writer, encoded on a worker thread while the
+//! One camera's read-back frames into the EuRoC writer, encoded on a worker thread while the
 //! GPU renders on.
 
 use std::sync::Arc;

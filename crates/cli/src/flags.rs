@@ -1,0 +1,52 @@
+//! Library errors name the part of a job (`spec`, `frames`, `rig`) and the spec item in the
+//! library's words; `rslam` says which flag sets it.
+
+use std::error::Error;
+
+use rslam_perturb::PerturbError;
+use rslam_pipeline::{JobPart, PipelineError};
+use rslam_suite::SuiteError;
+
+/// The flag that sets `part` (parts the command line never sets keep the library's word).
+fn flag(part: JobPart) -> String {
+    match part {
+        JobPart::Spec => "--perturb".into(),
+        JobPart::Frames => "--frames".into(),
+        JobPart::Rate => "--rate".into(),
+        JobPart::Camera => "--camera".into(),
+        JobPart::Rig => "--rig".into(),
+        JobPart::Trajectory => "--traj".into(),
+        JobPart::Agents => "--agents".into(),
+        JobPart::Frame | JobPart::FrameIndices | JobPart::Poses => part.to_string(),
+    }
+}
+
+/// The error as `rslam` prints it: its chain joined by `: `, each link that names a part of a
+/// job or a spec item naming the flag instead.
+pub fn worded(error: &anyhow::Error) -> String {
+    error.chain().map(link).collect::<Vec<_>>().join(": ")
+}
+
+fn link(error: &(dyn Error + 'static)) -> String {
+    let pipeline = error.downcast_ref::<PipelineError>().or_else(|| {
+        match error.downcast_ref::<SuiteError>() {
+            Some(SuiteError::Pipeline(inner)) => Some(inner),
+            _ => None,
+        }
+    });
+    let perturb = match pipeline {
+        Some(PipelineError::Perturb(inner)) => Some(inner),
+        _ => error.downcast_ref::<PerturbError>(),
+    };
+    match (pipeline, perturb) {
+        (Some(PipelineError::Option { part, message }), _) => format!("{}: {message}", flag(*part)),
+        (Some(PipelineError::OtherJob { path, holds }), _) => format!(
+            "{}: holds {holds}; choose another output or pass --force to start over",
+            path.display()
+        ),
+        (_, Some(PerturbError::Spec { item, message })) => {
+            format!("--perturb item '{item}': {message}")
+        }
+        _ => error.to_string(),
+    }
+}
