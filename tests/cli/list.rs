@@ -77,3 +77,46 @@ fn list_json_has_one_object_per_perturbation() {
     assert_eq!(contrast["parameters"].as_array().map(|p| p.len()), Some(5));
     assert_eq!(contrast["parameters"][4], "c=0.05");
 }
+
+/// The book's generated reference pages are what the binary prints now: a new item, parameter or
+/// flag that is not in the checked-in page fails here. `RSLAM_BOOK=write` writes them anew.
+#[test]
+fn the_books_generated_reference_pages_match_the_binary() {
+    let docs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/src/reference");
+    let ws = Workspace::new();
+    let mut stale = Vec::new();
+    for (page, args) in [
+        ("catalogue.md", &["list", "--markdown"][..]),
+        ("cli.md", &["--markdown-help"][..]),
+    ] {
+        let printed = ws.rslam(args).success();
+        let path = docs.join(page);
+        if std::env::var("RSLAM_BOOK").as_deref() == Ok("write") {
+            std::fs::write(&path, &printed).unwrap();
+        }
+        let checked_in = std::fs::read_to_string(&path).unwrap_or_default();
+        if checked_in != printed {
+            stale.push(format!(
+                "docs/src/reference/{page} differs from `rslam {}`; run RSLAM_BOOK=write cargo test -p rslam-cli --test cli generated_reference",
+                args.join(" ")
+            ));
+        }
+    }
+    assert!(stale.is_empty(), "{}", stale.join("\n"));
+}
+
+#[test]
+fn the_catalogue_page_has_every_item_with_its_severities() {
+    let page = Workspace::new().rslam(&["list", "--markdown"]).success();
+    let json = Workspace::new().rslam(&["list", "--json"]).success();
+    let entries: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap();
+    assert!(entries.len() > 40, "{} items", entries.len());
+    for entry in entries {
+        let name = entry["name"].as_str().unwrap();
+        assert!(page.contains(&format!("### `{name}`")), "{name} missing");
+        for parameter in entry["parameters"].as_array().unwrap() {
+            let cell = parameter.as_str().unwrap().replace('|', "\\|");
+            assert!(page.contains(&format!("| {cell} |")), "{name}: {cell}");
+        }
+    }
+}
