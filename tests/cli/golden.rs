@@ -18,7 +18,10 @@ use std::path::Path;
 use crate::dataset_check::tree;
 use crate::harness::Workspace;
 
-const DIGESTS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/cli/golden/digests.txt");
+const DIGESTS: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../tests/cli/golden/digests.txt"
+);
 const CAMERA: &str = "96,64,60,60,47.5,31.5";
 const ADAPTER: &str = "llvmpipe";
 const LENS: &str = "distortion:radtan(-0.2,0.05,0.001,-0.002)";
@@ -456,7 +459,12 @@ fn golden_outputs_keep_their_digests() {
         let run = ws.rslam(&args);
         run.success();
         if let Some(fragment) = case.says {
-            assert!(run.stderr().contains(fragment), "{}: {}", case.name, run.stderr());
+            assert!(
+                run.stderr().contains(fragment),
+                "{}: {}",
+                case.name,
+                run.stderr()
+            );
         }
         adapter.get_or_insert_with(|| adapter_line(&run.stderr()));
         all.push((case.name.to_string(), digests(&ws.path(case.out))));

@@ -137,10 +137,7 @@ fn errors_quote_line_breaks_as_escapes() {
     let err = PerturbSpec::parse("fog:3,depth_range:x\r2")
         .unwrap_err()
         .to_string();
-    assert!(
-        err.starts_with("spec item 'depth_range:x\\r2': "),
-        "{err}"
-    );
+    assert!(err.starts_with("spec item 'depth_range:x\\r2': "), "{err}");
     let err = PerturbSpec::parse("fo\ng:3").unwrap_err().to_string();
     assert!(
         err.starts_with("spec item 'fo\\ng:3': unknown perturbation 'fo\\ng'"),
@@ -408,6 +405,5 @@ fn distortion_keeps_its_commas_and_round_trips() {
         let e = err(bad);
         assert!(e.contains(says) && !e.contains('\n'), "{bad}: {e}");
     }
-    assert!(err("distortion:radtan(1,x,3,4)")
-        .starts_with("spec item 'distortion:radtan(1,x,3,4)'"));
+    assert!(err("distortion:radtan(1,x,3,4)").starts_with("spec item 'distortion:radtan(1,x,3,4)'"));
 }

@@ -66,9 +66,8 @@ pub fn write_dataset<S: FrameSource>(
     let plan = target.plan;
     let job = target.manifest;
     let made = make_output(target.out, &job, target.force, |_| {
-        let writer =
-            DatasetWriter::open(target.out, target.format, target.camera, job.depth_png)?
-                .with_distortion(job.distortion);
+        let writer = DatasetWriter::open(target.out, target.format, target.camera, job.depth_png)?
+            .with_distortion(job.distortion);
         let mut sink = DatasetSink::new(writer, plan);
         // A stateful item (auto_exposure) gives each frame what the frames before it left, so a
         // resumed run redoes them all rather than start its state over at the first missing one.

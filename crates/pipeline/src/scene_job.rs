@@ -61,7 +61,10 @@ impl SceneJob {
             ));
         }
         if poses.is_empty() {
-            return Err(PipelineError::option(JobPart::Poses, "expected at least one pose"));
+            return Err(PipelineError::option(
+                JobPart::Poses,
+                "expected at least one pose",
+            ));
         }
         self.resolve_path(load_scene(&self.scene)?, poses)
     }

@@ -343,7 +343,10 @@ impl FrameSource for BufferSource {
         index: usize,
     ) -> Result<(), PipelineError> {
         let buffer = *self.buffer_of.get(&index).ok_or_else(|| {
-            PipelineError::option(JobPart::Frame, format!("{index} is not one of the frames given"))
+            PipelineError::option(
+                JobPart::Frame,
+                format!("{index} is not one of the frames given"),
+            )
         })?;
         let (color, depth) = &self.frames[buffer];
         frame.upload(ctx, color, depth.as_ref());

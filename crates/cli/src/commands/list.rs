@@ -72,7 +72,10 @@ fn markdown(entries: &[ListEntry]) -> String {
             out.push_str(&format!("{}.\n\n", capitalised(applies)));
         }
         for e in entries.iter().filter(|e| e.group == group) {
-            out.push_str(&format!("### `{}`\n\n{}\n\nSyntax: `{}`\n", e.name, e.description, e.syntax));
+            out.push_str(&format!(
+                "### `{}`\n\n{}\n\nSyntax: `{}`\n",
+                e.name, e.description, e.syntax
+            ));
             if !e.parameters.is_empty() {
                 out.push_str("\n| severity | parameters |\n|---|---|\n");
                 for (s, p) in e.parameters.iter().enumerate() {

@@ -16,8 +16,8 @@ use rslam_perturb::calibration::{move_along_baseline, CalibrationItem, Calibrati
 use rslam_perturb::{PerturbError, PerturbSpec};
 use serde_json::{json, Value};
 
-use super::seeds::{camera_seed, imu_seed};
 use super::preset::Rig;
+use super::seeds::{camera_seed, imu_seed};
 
 /// What the `@dynamic` items drew on every frame, beside the manifest.
 pub const PER_FRAME_FILE: &str = "calibration_per_frame.csv";

@@ -37,9 +37,9 @@ use rslam_perturb::PerturbSpec;
 
 use super::calibration::PerturbedRig;
 use super::euroc_render::{CameraFrames, RigReport};
-use super::seeds::camera_seed;
 use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::preset::Rig;
+use super::seeds::camera_seed;
 use super::tum_vi_files::TumViFiles;
 use crate::manifest::ManifestParts;
 use crate::output_folder::{self, make_output, FolderState, Written};

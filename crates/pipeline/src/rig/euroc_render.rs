@@ -246,8 +246,7 @@ pub fn render_euroc(
             .sum();
         progress.start(made, "rendering");
         let mut sinks = Vec::new();
-        for (i, ((camera, run), times_ns)) in
-            rig.cameras.iter().zip(&runs).zip(stamps).enumerate()
+        for (i, ((camera, run), times_ns)) in rig.cameras.iter().zip(&runs).zip(stamps).enumerate()
         {
             let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
             let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;

@@ -49,10 +49,10 @@ mod tum_vi_files;
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
 pub use euroc_render::{render_euroc, rig_camera_frames, CameraFrames, RigRenderJob, RigReport};
-pub use rig_spec::{check_rig_spec, RigLayout};
-pub use seeds::{camera_seed, imu_seed};
 pub use imu_items::{refuse_imu_items, with_imu_report};
 pub use preset::{
     d435i_imu, Rig, RigPreset, EUROC_CAM0_INTRINSICS, PRESET_NAMES, RIG_NAMES, STEREO_BASELINE_M,
 };
 pub use rgbd_imu_render::{render_rgbd_imu, rgbd_imu_frame_count, ORBSLAM3_RGBD_INERTIAL_FILE};
+pub use rig_spec::{check_rig_spec, RigLayout};
+pub use seeds::{camera_seed, imu_seed};

@@ -17,12 +17,12 @@ use rslam_core::{SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
 
 use super::calibration::{PerturbedRig, PER_FRAME_FILE};
-use super::imu_stream::imu_and_ground_truth;
-use super::rig_spec::{check_rig_spec, RigLayout};
-use super::seeds::imu_seed;
 use super::imu_items::{camera_stamps, with_imu_report};
+use super::imu_stream::imu_and_ground_truth;
 use super::motion::{body_path, camera_poses, motion_spline, nanoseconds, sample_times};
 use super::preset::Rig;
+use super::rig_spec::{check_rig_spec, RigLayout};
+use super::seeds::imu_seed;
 use crate::agents::record_agent;
 use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
 use crate::manifest::ManifestParts;
@@ -61,7 +61,12 @@ pub fn rgbd_imu_frame_count(
     let rig = Rig::rgbd_imu(rslam_core::Intrinsics::TUM, rate_hz);
     let times: Vec<f64> = (0..poses).map(|i| i as f64 / rate_hz).collect();
     let path = vec![rslam_core::Pose::IDENTITY; poses];
-    let spline = motion_spline(&body_path(&times, &path, speed_up, &rslam_core::Pose::IDENTITY))?;
+    let spline = motion_spline(&body_path(
+        &times,
+        &path,
+        speed_up,
+        &rslam_core::Pose::IDENTITY,
+    ))?;
     Ok(frame_times(&spline, &rig).len())
 }
 
