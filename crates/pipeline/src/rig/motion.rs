@@ -136,6 +136,17 @@ pub fn ground_truth_rows(
     }
 }
 
+/// The body's motion through its path.
+pub(super) fn motion_spline(body: &Trajectory) -> Result<SplineSe3, PipelineError> {
+    SplineSe3::from_trajectory(body).map_err(|e| match e {
+        CoreError::SplineTooShort { poses } => PipelineError::option(
+            JobPart::Frames,
+            format!("{poses} poses: a rig's motion spline needs at least 4"),
+        ),
+        other => other.into(),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use glam::{DQuat, DVec3};
@@ -186,15 +197,4 @@ mod tests {
         }
         assert!(nominal[1].measured != nominal[1].truth);
     }
-}
-
-/// The body's motion through its path.
-pub(super) fn motion_spline(body: &Trajectory) -> Result<SplineSe3, PipelineError> {
-    SplineSe3::from_trajectory(body).map_err(|e| match e {
-        CoreError::SplineTooShort { poses } => PipelineError::option(
-            JobPart::Frames,
-            format!("{poses} poses: a rig's motion spline needs at least 4"),
-        ),
-        other => other.into(),
-    })
 }
