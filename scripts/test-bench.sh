@@ -7,7 +7,7 @@
 # methods' Python helpers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-frames=${BENCH_TEST_FRAMES:-100}
+frames=${BENCH_TEST_FRAMES:-50}
 # Measured on room0, 50-200 frames (examples/methods/README.md): clean ATE 0.06-0.4 mm, so 5 mm
 # leaves a wide margin; depth_noise:5 gave 3-9 cm in every case, so it must exceed 1 cm. (The
 # odometry is dense ICP + photometric: gaussian_noise:5 does not raise its ATE.)
