@@ -65,7 +65,7 @@ pub fn write_dataset<S: FrameSource>(
 ) -> Result<RunReport, PipelineError> {
     let plan = target.plan;
     let job = target.manifest;
-    let made = make_output(target.out, &job, target.force, |_| {
+    let made = make_output(target.out, job, target.force, |_, job| {
         let writer = DatasetWriter::open(target.out, target.format, target.camera, job.depth_png)?
             .with_distortion(job.distortion);
         let mut sink = DatasetSink::new(writer, plan);
@@ -80,7 +80,7 @@ pub fn write_dataset<S: FrameSource>(
         progress.start(sources.len(), what);
         pipeline.run(ctx, &sources, progress, &mut sink)?;
         progress.finish();
-        let manifest = sink.finish(target.ground_truth, &target.sensor_files, job.clone())?;
+        let manifest = sink.finish(target.ground_truth, &target.sensor_files, job)?;
         Ok(Written {
             made: sources.len(),
             manifest,

@@ -37,7 +37,8 @@ pub struct Made {
 }
 
 /// What a job writes into its output folder once it is prepared: given what the folder held
-/// (`Fresh` or `Resume`), the frames it made and the manifest it wrote last.
+/// (`Fresh` or `Resume`) and the job's manifest to finish, the frames it made and the manifest
+/// it wrote last.
 pub struct Written {
     pub made: usize,
     pub manifest: Manifest,
@@ -48,11 +49,11 @@ pub struct Written {
 /// there, else written by `write`, then marked finished.
 pub fn make_output(
     out: &Path,
-    job: &Manifest,
+    job: Manifest,
     force: bool,
-    write: impl FnOnce(FolderState) -> Result<Written, PipelineError>,
+    write: impl FnOnce(FolderState, Manifest) -> Result<Written, PipelineError>,
 ) -> Result<Made, PipelineError> {
-    let found = prepare(out, job, force)?;
+    let found = prepare(out, &job, force)?;
     if found == FolderState::Complete {
         return Ok(Made {
             found,
@@ -60,7 +61,7 @@ pub fn make_output(
             manifest: Manifest::read(out)?,
         });
     }
-    let written = write(found)?;
+    let written = write(found, job)?;
     finish(out)?;
     Ok(Made {
         found,

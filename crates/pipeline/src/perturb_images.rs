@@ -154,7 +154,7 @@ pub fn perturb_images(
     if let Some(input) = job.files.first().and_then(|f| f.parent()) {
         output_folder::check_not_input(&job.out, input)?;
     }
-    let made = make_output(&job.out, &manifest, job.force, |_| {
+    let made = make_output(&job.out, manifest, job.force, |_, manifest| {
         // As in a dataset run: a stateful item's frames follow from the ones before them.
         let redo_all = job.spec.stateful_item().is_some();
         let missing: Vec<usize> = (0..names.len())
@@ -171,7 +171,7 @@ pub fn perturb_images(
             .map_err(|_| PipelineError::Worker("image writer still shared".into()))?;
         Ok(Written {
             made: missing.len(),
-            manifest: content.finish(manifest.clone())?,
+            manifest: content.finish(manifest)?,
         })
     })?;
     Ok(Some(RunReport::of(plan.len(), made)))

@@ -46,7 +46,7 @@ use crate::output_folder::{self, make_output, FolderState, Written};
 use crate::pipeline::Pipeline;
 use crate::plan::{restamping_item, FramePlan, SourceTiming};
 use crate::progress::Progress;
-use crate::sink::EurocCameraSink;
+use crate::sink::{finish_writer, EurocCameraSink};
 use crate::source::RecordedSource;
 use crate::{JobPart, PipelineError};
 
@@ -344,7 +344,7 @@ pub fn perturb_euroc(
         })
         .collect();
 
-    let made = make_output(&job.out, &manifest, job.force, |found| {
+    let made = make_output(&job.out, manifest, job.force, |found, manifest| {
         let (cameras_written, imu_written) = (
             perturbed.written.cameras.clone(),
             perturbed.written.imu.clone(),
@@ -391,11 +391,9 @@ pub fn perturb_euroc(
         if let Some(files) = &tum_vi {
             files.write(&writer)?;
         }
-        let writer = Arc::try_unwrap(writer)
-            .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
         Ok(Written {
             made,
-            manifest: writer.finish(manifest.clone())?,
+            manifest: finish_writer(writer, manifest)?,
         })
     })?;
     Ok(RigReport::of(cameras, imu_samples, made))

@@ -31,7 +31,7 @@ use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
 use crate::progress::Progress;
 use crate::scene_job::SceneJob;
-use crate::sink::EurocCameraSink;
+use crate::sink::{finish_writer, EurocCameraSink};
 use crate::source::SceneSource;
 use crate::{JobPart, PipelineError};
 
@@ -219,7 +219,7 @@ pub fn render_euroc(
         })
         .collect();
 
-    let made = make_output(&job.out, &manifest, job.force, |found| {
+    let made = make_output(&job.out, manifest, job.force, |found, manifest| {
         let writer = Arc::new(EurocWriter::open(
             &job.out,
             perturbed.written.cameras.clone(),
@@ -271,11 +271,9 @@ pub fn render_euroc(
             writer.write_imu(&streams.imu)?;
         }
         writer.write_ground_truth(&streams.ground_truth)?;
-        let writer = Arc::try_unwrap(writer)
-            .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
         Ok(Written {
             made,
-            manifest: writer.finish(manifest.clone())?,
+            manifest: finish_writer(writer, manifest)?,
         })
     })?;
     Ok(RigReport::of(cameras, streams.imu.len(), made))

@@ -4,6 +4,7 @@
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::EurocWriter;
+use rslam_core::dataset::Manifest;
 use rslam_core::ImagePool;
 use rslam_gpu::MappedFrame;
 
@@ -40,6 +41,16 @@ impl EurocCameraSink {
     pub fn finish(self) -> Result<(), PipelineError> {
         self.pool.finish()
     }
+}
+
+/// The writer's checksums and manifest, once every camera's sink has finished with it.
+pub fn finish_writer(
+    writer: Arc<EurocWriter>,
+    manifest: Manifest,
+) -> Result<Manifest, PipelineError> {
+    let writer = Arc::try_unwrap(writer)
+        .map_err(|_| PipelineError::Worker("EuRoC writer still shared".into()))?;
+    Ok(writer.finish(manifest)?)
 }
 
 impl FrameSink for EurocCameraSink {
