@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Checks the user guide in docs/ (an mdBook): installs mdBook with cargo if it is missing, builds
+# Checks the user guide in docs/ (an mdBook): installs mdBook if it is missing, builds
 # the book, checks every internal link and #anchor of docs/src/**/*.md, then runs every shell
 # block (```sh, ```bash, ```console) of every page, in order, in a fresh temporary folder per page
 # with rslam on PATH. A block tagged ```sh,norun is not run; its reason must stand beside it (a
@@ -23,12 +23,8 @@ fi
 }
 bin_dir=$(cd "$bin_dir" && pwd)
 
-if ! command -v mdbook >/dev/null; then
-  echo "check-book: installing mdBook"
-  cargo install mdbook --locked --no-default-features --features search ||
-    cargo install mdbook --locked
-  export PATH=$HOME/.cargo/bin:$PATH
-fi
+scripts/install-mdbook.sh
+export PATH=$HOME/.cargo/bin:$PATH
 mdbook build docs
 
 PATH=$bin_dir:$PATH python3 - "$repo/docs/src" <<'PY'

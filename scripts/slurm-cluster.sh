@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
-# A one-node Slurm cluster on this machine, everything under STATE_DIR: start installs slurm and
-# munge if missing, writes STATE_DIR/slurm.conf, starts munged, slurmctld and slurmd as root and
-# waits for the node to be idle; stop cancels the cluster's jobs and ends exactly those daemons.
+# A one-node Slurm cluster on this machine, everything under STATE_DIR: install installs slurm
+# and munge if missing (start does too; CI installs them ahead, while the tests run); start
+# writes STATE_DIR/slurm.conf, starts munged, slurmctld and slurmd as root and waits for the
+# node to be idle; stop cancels the cluster's jobs and ends exactly those daemons.
 # Every slurm command must see SLURM_CONF=STATE_DIR/slurm.conf (nothing under /etc is written).
 set -euo pipefail
 
-usage() { echo "usage: $0 start|stop STATE_DIR" >&2; exit 2; }
-[ $# -eq 2 ] || usage
-cmd=$1
-mkdir -p "$2"
-state=$(cd "$2" && pwd)
-export SLURM_CONF=$state/slurm.conf
+usage() { echo "usage: $0 install | $0 start|stop STATE_DIR" >&2; exit 2; }
+cmd=${1:-}
+if [ "$cmd" = install ]; then
+  [ $# -eq 1 ] || usage
+else
+  [ $# -eq 2 ] || usage
+  mkdir -p "$2"
+  state=$(cd "$2" && pwd)
+  export SLURM_CONF=$state/slurm.conf
+fi
 daemons=(munged slurmctld slurmd)
 
 # Whether a process runs: a zombie counts as ended (here pid 1 may take seconds to reap one).
@@ -202,6 +207,7 @@ start() {
 }
 
 case $cmd in
+  install) install_packages ;;
   start) start ;;
   stop) stop ;;
   *) usage ;;
