@@ -210,9 +210,9 @@ fn status_names_conflicts_and_run_leaves_them_alone_unless_forced() {
     let status = ws.rslam(&["suite", "status", "suite"]);
     assert_eq!(status.output.status.code(), Some(1));
     assert!(
-        status
-            .stdout()
-            .contains("conflict: room0__x: made by `rslam render"),
+        status.stdout().contains(
+            "conflict: room0__x: holds the finished output of another job (`rslam render"
+        ),
         "{}",
         status.stdout()
     );

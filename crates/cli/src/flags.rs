@@ -3,6 +3,7 @@
 
 use std::error::Error;
 
+use rslam_core::dataset::Layout;
 use rslam_perturb::PerturbError;
 use rslam_pipeline::{JobPart, PipelineError};
 use rslam_suite::SuiteError;
@@ -18,6 +19,17 @@ fn flag(part: JobPart) -> String {
         JobPart::Trajectory => "--traj".into(),
         JobPart::Agents => "--agents".into(),
         JobPart::Frame | JobPart::FrameIndices | JobPart::Poses => part.to_string(),
+    }
+}
+
+/// A rig given with a layout that cannot hold it, as the flags that fix it.
+fn rig_in_layout(rig: &str, layout: Layout) -> String {
+    match (rig, layout) {
+        (_, Layout::Euroc) => "--format euroc: needs --rig stereo|stereo-imu|FILE.toml (the EuRoC layout is for those rigs)".into(),
+        ("rgbd-imu", _) => {
+            "--rig rgbd-imu: needs --format tum (the TUM layout with imu0/ beside it)".into()
+        }
+        _ => format!("--rig {rig}: needs --format euroc (the stereo rigs and rig files are written in the EuRoC layout)"),
     }
 }
 
@@ -40,6 +52,7 @@ fn link(error: &(dyn Error + 'static)) -> String {
     };
     match (pipeline, perturb) {
         (Some(PipelineError::Option { part, message }), _) => format!("{}: {message}", flag(*part)),
+        (Some(PipelineError::RigLayout { rig, layout }), _) => rig_in_layout(rig, *layout),
         (Some(PipelineError::OtherJob { path, holds }), _) => format!(
             "{}: holds {holds}; choose another output or pass --force to start over",
             path.display()

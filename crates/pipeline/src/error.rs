@@ -1,6 +1,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
+use rslam_core::dataset::Layout;
 use rslam_core::CoreError;
 use rslam_gpu::GpuError;
 use rslam_perturb::PerturbError;
@@ -20,6 +21,9 @@ pub enum PipelineError {
     /// A part of a job that cannot work as given.
     #[error("{part}: {message}")]
     Option { part: JobPart, message: String },
+    /// A rig (a preset's or a rig file's name) written in a layout that cannot hold it.
+    #[error("{}", rig_in_layout(rig, *layout))]
+    RigLayout { rig: String, layout: Layout },
     /// An input file or folder that cannot be used as it is.
     #[error("{}: {message}", path.display())]
     Input { path: PathBuf, message: String },
@@ -78,6 +82,19 @@ impl fmt::Display for JobPart {
             Self::Poses => "poses",
             Self::Agents => "agents",
         })
+    }
+}
+
+/// Why `rig` cannot be written in `layout`, and which layout (or rigs) it takes.
+fn rig_in_layout(rig: &str, layout: Layout) -> String {
+    match (rig, layout) {
+        (_, Layout::Euroc) => format!(
+            "layout euroc: holds a rig of several sensors (stereo, stereo-imu or a rig file), not '{rig}'"
+        ),
+        ("rgbd-imu", _) => {
+            format!("rig 'rgbd-imu': needs the tum layout (with imu0/ beside it), not {layout}")
+        }
+        _ => format!("rig '{rig}': a rig of several sensors needs the euroc layout, not {layout}"),
     }
 }
 

@@ -1,7 +1,7 @@
 //! The generation pipeline: a source, a perturbation spec and a sink, driven through the GPU.
 //!
-//! Data flow: a job (`RenderJob`, `PerturbDatasetJob`, `PerturbImagesJob`) or an in-memory caller
-//! ([`FramesInMemory`]) picks a [`source`] — a scene drawn along a (deviated) path, a dataset or
+//! Data flow: a [`Job`] (made by [`run`]) or an in-memory caller ([`FramesInMemory`]) picks a
+//! [`source`] — a scene drawn along a (deviated) path, a dataset or
 //! image files decoded ahead, buffers in memory — and makes the [`FramePlan`] before any frame is
 //! drawn (a scene under a shutter — `exposure`, `rolling_shutter` — draws each frame from the
 //! poses of its capture interval and sums them on the GPU; under a lens — `distortion` — it draws
@@ -25,6 +25,7 @@ mod error;
 mod frame_loop;
 mod frames_in_memory;
 mod input;
+mod job;
 mod lens_render;
 mod manifest;
 pub mod output_folder;
@@ -44,22 +45,17 @@ mod state_log;
 mod upload_ahead;
 
 pub use agents::{agent_folders, agent_scene_job};
-pub use dataset_run::RunReport;
 pub use depth_colormap::DepthRange;
 pub use error::{JobPart, PipelineError};
 pub use frames_in_memory::FramesInMemory;
 pub use input::PerturbInput;
-pub use output_folder::FolderState;
-pub use perturb_dataset::{perturb_dataset, PerturbDatasetJob};
-pub use perturb_images::{check_frame_items_only, image_files, perturb_images, PerturbImagesJob};
+pub use job::{run, Job, JobReport, PlannedJob, Sensors, Source, Streams};
+pub use output_folder::{FolderState, Holding};
+pub use perturb_images::{check_frame_items_only, image_files};
 pub use pipeline::Pipeline;
 pub use plan::{speed_up, FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
-pub use render::{render_dataset, RenderJob};
-pub use rig::{
-    perturb_euroc, render_euroc, render_rgbd_imu, PerturbEurocJob, Rig, RigPreset, RigRenderJob,
-    RigReport,
-};
+pub use rig::{Rig, RigPreset};
 pub use scene_job::{ResolvedScene, SceneJob};
 pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;

@@ -3,12 +3,13 @@
 //! a run does with it. A run writes its job (the manifest without the content digest) as
 //! `rslam.run.json` before the first frame and removes it after `rslam.json`: the same job finds
 //! its frames and goes on, another job is refused unless `force` starts over, and a folder that
-//! is not rslam's is never touched.
+//! is not rslam's is never touched. What a folder holds for a job ([`holding`]) is decided in one
+//! place, for a run and for the suite.
 
 use std::path::Path;
 
 use rslam_core::dataset::{
-    refuse_symlinks, Checksums, Manifest, MANIFEST_FILE, PARTIAL_SUFFIX, RUN_FILE,
+    refuse_symlinks, Checksums, Manifest, CHECKSUM_FILE, MANIFEST_FILE, PARTIAL_SUFFIX, RUN_FILE,
 };
 use rslam_core::CoreError;
 
@@ -70,41 +71,87 @@ pub fn make_output(
     })
 }
 
+/// What an output folder holds, seen from one job, read without changing anything: the one rule
+/// for "this job's output is finished here", which a run ([`make_output`]) and the suite both
+/// ask.
+#[derive(Debug)]
+pub enum Holding {
+    /// No folder, or an empty one.
+    Nothing,
+    /// An unfinished run of this job: the files it finished stay.
+    Unfinished,
+    /// This job, finished: its checksum list is the one its manifest sealed, and every file the
+    /// list names is there.
+    Complete,
+    /// This job finished here once, but `why` (files it listed are gone, its checksum list was
+    /// changed): a run makes what is missing and seals it again.
+    Broken(String),
+    /// Another job's output, finished or not: what it is and how it differs from this job.
+    OtherJob(String),
+    /// An rslam record (`rslam.json`, `rslam.run.json`) that cannot be read.
+    Unreadable(CoreError),
+    /// Files, but no rslam record: not rslam's output.
+    NotRslam,
+}
+
+/// What `root` holds for the job `job` gives (a manifest without its content digest; `command`
+/// and the digest are not part of what a job is), asked for only when `root` holds a record to
+/// compare it with.
+pub fn holding(
+    root: &Path,
+    job: impl FnOnce() -> Result<Manifest, PipelineError>,
+) -> Result<Holding, PipelineError> {
+    if !root.exists() || is_empty(root)? {
+        return Ok(Holding::Nothing);
+    }
+    let (record, what) = if root.join(RUN_FILE).is_file() {
+        (RUN_FILE, "an unfinished run")
+    } else if root.join(MANIFEST_FILE).is_file() {
+        (MANIFEST_FILE, "the finished output")
+    } else {
+        return Ok(Holding::NotRslam);
+    };
+    let earlier = match Manifest::read_as(root, record) {
+        Ok(earlier) => earlier,
+        Err(e) => return Ok(Holding::Unreadable(e)),
+    };
+    let job = job()?;
+    Ok(match (earlier.job() == job.job(), record) {
+        (false, _) => Holding::OtherJob(describe_other(&earlier, &job, what)),
+        (true, RUN_FILE) => Holding::Unfinished,
+        (true, _) => match sealed_files(root, &earlier) {
+            Ok(()) => Holding::Complete,
+            Err(why) => Holding::Broken(why),
+        },
+    })
+}
+
 /// Prepares `root` for `job` and says what it holds.
 fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, PipelineError> {
     refuse_symlinks(root, root)?;
-    let state = if !root.exists() {
-        FolderState::Fresh
-    } else if root.join(RUN_FILE).is_file() {
-        match Manifest::read_as(root, RUN_FILE) {
-            Ok(earlier) if earlier.job() == job.job() && !force => FolderState::Resume,
-            Ok(_) if force => clear(root)?,
-            Ok(earlier) => return Err(other_job(root, &earlier, job, "an unfinished run")),
-            Err(_) if force => clear(root)?,
-            Err(e) => return Err(e.into()),
+    let state = match holding(root, || Ok(job.clone()))? {
+        Holding::Nothing => FolderState::Fresh,
+        Holding::NotRslam => {
+            return Err(PipelineError::output(
+                root,
+                "not empty and holds no rslam output (rslam.json or rslam.run.json); choose an empty or new folder",
+            ))
         }
-    } else if root.join(MANIFEST_FILE).is_file() {
-        match Manifest::read(root) {
-            Ok(earlier) if earlier.job() == job.job() && !force => {
-                if all_listed_files_exist(root) {
-                    return Ok(FolderState::Complete);
-                }
-                std::fs::remove_file(root.join(MANIFEST_FILE))
-                    .map_err(|e| CoreError::io(root.join(MANIFEST_FILE), e))?;
-                FolderState::Resume
-            }
-            Ok(_) if force => clear(root)?,
-            Ok(earlier) => return Err(other_job(root, &earlier, job, "the finished output")),
-            Err(_) if force => clear(root)?,
-            Err(e) => return Err(e.into()),
+        _ if force => clear(root)?,
+        Holding::Complete => return Ok(FolderState::Complete),
+        Holding::Unfinished => FolderState::Resume,
+        Holding::Broken(_) => {
+            std::fs::remove_file(root.join(MANIFEST_FILE))
+                .map_err(|e| CoreError::io(root.join(MANIFEST_FILE), e))?;
+            FolderState::Resume
         }
-    } else if is_empty(root)? {
-        FolderState::Fresh
-    } else {
-        return Err(PipelineError::output(
-            root,
-            "not empty and holds no rslam output (rslam.json or rslam.run.json); choose an empty or new folder",
-        ));
+        Holding::OtherJob(holds) => {
+            return Err(PipelineError::OtherJob {
+                path: root.to_path_buf(),
+                holds,
+            })
+        }
+        Holding::Unreadable(e) => return Err(e.into()),
     };
     std::fs::create_dir_all(root).map_err(|e| CoreError::io(root, e))?;
     remove_partial_files(root)?;
@@ -130,17 +177,16 @@ fn finish(root: &Path) -> Result<(), PipelineError> {
     Ok(())
 }
 
-fn other_job(root: &Path, earlier: &Manifest, job: &Manifest, what: &str) -> PipelineError {
-    PipelineError::OtherJob {
-        path: root.to_path_buf(),
-        holds: format!(
-            "{what} of another job (`{}`, perturbation '{}', seed {}; differs in {})",
-            earlier.command.join(" "),
-            earlier.perturbation,
-            earlier.seed,
-            differing_fields(&earlier.job(), &job.job()).join(", ")
-        ),
-    }
+/// Another job's record, as an error or the suite names it: its command, perturbation, seed and
+/// the fields in which it differs from `job`.
+fn describe_other(earlier: &Manifest, job: &Manifest, what: &str) -> String {
+    format!(
+        "{what} of another job (`{}`, perturbation '{}', seed {}; differs in {})",
+        earlier.command.join(" "),
+        earlier.perturbation,
+        earlier.seed,
+        differing_fields(&earlier.job(), &job.job()).join(", ")
+    )
 }
 
 /// The manifest fields (`extra.adapter` and the like one level down) in which two jobs differ,
@@ -181,8 +227,20 @@ fn is_empty(root: &Path) -> Result<bool, PipelineError> {
     Ok(entries.next().is_none())
 }
 
-fn all_listed_files_exist(root: &Path) -> bool {
-    Checksums::read(root).is_ok_and(|sums| sums.paths().all(|p| root.join(p).is_file()))
+/// Whether the checksum list is the one `manifest` sealed and every file it names is there
+/// (the files' bytes are not hashed again: `rslam verify` does that).
+fn sealed_files(root: &Path, manifest: &Manifest) -> Result<(), String> {
+    let listed = Checksums::read(root).map_err(|e| e.to_string())?;
+    if listed.digest() != manifest.content_digest {
+        return Err(format!(
+            "{CHECKSUM_FILE} does not match the manifest's content_digest"
+        ));
+    }
+    let missing = listed.paths().find(|p| !root.join(p).is_file());
+    match missing {
+        Some(missing) => Err(format!("{missing}, which {CHECKSUM_FILE} lists, is gone")),
+        None => Ok(()),
+    }
 }
 
 /// Removes everything in `root`, an earlier rslam output.

@@ -2,19 +2,18 @@
 //! written in the same layout, with `fast` and `misalign` re-planning the streams; an `rgbd-imu`
 //! output keeps its inertial files ([`crate::rig::rgbd_imu_perturb`]).
 
-use std::path::PathBuf;
+use std::path::Path;
 
-use rslam_core::dataset::{read_dataset, DatasetOverrides, DepthPng, SourceDataset};
+use rslam_core::dataset::{read_dataset, DatasetOverrides, DepthPng, Manifest, SourceDataset};
 use rslam_core::{nearest_time, Pose, Trajectory};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 
-use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
+use crate::dataset_run::{write_dataset, DatasetOutput};
+use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
-use crate::output_folder;
 use crate::pipeline::Pipeline;
 use crate::plan::{self, FramePlan, SourceTiming};
-use crate::progress::Progress;
 use crate::rig::rgbd_imu_perturb::recorded_inertial_files;
 use crate::rig::with_imu_report;
 use crate::source::RecordedSource;
@@ -23,19 +22,6 @@ use crate::{JobPart, PipelineError};
 /// Largest |Δt| at which a ground-truth pose stands for a frame when re-stamping (TUM's 100 Hz
 /// motion capture has one within 5 ms of every frame).
 const GT_MATCH_MAX_DIFF_S: f64 = 0.02;
-
-pub struct PerturbDatasetJob {
-    pub input: PathBuf,
-    /// Camera and rate where the dataset does not state them.
-    pub overrides: DatasetOverrides,
-    pub out: PathBuf,
-    /// How the output's depth PNGs are compressed (the input's own encoding is not carried over).
-    pub depth_png: DepthPng,
-    pub spec: PerturbSpec,
-    pub seed: u64,
-    pub force: bool,
-    pub command: Vec<String>,
-}
 
 /// The plan of a recorded dataset under `spec`.
 pub fn dataset_plan(dataset: &SourceDataset, spec: &PerturbSpec, seed: u64) -> FramePlan {
@@ -67,6 +53,9 @@ pub fn check_dataset_spec(
 
 /// Refuses frame items that cannot be applied to recorded frames.
 fn check_frame_items(dataset: &SourceDataset, spec: &PerturbSpec) -> Result<(), PipelineError> {
+    if let Some(problem) = spec.one_camera_problem() {
+        return Err(problem.into());
+    }
     if let Some(item) = spec.scene_items().first() {
         return Err(PipelineError::option(
             JobPart::Spec,
@@ -87,23 +76,41 @@ fn check_frame_items(dataset: &SourceDataset, spec: &PerturbSpec) -> Result<(), 
     Ok(())
 }
 
-pub fn perturb_dataset(
-    ctx: &GpuContext,
-    job: &PerturbDatasetJob,
-    progress: &dyn Progress,
-) -> Result<RunReport, PipelineError> {
-    output_folder::check_not_input(&job.out, &job.input)?;
-    let dataset = read_dataset(&job.input, &job.overrides)?;
-    let inertial = recorded_inertial_files(&job.input, &job.spec, job.seed)?;
+/// A dataset perturb, planned: the dataset read, the frame plan made, the inertial files of an
+/// `rgbd-imu` output perturbed.
+pub(crate) struct DatasetPerturb<'a> {
+    spec: &'a PerturbSpec,
+    seed: u64,
+    dataset: SourceDataset,
+    plan: FramePlan,
+    ground_truth: Trajectory,
+    sensor_files: Vec<(String, String)>,
+    manifest: Manifest,
+}
+
+pub(crate) struct RecordedDataset<'a> {
+    pub input: &'a Path,
+    pub overrides: &'a DatasetOverrides,
+    pub depth_png: DepthPng,
+    pub spec: &'a PerturbSpec,
+    pub seed: u64,
+}
+
+pub(crate) fn plan<'a>(
+    job: RecordedDataset<'a>,
+    command: &[String],
+) -> Result<DatasetPerturb<'a>, PipelineError> {
+    let dataset = read_dataset(job.input, job.overrides)?;
+    let inertial = recorded_inertial_files(job.input, job.spec, job.seed)?;
     if inertial.files.is_empty() {
-        check_dataset_spec(&dataset, &job.spec)?;
+        check_dataset_spec(&dataset, job.spec)?;
     } else {
-        check_frame_items(&dataset, &job.spec)?;
+        check_frame_items(&dataset, job.spec)?;
     }
-    let plan = dataset_plan(&dataset, &job.spec, job.seed);
-    let ground_truth = output_ground_truth(&dataset, &plan, plan::restamps(&job.spec));
+    let plan = dataset_plan(&dataset, job.spec, job.seed);
+    let ground_truth = output_ground_truth(&dataset, &plan, plan::restamps(job.spec));
     let manifest = ManifestParts {
-        command: &job.command,
+        command,
         source: job.input.display().to_string(),
         source_hash: String::new(),
         format: Some(dataset.format),
@@ -112,24 +119,48 @@ pub fn perturb_dataset(
         depth_png: job.depth_png,
         rate_hz: dataset.rate_hz,
         seed: job.seed,
-        spec: &job.spec,
+        spec: job.spec,
         plan: &plan,
-        extra: serde_json::json!({ "adapter": ctx.describe() }),
+        extra: serde_json::json!({}),
     }
     .build()?;
     let manifest = with_imu_report(manifest, inertial.report.as_ref())?;
-    let mut pipeline = Pipeline::new(ctx, RecordedSource::dataset(&dataset), &job.spec, job.seed)?;
-    let output = DatasetOutput {
-        out: &job.out,
-        format: dataset.format,
-        camera: dataset.intrinsics,
-        force: job.force,
-        plan: &plan,
-        ground_truth: &ground_truth,
-        manifest,
+    Ok(DatasetPerturb {
+        spec: job.spec,
+        seed: job.seed,
+        dataset,
+        plan,
+        ground_truth,
         sensor_files: inertial.files,
-    };
-    write_dataset(ctx, &mut pipeline, output, progress, "perturbing")
+        manifest,
+    })
+}
+
+impl Planned for DatasetPerturb<'_> {
+    fn manifest(&self) -> &Manifest {
+        &self.manifest
+    }
+
+    fn streams(&self) -> Streams {
+        Streams::Frames(self.plan.len())
+    }
+
+    fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
+        let dataset = &self.dataset;
+        let source = RecordedSource::dataset(dataset);
+        let mut pipeline = Pipeline::new(ctx, source, self.spec, self.seed)?;
+        Ok(Box::new(move |out, _found, manifest, progress| {
+            let output = DatasetOutput {
+                out,
+                format: dataset.format,
+                camera: dataset.intrinsics,
+                plan: &self.plan,
+                ground_truth: &self.ground_truth,
+                sensor_files: self.sensor_files.clone(),
+            };
+            write_dataset(ctx, &mut pipeline, output, manifest, progress, "perturbing")
+        }))
+    }
 }
 
 /// The source's ground truth for the output frames. Without re-stamping it is kept whole (at its

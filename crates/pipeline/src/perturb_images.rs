@@ -9,16 +9,18 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use rslam_core::dataset::{encode_rgb_like, read_image_size, read_rgb, ContentWriter, DepthPng};
+use rslam_core::dataset::{
+    encode_rgb_like, read_image_size, read_rgb, ContentWriter, DepthPng, Manifest,
+};
 use rslam_core::{CoreError, ImagePool, RgbImage};
 use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Perturber};
 
-use crate::dataset_run::RunReport;
 use crate::encoder_pool::EncoderPool;
 use crate::frame_loop::FrameRun;
+use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
-use crate::output_folder::{self, make_output, Written};
+use crate::output_folder::{FolderState, Written};
 use crate::plan::{restamps, FramePlan};
 use crate::progress::Progress;
 use crate::upload_ahead::UploadAhead;
@@ -26,19 +28,6 @@ use crate::{JobPart, PipelineError};
 
 /// JPEG quality of perturbed JPEG images.
 const JPEG_QUALITY: u8 = 95;
-
-pub struct PerturbImagesJob {
-    /// The images, in frame order.
-    pub files: Vec<PathBuf>,
-    /// The folder written into (each image under its own name), or with one input image and
-    /// `single` set, the output file itself.
-    pub out: PathBuf,
-    pub single: bool,
-    pub spec: PerturbSpec,
-    pub seed: u64,
-    pub force: bool,
-    pub command: Vec<String>,
-}
 
 /// Whether `path` names a PNG or JPEG file by its extension.
 pub fn is_image(path: &Path) -> bool {
@@ -68,6 +57,9 @@ pub fn image_files(dir: &Path) -> Result<Vec<PathBuf>, PipelineError> {
 pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
     if !spec.depth.is_empty() {
         return Err(PipelineError::option(JobPart::Spec, format!("'{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)")));
+    }
+    if let Some(problem) = spec.one_camera_problem() {
+        return Err(problem.into());
     }
     check_frame_items_only(spec)
 }
@@ -108,21 +100,46 @@ impl Destination {
     }
 }
 
-/// Perturbs the job's images; a single image yields no manifest (`None`).
-pub fn perturb_images(
+/// Perturbs `file` into the file `out` (in its own format, no manifest); its spec was checked
+/// by the job's plan ([`check_image_spec`]).
+pub(crate) fn perturb_one(
     ctx: &GpuContext,
-    job: &PerturbImagesJob,
+    file: &Path,
+    out: &Path,
+    spec: &PerturbSpec,
+    seed: u64,
     progress: &dyn Progress,
-) -> Result<Option<RunReport>, PipelineError> {
-    check_image_spec(&job.spec)?;
-    if job.single {
-        let all: Vec<usize> = (0..job.files.len()).collect();
-        let destination = Destination::File(job.out.clone());
-        run_images(ctx, job, &all, &destination, progress)?;
-        return Ok(None);
-    }
-    let names: Vec<String> = job
-        .files
+) -> Result<(), PipelineError> {
+    let destination = Destination::File(out.to_path_buf());
+    run_images(
+        ctx,
+        &[file.to_path_buf()],
+        spec,
+        seed,
+        &[0],
+        &destination,
+        progress,
+    )
+}
+
+/// A folder of images perturbed, planned: their names and the frame plan.
+pub(crate) struct ImagesPerturb<'a> {
+    files: &'a [PathBuf],
+    spec: &'a PerturbSpec,
+    seed: u64,
+    names: Vec<String>,
+    frames: usize,
+    manifest: Manifest,
+}
+
+pub(crate) fn plan<'a>(
+    files: &'a [PathBuf],
+    spec: &'a PerturbSpec,
+    seed: u64,
+    command: &[String],
+) -> Result<ImagesPerturb<'a>, PipelineError> {
+    check_image_spec(spec)?;
+    let names: Vec<String> = files
         .iter()
         .map(|f| {
             f.file_name()
@@ -130,11 +147,10 @@ pub fn perturb_images(
                 .ok_or_else(|| PipelineError::input(f, "an image path without a file name"))
         })
         .collect::<Result<_, _>>()?;
-    let plan = FramePlan::images(job.files.len(), false, &job.spec, job.seed);
+    let plan = FramePlan::images(files.len(), false, spec, seed);
     let manifest = ManifestParts {
-        command: &job.command,
-        source: job
-            .files
+        command,
+        source: files
             .first()
             .and_then(|f| f.parent())
             .map(|p| p.display().to_string())
@@ -145,27 +161,68 @@ pub fn perturb_images(
         distortion: None,
         depth_png: DepthPng::default(),
         rate_hz: 0.0,
-        seed: job.seed,
-        spec: &job.spec,
+        seed,
+        spec,
         plan: &plan,
-        extra: serde_json::json!({ "files": names, "adapter": ctx.describe() }),
+        extra: serde_json::json!({ "files": names }),
     }
     .build()?;
-    if let Some(input) = job.files.first().and_then(|f| f.parent()) {
-        output_folder::check_not_input(&job.out, input)?;
+    Ok(ImagesPerturb {
+        files,
+        spec,
+        seed,
+        names,
+        frames: plan.len(),
+        manifest,
+    })
+}
+
+impl Planned for ImagesPerturb<'_> {
+    fn manifest(&self) -> &Manifest {
+        &self.manifest
     }
-    let made = make_output(&job.out, manifest, job.force, |_, manifest| {
+
+    fn streams(&self) -> Streams {
+        Streams::Frames(self.frames)
+    }
+
+    fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
+        Ok(Box::new(move |out, found, manifest, progress| {
+            self.write(ctx, out, found, manifest, progress)
+        }))
+    }
+}
+
+impl ImagesPerturb<'_> {
+    /// Writes the output into the prepared folder `out`, sealing it with `manifest`.
+    fn write(
+        &self,
+        ctx: &GpuContext,
+        out: &Path,
+        _found: FolderState,
+        manifest: Manifest,
+        progress: &dyn Progress,
+    ) -> Result<Written, PipelineError> {
+        let names = &self.names;
         // As in a dataset run: a stateful item's frames follow from the ones before them.
-        let redo_all = job.spec.stateful_item().is_some();
+        let redo_all = self.spec.stateful_item().is_some();
         let missing: Vec<usize> = (0..names.len())
-            .filter(|&i| redo_all || !job.out.join(&names[i]).is_file())
+            .filter(|&i| redo_all || !out.join(&names[i]).is_file())
             .collect();
-        let content = Arc::new(ContentWriter::new(&job.out));
+        let content = Arc::new(ContentWriter::new(out));
         let destination = Destination::Folder {
             content: content.clone(),
-            names: Arc::new(names),
+            names: Arc::new(names.clone()),
         };
-        run_images(ctx, job, &missing, &destination, progress)?;
+        run_images(
+            ctx,
+            self.files,
+            self.spec,
+            self.seed,
+            &missing,
+            &destination,
+            progress,
+        )?;
         drop(destination);
         let content = Arc::try_unwrap(content)
             .map_err(|_| PipelineError::Worker("image writer still shared".into()))?;
@@ -173,19 +230,19 @@ pub fn perturb_images(
             made: missing.len(),
             manifest: content.finish(manifest)?,
         })
-    })?;
-    Ok(Some(RunReport::of(plan.len(), made)))
+    }
 }
 
-/// Perturbs images `indices` of the job into `destination`.
+/// Perturbs images `indices` of `files` (image i is frame i) into `destination`.
 fn run_images(
     ctx: &GpuContext,
-    job: &PerturbImagesJob,
+    files: &[PathBuf],
+    spec: &PerturbSpec,
+    seed: u64,
     indices: &[usize],
     destination: &Destination,
     progress: &dyn Progress,
 ) -> Result<(), PipelineError> {
-    let files = &job.files;
     let sizes = indices
         .iter()
         .map(|&i| read_image_size(&files[i]))
@@ -201,7 +258,7 @@ fn run_images(
             Entry::Occupied(e) => e.into_mut(),
             Entry::Vacant(e) => e.insert((
                 // Image files carry no camera.
-                Perturber::new(ctx, &job.spec, width, height, job.seed, None)?,
+                Perturber::new(ctx, spec, width, height, seed, None)?,
                 UploadAhead::new(width, height, false),
             )),
         };

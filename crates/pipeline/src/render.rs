@@ -1,68 +1,87 @@
-//! `rslam render`: a scene along a path, perturbed, written as a dataset.
+//! A scene seen by one RGB-D camera along its path, perturbed, written as a Replica or TUM
+//! dataset.
 
-use std::path::PathBuf;
-
-use rslam_core::dataset::{DatasetFormat, DepthPng};
+use rslam_core::dataset::{DatasetFormat, DepthPng, Manifest};
+use rslam_core::Trajectory;
 use rslam_gpu::GpuContext;
 
 use crate::agents::record_agent;
-use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
+use crate::dataset_run::{write_dataset, DatasetOutput};
+use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
-use crate::progress::Progress;
-use crate::scene_job::SceneJob;
+use crate::scene_job::{ResolvedScene, SceneJob};
 use crate::source::SceneSource;
 use crate::PipelineError;
 
-pub struct RenderJob {
-    pub scene: SceneJob,
-    pub out: PathBuf,
-    pub format: DatasetFormat,
-    pub depth_png: DepthPng,
-    /// Replace whatever rslam output `out` holds.
-    pub force: bool,
-    /// The command as typed, for the manifest.
-    pub command: Vec<String>,
+/// A one-camera render, planned: the scene loaded, its poses deviated, the frame plan made.
+pub(crate) struct CameraRender<'a> {
+    scene: &'a SceneJob,
+    format: DatasetFormat,
+    resolved: ResolvedScene,
+    ground_truth: Trajectory,
+    manifest: Manifest,
 }
 
-pub fn render_dataset(
-    ctx: &GpuContext,
-    job: &RenderJob,
-    progress: &dyn Progress,
-) -> Result<RunReport, PipelineError> {
-    crate::rig::refuse_imu_items(&job.scene.spec, "a one-camera render")?;
-    let resolved = job.scene.resolve()?;
-    let camera = job.scene.camera;
+pub(crate) fn plan<'a>(
+    scene: &'a SceneJob,
+    format: DatasetFormat,
+    depth_png: DepthPng,
+    command: &[String],
+) -> Result<CameraRender<'a>, PipelineError> {
+    let resolved = scene.resolve()?;
     let ground_truth = resolved.plan.ground_truth(&resolved.poses);
-    let mut extra = serde_json::json!({ "adapter": ctx.describe() });
-    record_agent(&mut extra, &job.scene);
+    let mut extra = serde_json::json!({});
+    record_agent(&mut extra, scene);
     let manifest = ManifestParts {
-        command: &job.command,
+        command,
         source: resolved.scene.name.clone(),
         source_hash: resolved.scene.content_hash(),
-        format: Some(job.format),
-        camera: Some(camera),
-        distortion: job.scene.spec.distortion,
-        depth_png: job.depth_png,
-        rate_hz: job.scene.rate_hz,
-        seed: job.scene.seed,
-        spec: &job.scene.spec,
+        format: Some(format),
+        camera: Some(scene.camera),
+        distortion: scene.spec.distortion,
+        depth_png,
+        rate_hz: scene.rate_hz,
+        seed: scene.seed,
+        spec: &scene.spec,
         plan: &resolved.plan,
         extra,
     }
     .build()?;
-    let mut source = SceneSource::new(ctx, &resolved.scene, camera, resolved.poses)?;
-    source.set_sensor(ctx, &job.scene.spec, job.scene.rate_hz)?;
-    let mut pipeline = Pipeline::new(ctx, source, &job.scene.spec, job.scene.seed)?;
-    let output = DatasetOutput {
-        out: &job.out,
-        format: job.format,
-        camera,
-        force: job.force,
-        plan: &resolved.plan,
-        ground_truth: &ground_truth,
+    Ok(CameraRender {
+        scene,
+        format,
+        resolved,
+        ground_truth,
         manifest,
-        sensor_files: Vec::new(),
-    };
-    write_dataset(ctx, &mut pipeline, output, progress, "rendering")
+    })
+}
+
+impl Planned for CameraRender<'_> {
+    fn manifest(&self) -> &Manifest {
+        &self.manifest
+    }
+
+    fn streams(&self) -> Streams {
+        Streams::Frames(self.resolved.plan.len())
+    }
+
+    fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
+        let (scene, resolved) = (self.scene, &self.resolved);
+        let mut source =
+            SceneSource::new(ctx, &resolved.scene, scene.camera, resolved.poses.clone())?;
+        source.set_sensor(ctx, &scene.spec, scene.rate_hz)?;
+        let mut pipeline = Pipeline::new(ctx, source, &scene.spec, scene.seed)?;
+        Ok(Box::new(move |out, _found, manifest, progress| {
+            let output = DatasetOutput {
+                out,
+                format: self.format,
+                camera: scene.camera,
+                plan: &resolved.plan,
+                ground_truth: &self.ground_truth,
+                sensor_files: Vec::new(),
+            };
+            write_dataset(ctx, &mut pipeline, output, manifest, progress, "rendering")
+        }))
+    }
 }

@@ -10,7 +10,9 @@ use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::source::BufferSource;
-use rslam_pipeline::{render_dataset, FramesInMemory, RenderJob, RgbdFrame, SceneJob, Silent};
+use rslam_pipeline::{
+    run, FramesInMemory, Job, RgbdFrame, SceneJob, Sensors, Silent, Source, Streams,
+};
 
 const CAMERA: Intrinsics = Intrinsics {
     width: 72,
@@ -76,20 +78,27 @@ fn buffers_of(frames: &[RgbdFrame]) -> BufferSource {
 fn render_tum(job: SceneJob) -> (tempfile::TempDir, PathBuf, usize) {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ds");
-    let report = render_dataset(
+    let report = run(
         context(),
-        &RenderJob {
-            scene: job,
+        &Job {
+            source: Source::Scene {
+                scene: job,
+                sensors: Sensors::Camera {
+                    format: DatasetFormat::Tum,
+                    depth_png: DepthPng::Fast,
+                },
+            },
             out: out.clone(),
-            format: DatasetFormat::Tum,
-            depth_png: DepthPng::Fast,
             force: false,
             command: vec!["test".into()],
         },
         &Silent,
     )
     .unwrap();
-    (dir, out, report.frames)
+    let Streams::Frames(frames) = report.streams else {
+        panic!("one camera's frames: {:?}", report.streams)
+    };
+    (dir, out, frames)
 }
 
 /// The TUM dataset at `out` holds `frame`: its colour exactly, its depth to the PNG's step.

@@ -9,8 +9,10 @@ use rslam_core::dataset::{read_image_has_colour, read_image_size, read_rgb};
 use rslam_core::{DepthImage, Pose, RgbImage};
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::rig::{RigRenderJob, EUROC_CAM0_INTRINSICS, STEREO_BASELINE_M};
-use rslam_pipeline::{render_euroc, FolderState, FramesInMemory, Rig, SceneJob, Silent};
+use rslam_pipeline::rig::{EUROC_CAM0_INTRINSICS, STEREO_BASELINE_M};
+use rslam_pipeline::{
+    run, FolderState, FramesInMemory, Job, Rig, SceneJob, Sensors, Silent, Source, Streams,
+};
 
 /// Poses of room0's path rendered; the spline's valid range drops the first and last.
 const PATH_POSES: usize = 6;
@@ -104,15 +106,24 @@ fn stereo_imu_rig_writes_a_euroc_stereo_pair_with_imu_and_ground_truth() {
     let ctx = context();
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("rig");
-    let job = RigRenderJob {
-        scene: scene_job(Some(PATH_POSES)),
-        rig: Rig::stereo_imu(),
+    let job = Job {
+        source: Source::Scene {
+            scene: scene_job(Some(PATH_POSES)),
+            sensors: Sensors::Rig(Rig::stereo_imu()),
+        },
         out: out.clone(),
         force: false,
         command: vec!["test".into()],
     };
-    let report = render_euroc(ctx, &job, &Silent).unwrap();
+    let report = run(ctx, &job, &Silent).unwrap();
     assert_eq!(report.found, FolderState::Fresh);
+    let Streams::Rig {
+        cameras,
+        imu_samples,
+    } = report.streams
+    else {
+        panic!("a rig's streams: {:?}", report.streams)
+    };
     assert!(out.join("rslam.json").is_file());
     assert!(!out.join("rslam.run.json").exists());
 
@@ -130,7 +141,7 @@ fn stereo_imu_rig_writes_a_euroc_stereo_pair_with_imu_and_ground_truth() {
         cam1.frames.iter().map(|f| f.t_ns).collect::<Vec<_>>()
     );
     assert_eq!(times.len(), PATH_POSES - 2, "{times:?}");
-    assert_eq!(report.cameras[0].frames, times.len());
+    assert_eq!(cameras[0].frames, times.len());
     for pair in times.windows(2) {
         assert!(
             (pair[1] - pair[0]).abs_diff(FRAME_NS) <= NS_SLACK,
@@ -172,7 +183,7 @@ fn stereo_imu_rig_writes_a_euroc_stereo_pair_with_imu_and_ground_truth() {
 
     // IMU at 200 Hz over the frames, ground truth at the IMU's times with unit quaternions.
     let imu = &data.imu.as_ref().unwrap().samples;
-    assert_eq!(report.imu_samples, imu.len());
+    assert_eq!(imu_samples, imu.len());
     for pair in imu.windows(2) {
         assert!((pair[1].t_ns - pair[0].t_ns).abs_diff(IMU_NS) <= NS_SLACK);
     }

@@ -5,12 +5,12 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use rslam_core::dataset::{DatasetFormat, DepthPng};
+use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
+use rslam_pipeline::Sensors;
 use serde::Serialize;
 
 use crate::disk::folder_bytes;
-use crate::layout::Layout;
-use crate::sequence::{FrameCounts, Sensors, Sequence};
+use crate::sequence::{FrameCounts, Sequence};
 use crate::state::SequenceState;
 use crate::timings::Timings;
 use crate::SuiteError;
@@ -151,9 +151,10 @@ fn estimated_bytes_per_frame(sequence: &Sequence) -> f64 {
         .iter()
         .any(|item| item.name.ends_with("_noise"));
     let (clean, noise) = match &sequence.sensors {
-        Sensors::Camera {
-            format, depth_png, ..
-        } => measured_bytes_per_pixel(*format, *depth_png),
+        Sensors::Camera { format, depth_png } => measured_bytes_per_pixel(*format, *depth_png),
+        Sensors::CameraImu { depth_png } => {
+            measured_bytes_per_pixel(DatasetFormat::Tum, *depth_png)
+        }
         Sensors::Rig(_) => EUROC_GREY_BYTES_PER_PIXEL,
     };
     let pixels = sequence.camera.width as f64 * sequence.camera.height as f64;

@@ -1,21 +1,20 @@
 //! One row of a suite made concrete: the dataset `datasets/<name>/` that `rslam suite run` makes,
-//! as the `rslam render` job it is (one RGB-D camera, or a rig in the EuRoC layout).
+//! as the [`Job`] it is (one RGB-D camera, that camera with an IMU, or a rig in the EuRoC
+//! layout).
 
 use std::path::{Path, PathBuf};
 
-use rslam_core::dataset::{DatasetFormat, DepthPng};
+use rslam_core::dataset::{DepthPng, Layout};
 use rslam_core::hash::{fnv1a64, splitmix64};
 use rslam_core::trajectory_io::read_trajectory;
 use rslam_core::Intrinsics;
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::rig::{render_rgbd_imu, rgbd_imu_frame_count, rig_camera_frames};
+use rslam_pipeline::rig::{rgbd_imu_frame_count, rig_camera_frames};
 use rslam_pipeline::{
-    render_dataset, render_euroc, speed_up, FolderState, FramePlan, PipelineError, Progress,
-    RenderJob, Rig, RigRenderJob, SceneJob,
+    run, speed_up, FolderState, FramePlan, Job, PipelineError, Progress, SceneJob, Sensors, Source,
 };
 
-use crate::layout::Layout;
 use crate::SuiteError;
 
 /// The folder of a suite that holds one dataset per sequence.
@@ -31,30 +30,17 @@ pub struct Sequence {
     pub seed: u64,
     /// Only the first N poses of the path; `None`: all of them.
     pub frames: Option<usize>,
+    /// What sees the scene, which decides the layout.
     pub sensors: Sensors,
     /// The camera, or a rig's cam0.
     pub camera: Intrinsics,
+    /// The camera as the row wrote it (`replica`, `tum` or `W,H,FX,FY,CX,CY`); `None` for a rig,
+    /// whose cameras are its own.
+    pub camera_text: Option<String>,
     /// The rate of the path's poses (of the camera's frames without a rig).
     pub rate_hz: f64,
     /// Camera path file relative to the suite folder; `None`: the scene's own path.
     pub traj: Option<PathBuf>,
-}
-
-/// What sees the scene, which decides the layout.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Sensors {
-    /// One RGB-D camera in a core layout.
-    Camera {
-        format: DatasetFormat,
-        /// `replica`, `tum` or `W,H,FX,FY,CX,CY`, as written.
-        camera_text: String,
-        depth_png: DepthPng,
-        /// `rig = "rgbd-imu"`: the camera on a RealSense D435i-like body with its IMU (TUM
-        /// only; `imu0/` and the body's ground truth beside the TUM files).
-        imu: bool,
-    },
-    /// A rig preset (its `--rig` name is `Rig::name`), in the EuRoC layout.
-    Rig(Rig),
 }
 
 /// Frames of a sequence: drawn from the scene, and written (fewer under `fast`).
@@ -86,18 +72,16 @@ impl Sequence {
     }
 
     pub fn layout(&self) -> Layout {
-        match &self.sensors {
-            Sensors::Camera { format, .. } => Layout::Camera(*format),
-            Sensors::Rig(_) => Layout::Euroc,
-        }
+        self.sensors.layout()
     }
 
     pub fn dir(&self, suite_dir: &Path) -> PathBuf {
         suite_dir.join(DATASETS_DIR).join(&self.name)
     }
 
-    /// The `rslam render` command that makes this sequence, run from the suite folder; the
-    /// manifest records it, and a complete sequence is one whose manifest records exactly this.
+    /// The `rslam render` command that makes this sequence, run from the suite folder: what the
+    /// manifest records as the command, so that a reader can make the sequence again by hand.
+    /// Whether a sequence is complete is the job's question ([`Sequence::job`]), not this.
     pub fn command(&self) -> Vec<String> {
         let mut args: Vec<String> = ["rslam", "render", "--scene", &self.scene]
             .map(String::from)
@@ -113,18 +97,13 @@ impl Sequence {
             push("--frames", frames.to_string());
         }
         match &self.sensors {
-            Sensors::Camera {
-                format,
-                camera_text,
-                depth_png,
-                imu,
-            } => {
-                if *imu {
+            Sensors::Camera { depth_png, .. } | Sensors::CameraImu { depth_png } => {
+                if let Sensors::CameraImu { .. } = self.sensors {
                     push("--rig", "rgbd-imu".into());
                 }
-                push("--camera", camera_text.clone());
+                push("--camera", self.camera_text.clone().unwrap_or_default());
                 push("--rate", self.rate_hz.to_string());
-                push("--format", format.to_string());
+                push("--format", self.layout().to_string());
                 if *depth_png != DepthPng::default() {
                     push("--depth-png", depth_png.to_string());
                 }
@@ -149,15 +128,8 @@ impl Sequence {
         args
     }
 
-    /// Renders the sequence (`force`: replacing another job's output): the frames this run
-    /// made, and what the folder held before.
-    pub fn render(
-        &self,
-        ctx: &GpuContext,
-        suite_dir: &Path,
-        force: bool,
-        progress: &dyn Progress,
-    ) -> Result<(usize, FolderState), PipelineError> {
+    /// The job that makes this sequence (`force`: replacing another job's output).
+    pub fn job(&self, suite_dir: &Path, force: bool) -> Job {
         let scene = SceneJob {
             scene: self.scene_path(suite_dir),
             trajectory: self.traj.as_ref().map(|t| suite_dir.join(t)),
@@ -168,40 +140,28 @@ impl Sequence {
             seed: self.seed,
             agent: None,
         };
-        let (out, command) = (self.dir(suite_dir), self.command());
-        match &self.sensors {
-            Sensors::Camera {
-                format,
-                depth_png,
-                imu,
-                ..
-            } => {
-                let job = RenderJob {
-                    scene,
-                    out,
-                    format: *format,
-                    depth_png: *depth_png,
-                    force,
-                    command,
-                };
-                let report = match imu {
-                    true => render_rgbd_imu(ctx, &job, progress)?,
-                    false => render_dataset(ctx, &job, progress)?,
-                };
-                Ok((report.made, report.found))
-            }
-            Sensors::Rig(rig) => {
-                let job = RigRenderJob {
-                    scene,
-                    rig: rig.clone(),
-                    out,
-                    force,
-                    command,
-                };
-                let report = render_euroc(ctx, &job, progress)?;
-                Ok((report.made, report.found))
-            }
+        Job {
+            source: Source::Scene {
+                scene,
+                sensors: self.sensors.clone(),
+            },
+            out: self.dir(suite_dir),
+            force,
+            command: self.command(),
         }
+    }
+
+    /// Renders the sequence (`force`: replacing another job's output): the frames this run
+    /// made, and what the folder held before.
+    pub fn render(
+        &self,
+        ctx: &GpuContext,
+        suite_dir: &Path,
+        force: bool,
+        progress: &dyn Progress,
+    ) -> Result<(usize, FolderState), PipelineError> {
+        let report = run(ctx, &self.job(suite_dir, force), progress)?;
+        Ok((report.made, report.found))
     }
 
     /// Frames drawn and written (by all of a rig's cameras), from the plan, without loading
@@ -221,7 +181,7 @@ impl Sequence {
                 written: frames,
             });
         }
-        if let Sensors::Camera { imu: true, .. } = &self.sensors {
+        if let Sensors::CameraImu { .. } = &self.sensors {
             let frames = rgbd_imu_frame_count(poses, self.rate_hz, speed_up(&self.spec))?;
             return Ok(FrameCounts {
                 rendered: frames,

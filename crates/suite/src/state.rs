@@ -1,10 +1,10 @@
 //! What a sequence's folder holds, read without a GPU and without hashing the frames: a complete
-//! sequence has a manifest whose digest matches its checksum list and that records this
-//! sequence's own command.
+//! sequence has the manifest of the sequence's own job, sealing a checksum list whose files are
+//! all there.
 
 use std::path::Path;
 
-use rslam_core::dataset::{Checksums, Manifest, MANIFEST_FILE, RUN_FILE};
+use rslam_pipeline::Holding;
 use serde::Serialize;
 
 use crate::sequence::Sequence;
@@ -32,37 +32,19 @@ impl SequenceState {
     }
 }
 
+/// What `sequence`'s folder holds, by the rule a run uses for its job ([`rslam_pipeline::Job::holding`]): made
+/// on whichever GPU made it, since every GPU makes the same job (in its own float rounding).
 pub fn inspect(sequence: &Sequence, suite_dir: &Path) -> SequenceState {
-    let dir = sequence.dir(suite_dir);
-    let is_empty = std::fs::read_dir(&dir).map_or(true, |mut entries| entries.next().is_none());
-    if is_empty {
-        return SequenceState::Missing;
+    match sequence.job(suite_dir, false).holding(None) {
+        Ok(Holding::Nothing) => SequenceState::Missing,
+        Ok(Holding::Complete) => SequenceState::Complete,
+        // A run resumes it: it finishes what is missing and seals the folder again.
+        Ok(Holding::Unfinished | Holding::Broken(_)) => SequenceState::Partial,
+        Ok(Holding::OtherJob(what)) => SequenceState::Conflict(format!("holds {what}")),
+        Ok(Holding::Unreadable(e)) => SequenceState::Conflict(e.to_string()),
+        Ok(Holding::NotRslam) => {
+            SequenceState::Conflict("holds files but no rslam.json: not rslam output".into())
+        }
+        Err(e) => SequenceState::Conflict(format!("its job cannot be planned: {e}")),
     }
-    if dir.join(RUN_FILE).is_file() {
-        return SequenceState::Partial;
-    }
-    if !dir.join(MANIFEST_FILE).is_file() {
-        return SequenceState::Conflict("holds files but no rslam.json: not rslam output".into());
-    }
-    match finished_state(sequence, &dir) {
-        Ok(state) => state,
-        Err(reason) => SequenceState::Conflict(reason),
-    }
-}
-
-fn finished_state(sequence: &Sequence, dir: &Path) -> Result<SequenceState, String> {
-    let manifest = Manifest::read(dir).map_err(|e| e.to_string())?;
-    let listed = Checksums::read(dir).map_err(|e| e.to_string())?;
-    if manifest.content_digest != listed.digest() {
-        return Err("rslam.b3sum does not match the manifest's content_digest: damaged".into());
-    }
-    let expected = sequence.command();
-    if manifest.command != expected {
-        return Err(format!(
-            "made by `{}`, the suite now says `{}`",
-            manifest.command.join(" "),
-            expected.join(" ")
-        ));
-    }
-    Ok(SequenceState::Complete)
 }

@@ -3,16 +3,15 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
-use rslam_core::dataset::{DatasetFormat, DepthPng};
+use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
 use rslam_core::limits::{MAX_POSES, MAX_SUITE_SEQUENCES};
 use rslam_core::trajectory_io::ReadOptions;
 use rslam_core::{read_text_file, Intrinsics};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::rig::{check_rig_spec, RigLayout, RIG_NAMES};
-use rslam_pipeline::{PipelineError, Rig};
+use rslam_pipeline::rig::{PRESET_NAMES, RIG_NAMES};
+use rslam_pipeline::{JobPart, PipelineError, Rig, RigPreset, Sensors};
 
-use crate::layout::Layout;
-use crate::sequence::{sequence_seed, Sensors, Sequence};
+use crate::sequence::{sequence_seed, Sequence};
 use crate::shard::Shard;
 use crate::state::{inspect, SequenceState};
 use crate::suite_file::{line_of, SequenceFields, SuiteFile, SUITE_FILE};
@@ -141,7 +140,7 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
         .unwrap_or("replica")
         .parse()
         .map_err(|e| in_row(format!("format: {e}")))?;
-    let (sensors, camera) = sensors(row, layout, &spec).map_err(in_row)?;
+    let (sensors, camera, camera_text) = sensors(row, layout, &spec).map_err(in_row)?;
     let rate_hz = row.rate.unwrap_or_else(|| {
         Intrinsics::preset_rate_hz(row.camera.as_deref().unwrap_or(DEFAULT_CAMERA))
     });
@@ -187,82 +186,82 @@ fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence
         frames: row.frames,
         sensors,
         camera,
+        camera_text,
         rate_hz,
         traj: row.traj.clone(),
     })
 }
 
-/// One camera (`camera`, `depth_png`) in a core layout, or a `rig` in EuRoC's, with the camera
-/// (a rig's cam0).
+/// One camera (`camera`, `depth_png`) in a core layout, that camera with an IMU (`rig =
+/// "rgbd-imu"`, TUM), or a `rig` in EuRoC's, with the camera (a rig's cam0) and the camera as
+/// written; the row's spec checked against them.
 fn sensors(
     row: &SequenceFields,
     layout: Layout,
     spec: &PerturbSpec,
-) -> Result<(Sensors, Intrinsics), String> {
-    let rig = row.rig.as_deref().filter(|name| *name != "rgbd");
-    match (layout, rig) {
-        (Layout::Camera(format), None | Some("rgbd-imu")) => {
-            let imu = rig.is_some();
-            if imu && format != DatasetFormat::Tum {
-                return Err(format!(
-                    "rig rgbd-imu: needs format = \"tum\" (the TUM layout with imu0/ beside it), not {format}"
-                ));
-            }
-            if imu {
-                check_rig_spec(spec, RigLayout::RgbdImu).map_err(|e| match e {
-                    PipelineError::Option { message, .. } => format!("perturb: {message}"),
-                    other => other.to_string(),
-                })?;
-            }
-            let depth_png = match row.depth_png.as_deref() {
-                None => DepthPng::default(),
-                Some(text) => text.parse().map_err(|e| format!("depth_png: {e}"))?,
-            };
-            let camera_text = row.camera.clone().unwrap_or_else(|| DEFAULT_CAMERA.into());
-            let camera = Intrinsics::parse(&camera_text).map_err(|e| format!("camera: {e}"))?;
-            let sensors = Sensors::Camera {
-                format,
-                camera_text,
-                depth_png,
-                imu,
-            };
-            Ok((sensors, camera))
+) -> Result<(Sensors, Intrinsics, Option<String>), String> {
+    let preset = match row.rig.as_deref() {
+        None | Some("rgbd") => RigPreset::Rgbd,
+        Some("rgbd-imu") => RigPreset::RgbdImu,
+        Some(name) => RigPreset::Euroc(Rig::preset(name).map_err(|_| {
+            format!(
+                "rig '{}': expected one of {}",
+                rslam_core::printable(name),
+                PRESET_NAMES.join(", ")
+            )
+        })?),
+    };
+    if let RigPreset::Euroc(_) = preset {
+        let given = [
+            ("camera", row.camera.is_some()),
+            ("depth_png", row.depth_png.is_some()),
+        ];
+        if let Some((key, _)) = given.iter().find(|(_, given)| *given) {
+            return Err(format!(
+                "{key}: a rig has its own cameras (without depth); leave {key} out of its rows and [defaults]"
+            ));
         }
-        (Layout::Euroc, Some(name)) => {
-            let rig = Rig::preset(name).map_err(|_| {
-                format!(
-                    "rig '{}': expected one of {}",
-                    rslam_core::printable(name),
-                    RIG_NAMES.join(", ")
-                )
-            })?;
-            let given = [
-                ("camera", row.camera.is_some()),
-                ("depth_png", row.depth_png.is_some()),
-            ];
-            if let Some((key, _)) = given.iter().find(|(_, given)| *given) {
-                return Err(format!(
-                    "{key}: a rig has its own cameras (without depth); leave {key} out of its rows and [defaults]"
-                ));
-            }
-            check_rig_spec(spec, RigLayout::Euroc).map_err(|e| match e {
-                PipelineError::Option { message, .. } => format!("perturb: {message}"),
-                other => other.to_string(),
-            })?;
-            let cam0 = rig
-                .cameras
-                .first()
-                .ok_or("the rig has no camera")?
-                .intrinsics;
-            Ok((Sensors::Rig(rig), cam0))
+    }
+    let depth_png = match row.depth_png.as_deref() {
+        None => DepthPng::default(),
+        Some(text) => text.parse().map_err(|e| format!("depth_png: {e}"))?,
+    };
+    let sensors = Sensors::new(preset, layout, depth_png).map_err(worded)?;
+    sensors.check_spec(spec).map_err(worded)?;
+    if let Sensors::Rig(rig) = &sensors {
+        let cam0 = rig.cameras.first().ok_or("the rig has no camera")?;
+        return Ok((sensors.clone(), cam0.intrinsics, None));
+    }
+    let camera_text = row.camera.clone().unwrap_or_else(|| DEFAULT_CAMERA.into());
+    let camera = Intrinsics::parse(&camera_text).map_err(|e| format!("camera: {e}"))?;
+    Ok((sensors, camera, Some(camera_text)))
+}
+
+/// A library error in the words of `suite.toml`: the key of the row that sets the part of the
+/// job it names.
+fn worded(error: PipelineError) -> String {
+    match error {
+        PipelineError::Option { part, message } => {
+            let key = match part {
+                JobPart::Spec => "perturb",
+                JobPart::Trajectory => "traj",
+                _ => return format!("{part}: {message}"),
+            };
+            format!("{key}: {message}")
         }
-        (Layout::Euroc, None) => Err(format!(
-            "format euroc: needs rig = one of {} (the EuRoC layout is for rigs)",
-            RIG_NAMES.join(", ")
-        )),
-        (Layout::Camera(format), Some(_)) => Err(format!(
-            "rig: needs format = \"euroc\" (a stereo rig is written in the EuRoC layout), not {format}; with {format}, rig = \"rgbd\" or (tum) \"rgbd-imu\""
-        )),
+        PipelineError::RigLayout { rig, layout } => match (rig.as_str(), layout) {
+            (_, Layout::Euroc) => format!(
+                "format euroc: needs rig = one of {} (the EuRoC layout is for rigs)",
+                RIG_NAMES.join(", ")
+            ),
+            ("rgbd-imu", _) => format!(
+                "rig rgbd-imu: needs format = \"tum\" (the TUM layout with imu0/ beside it), not {layout}"
+            ),
+            _ => format!(
+                "rig: needs format = \"euroc\" (a stereo rig is written in the EuRoC layout), not {layout}; with {layout}, rig = \"rgbd\" or (tum) \"rgbd-imu\""
+            ),
+        },
+        other => other.to_string(),
     }
 }
 
@@ -416,7 +415,7 @@ mod tests {
             ),
             (
                 "format = \"euroc\"\nrig = \"trinocular\"\n",
-                "sequence 'room0__a': rig 'trinocular': expected one of stereo, stereo-imu",
+                "sequence 'room0__a': rig 'trinocular': expected one of rgbd, rgbd-imu, stereo, stereo-imu",
             ),
             (
                 "format = \"euroc\"\nrig = \"stereo\"\ncamera = \"tum\"\n",

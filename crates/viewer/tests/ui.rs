@@ -13,7 +13,7 @@ use rslam_core::trajectory_io::{read_trajectory, write_tum};
 use rslam_core::{Intrinsics, Trajectory};
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{render_dataset, RenderJob, SceneJob, Silent};
+use rslam_pipeline::{run, Job, SceneJob, Sensors, Silent, Source};
 use rslam_viewer::{render_state_for, Session, ViewOptions, ViewSource, ViewerApp};
 
 /// Small frames keep the tests fast; the viewer does not care about the size.
@@ -161,15 +161,19 @@ fn fog_added_in_the_panel_and_its_slider_moved_changes_the_frame() {
 /// A Replica dataset of `frames` frames of room0, made by the pipeline; returns its ground truth.
 fn make_dataset(dir: &Path, frames: usize) -> Trajectory {
     let ctx = context();
-    let job = RenderJob {
-        scene: scene_job(frames),
+    let job = Job {
+        source: Source::Scene {
+            scene: scene_job(frames),
+            sensors: Sensors::Camera {
+                format: DatasetFormat::Replica,
+                depth_png: DepthPng::Fast,
+            },
+        },
         out: dir.to_path_buf(),
-        format: DatasetFormat::Replica,
-        depth_png: DepthPng::Fast,
         force: false,
         command: vec!["test".into()],
     };
-    render_dataset(&ctx, &job, &Silent).unwrap();
+    run(&ctx, &job, &Silent).unwrap();
     read_trajectory(&dir.join("traj.txt"), None)
         .unwrap()
         .trajectory

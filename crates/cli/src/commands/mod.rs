@@ -3,6 +3,7 @@
 pub mod eval;
 mod eval_recon;
 pub mod list;
+mod make;
 pub mod perturb;
 pub mod render;
 mod run_summary;

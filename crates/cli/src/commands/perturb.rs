@@ -4,15 +4,10 @@ use std::process::ExitCode;
 use anyhow::Context;
 use rslam_core::dataset::{DatasetOverrides, DepthPng};
 use rslam_core::Intrinsics;
-use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{
-    image_files, perturb_dataset, perturb_euroc, perturb_images, PerturbDatasetJob,
-    PerturbEurocJob, PerturbImagesJob, PerturbInput,
-};
+use rslam_pipeline::{image_files, Job, PerturbInput, Source};
 
-use super::run_summary::{print_rig_summary, print_summary};
-use crate::progress_bar::ProgressBar;
+use super::make::make;
 
 #[derive(clap::Args)]
 pub struct PerturbArgs {
@@ -72,7 +67,6 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
                     args.input.display()
                 );
             }
-            rslam_pipeline::rig::check_euroc_spec(&spec)?;
             None
         }
         PerturbInput::ImageFolder(_) => Some("a folder of images"),
@@ -84,59 +78,32 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
             args.input.display()
         );
     }
-    let command: Vec<String> = super::typed_command();
-    let ctx = GpuContext::new(&AdapterChoice {
-        name_contains: args.adapter,
-    })?;
-    eprintln!("adapter: {}", ctx.describe());
-    let progress = ProgressBar::new();
-    let (files, single) = match input {
-        PerturbInput::Dataset(root) => {
-            let job = PerturbDatasetJob {
-                input: root,
-                overrides: DatasetOverrides {
-                    camera,
-                    rate_hz: args.rate,
-                },
-                out: args.out,
-                depth_png: args.depth_png.unwrap_or_default(),
-                spec,
-                seed: args.seed,
-                force: args.force,
-                command,
-            };
-            let report = perturb_dataset(&ctx, &job, &progress)?;
-            print_summary(&report, &job.out, &progress)?;
-            return Ok(ExitCode::SUCCESS);
-        }
-        PerturbInput::Euroc(root) => {
-            let job = PerturbEurocJob {
-                input: root,
-                out: args.out,
-                spec,
-                seed: args.seed,
-                force: args.force,
-                command,
-            };
-            let report = perturb_euroc(&ctx, &job, &progress)?;
-            print_rig_summary(&report, &job.out, &progress)?;
-            return Ok(ExitCode::SUCCESS);
-        }
-        PerturbInput::ImageFolder(dir) => (image_files(&dir)?, false),
-        PerturbInput::Image(file) => (vec![file], true),
+    let seed = args.seed;
+    let source = match input {
+        PerturbInput::Dataset(input) => Source::Dataset {
+            input,
+            overrides: DatasetOverrides {
+                camera,
+                rate_hz: args.rate,
+            },
+            depth_png: args.depth_png.unwrap_or_default(),
+            spec,
+            seed,
+        },
+        PerturbInput::Euroc(input) => Source::Euroc { input, spec, seed },
+        PerturbInput::ImageFolder(dir) => Source::Images {
+            files: image_files(&dir)?,
+            spec,
+            seed,
+        },
+        PerturbInput::Image(file) => Source::Image { file, spec, seed },
     };
-    let job = PerturbImagesJob {
-        files,
+    let job = Job {
+        source,
         out: args.out,
-        single,
-        spec,
-        seed: args.seed,
         force: args.force,
-        command,
+        command: super::typed_command(),
     };
-    match perturb_images(&ctx, &job, &progress)? {
-        Some(report) => print_summary(&report, &job.out, &progress)?,
-        None => eprintln!("wrote {}", job.out.display()),
-    }
+    make(&[job], args.adapter)?;
     Ok(ExitCode::SUCCESS)
 }

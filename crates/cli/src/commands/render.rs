@@ -2,17 +2,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
-use rslam_core::dataset::{DatasetFormat, DepthPng};
+use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
 use rslam_core::Intrinsics;
-use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{
-    agent_folders, agent_scene_job, render_dataset, render_euroc, render_rgbd_imu, RenderJob,
-    RigPreset, RigRenderJob, SceneJob,
-};
+use rslam_pipeline::{agent_folders, agent_scene_job, Job, RigPreset, SceneJob, Sensors, Source};
 
-use super::run_summary::{print_rig_summary, print_summary};
-use crate::progress_bar::ProgressBar;
+use super::make::make;
 
 #[derive(clap::Args)]
 pub struct RenderArgs {
@@ -80,12 +75,14 @@ enum OutputFormat {
     Euroc,
 }
 
-/// What the arguments ask for: one camera in a core layout, that camera with an IMU in the TUM
-/// layout, or a rig in EuRoC's.
-enum Job {
-    Camera(RenderJob),
-    RgbdImu(RenderJob),
-    Rig(RigRenderJob),
+impl OutputFormat {
+    fn layout(self) -> Layout {
+        match self {
+            Self::Replica => Layout::Camera(DatasetFormat::Replica),
+            Self::Tum => Layout::Camera(DatasetFormat::Tum),
+            Self::Euroc => Layout::Euroc,
+        }
+    }
 }
 
 /// `--camera` when not given.
@@ -93,43 +90,42 @@ const DEFAULT_CAMERA: &str = "replica";
 
 pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
     let jobs = jobs(&args)?;
-    let ctx = GpuContext::new(&AdapterChoice {
-        name_contains: args.adapter,
-    })?;
-    eprintln!("adapter: {}", ctx.describe());
-    let progress = ProgressBar::new();
-    for job in jobs {
-        match job {
-            Job::Camera(job) => {
-                let report = render_dataset(&ctx, &job, &progress)?;
-                print_summary(&report, &job.out, &progress)?;
-            }
-            Job::RgbdImu(job) => {
-                let report = render_rgbd_imu(&ctx, &job, &progress)?;
-                print_summary(&report, &job.out, &progress)?;
-            }
-            Job::Rig(job) => {
-                let report = render_euroc(&ctx, &job, &progress)?;
-                print_rig_summary(&report, &job.out, &progress)?;
-            }
-        }
-    }
+    make(&jobs, args.adapter)?;
     Ok(ExitCode::SUCCESS)
 }
 
 /// One job, or one per agent with `--agents`.
 fn jobs(args: &RenderArgs) -> anyhow::Result<Vec<Job>> {
     let scene = scene_job(args)?;
-    // Built first so that bad flags are refused before any folder is looked at.
-    let single = job(args, scene.clone(), args.out.clone())?;
-    let Some(count) = args.agents else {
-        return Ok(vec![single]);
+    let preset = match args.rig.as_deref() {
+        Some(name) => RigPreset::by_name(name)?,
+        None => RigPreset::Rgbd,
     };
-    agent_folders(&args.out, count)?
+    if let (RigPreset::Euroc(rig), Some(_)) = (&preset, &args.camera) {
+        anyhow::bail!(
+            "--camera: the '{}' rig has its own cameras; leave --camera out with --rig {0}",
+            rig.name
+        );
+    }
+    // Made first so that bad flags are refused before any folder is looked at.
+    let sensors = Sensors::new(preset, args.format.layout(), args.depth_png)?;
+    let job = |scene: SceneJob, out: PathBuf| Job {
+        source: Source::Scene {
+            scene,
+            sensors: sensors.clone(),
+        },
+        out,
+        force: args.force,
+        command: super::typed_command(),
+    };
+    let Some(count) = args.agents else {
+        return Ok(vec![job(scene, args.out.clone())]);
+    };
+    Ok(agent_folders(&args.out, count)?
         .into_iter()
         .enumerate()
-        .map(|(agent, out)| job(args, agent_scene_job(&scene, agent), out))
-        .collect()
+        .map(|(agent, out)| job(agent_scene_job(&scene, agent), out))
+        .collect())
 }
 
 fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
@@ -149,55 +145,4 @@ fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
         seed: args.seed,
         agent: None,
     })
-}
-
-fn job(args: &RenderArgs, scene: SceneJob, out: PathBuf) -> anyhow::Result<Job> {
-    let preset = args.rig.as_deref().map(RigPreset::by_name).transpose()?;
-    let format = match (args.format, preset) {
-        (OutputFormat::Euroc, Some(RigPreset::Euroc(rig))) => {
-            if args.camera.is_some() {
-                anyhow::bail!(
-                    "--camera: the '{}' rig has its own cameras; leave --camera out with --rig {0}",
-                    rig.name
-                );
-            }
-            return Ok(Job::Rig(RigRenderJob {
-                scene,
-                rig,
-                out,
-                force: args.force,
-                command: super::typed_command(),
-            }));
-        }
-        (OutputFormat::Euroc, _) => anyhow::bail!(
-            "--format euroc: needs --rig stereo|stereo-imu|FILE.toml (the EuRoC layout is for those rigs)"
-        ),
-        (_, Some(RigPreset::Euroc(rig))) => anyhow::bail!(
-            "--rig {}: needs --format euroc (the stereo rigs and rig files are written in the EuRoC layout)",
-            rig.name
-        ),
-        (OutputFormat::Replica, Some(RigPreset::RgbdImu)) => anyhow::bail!(
-            "--rig rgbd-imu: needs --format tum (the TUM layout with imu0/ beside it)"
-        ),
-        (OutputFormat::Tum, Some(RigPreset::RgbdImu)) => {
-            return Ok(Job::RgbdImu(RenderJob {
-                scene,
-                out,
-                format: DatasetFormat::Tum,
-                depth_png: args.depth_png,
-                force: args.force,
-                command: super::typed_command(),
-            }))
-        }
-        (OutputFormat::Replica, None | Some(RigPreset::Rgbd)) => DatasetFormat::Replica,
-        (OutputFormat::Tum, None | Some(RigPreset::Rgbd)) => DatasetFormat::Tum,
-    };
-    Ok(Job::Camera(RenderJob {
-        scene,
-        out,
-        format,
-        depth_png: args.depth_png,
-        force: args.force,
-        command: super::typed_command(),
-    }))
 }

@@ -3,16 +3,40 @@
 use std::path::Path;
 
 use anyhow::Context;
-use rslam_pipeline::{FolderState, RigReport, RunReport};
+use rslam_pipeline::rig::CameraFrames;
+use rslam_pipeline::{FolderState, JobReport, Streams};
 use rslam_suite::{folder_bytes, format_bytes};
 
 use crate::progress_bar::ProgressBar;
 
-pub fn print_summary(report: &RunReport, out: &Path, progress: &ProgressBar) -> anyhow::Result<()> {
+pub fn print_summary(report: &JobReport, out: &Path, progress: &ProgressBar) -> anyhow::Result<()> {
+    match (&report.streams, &report.manifest) {
+        (_, None) => {
+            eprintln!("wrote {}", out.display());
+            Ok(())
+        }
+        (Streams::Frames(frames), Some(_)) => print_frames(*frames, report, out, progress),
+        (
+            Streams::Rig {
+                cameras,
+                imu_samples,
+            },
+            Some(_),
+        ) => print_rig(cameras, *imu_samples, report, out, progress),
+    }
+}
+
+/// The line of one camera's dataset or a folder of images: frames, size, where.
+fn print_frames(
+    frames: usize,
+    report: &JobReport,
+    out: &Path,
+    progress: &ProgressBar,
+) -> anyhow::Result<()> {
     let bytes = folder_bytes(out).with_context(|| format!("size of {}", out.display()))?;
     let size = format!(
         "{} per frame, {} in all",
-        format_bytes(bytes / report.frames.max(1) as u64),
+        format_bytes(bytes / frames.max(1) as u64),
         format_bytes(bytes)
     );
     let out = out.display();
@@ -22,32 +46,32 @@ pub fn print_summary(report: &RunReport, out: &Path, progress: &ProgressBar) -> 
         .unwrap_or_default();
     match report.found {
         FolderState::Complete => eprintln!(
-            "{out} is already complete ({} frames, same job); nothing to do (--force redoes it)",
-            report.frames
+            "{out} is already complete ({frames} frames, same job); nothing to do (--force redoes it)"
         ),
         FolderState::Resume => eprintln!(
-            "resumed {out}: {} source frames made now{rate}, the rest kept; {} frames, {size}",
-            report.made, report.frames
+            "resumed {out}: {} source frames made now{rate}, the rest kept; {frames} frames, {size}",
+            report.made
         ),
-        FolderState::Fresh => eprintln!("wrote {} frames to {out}{rate}: {size}", report.frames),
+        FolderState::Fresh => eprintln!("wrote {frames} frames to {out}{rate}: {size}"),
     }
     Ok(())
 }
 
-/// The line a rig render ends with: frames per camera, IMU samples, where.
-pub fn print_rig_summary(
-    report: &RigReport,
+/// The line of a rig's dataset: frames per camera, IMU samples, where.
+fn print_rig(
+    cameras: &[CameraFrames],
+    imu_samples: usize,
+    report: &JobReport,
     out: &Path,
     progress: &ProgressBar,
 ) -> anyhow::Result<()> {
     let bytes = folder_bytes(out).with_context(|| format!("size of {}", out.display()))?;
-    let mut streams: Vec<String> = report
-        .cameras
+    let mut streams: Vec<String> = cameras
         .iter()
         .map(|c| format!("{} frames from {}", c.frames, c.name))
         .collect();
-    if report.imu_samples > 0 {
-        streams.push(format!("{} IMU samples", report.imu_samples));
+    if imu_samples > 0 {
+        streams.push(format!("{imu_samples} IMU samples"));
     }
     let streams = streams.join(", ");
     let out = out.display();
@@ -60,7 +84,7 @@ pub fn print_rig_summary(
         FolderState::Complete => eprintln!(
             "{out} is already complete ({streams}, same job); nothing to do (--force redoes it)"
         ),
-        FolderState::Resume if report.made == report.cameras.iter().map(|c| c.frames).sum::<usize>() => {
+        FolderState::Resume if report.made == cameras.iter().map(|c| c.frames).sum::<usize>() => {
             eprintln!("started {out} over: wrote {streams} in the EuRoC layout{rate}: {size}")
         }
         FolderState::Resume => eprintln!(

@@ -3,7 +3,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-/// The on-disk layout of a dataset (docs/src/formats.md).
+/// The on-disk layout of a dataset of one RGB-D camera (docs/src/formats.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum DatasetFormat {
@@ -47,5 +47,75 @@ impl FromStr for DatasetFormat {
                 "unknown dataset format '{s}': expected replica or tum"
             )),
         }
+    }
+}
+
+/// Every layout rslam writes a dataset in: the two of one RGB-D camera ([`DatasetFormat`]), and
+/// EuRoC's for a rig of cameras and an IMU (docs/src/formats.md, "EuRoC (ASL) layout").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Layout {
+    /// One RGB-D camera in a core layout (replica, tum).
+    Camera(DatasetFormat),
+    /// A rig's cameras and IMU in the EuRoC (ASL) layout.
+    Euroc,
+}
+
+impl Layout {
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Camera(format) => format.name(),
+            Self::Euroc => "euroc",
+        }
+    }
+
+    /// The file a method reads the camera from, in the dataset folder: the camera's parameters,
+    /// or for a rig ORB-SLAM3's stereo settings (`orbslam3_stereo_inertial.yaml` lies beside it
+    /// when the rig has an IMU).
+    pub fn camera_file(self) -> &'static str {
+        match self {
+            Self::Camera(DatasetFormat::Replica) => "cam_params.json",
+            Self::Camera(DatasetFormat::Tum) => "orbslam3.yaml",
+            Self::Euroc => super::euroc::ORBSLAM3_STEREO_FILE,
+        }
+    }
+}
+
+impl fmt::Display for Layout {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Layout {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "euroc" => Ok(Self::Euroc),
+            _ => s.parse().map(Self::Camera).map_err(|_| {
+                format!("unknown dataset layout '{s}': expected replica, tum or euroc")
+            }),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_read_back_and_each_layout_has_its_camera_file() {
+        for layout in [
+            Layout::Camera(DatasetFormat::Replica),
+            Layout::Camera(DatasetFormat::Tum),
+            Layout::Euroc,
+        ] {
+            assert_eq!(layout.name().parse::<Layout>(), Ok(layout));
+        }
+        assert_eq!(Layout::Euroc.camera_file(), "orbslam3_stereo.yaml");
+        assert_eq!(
+            "kitti".parse::<Layout>(),
+            Err("unknown dataset layout 'kitti': expected replica, tum or euroc".into())
+        );
     }
 }

@@ -27,7 +27,7 @@ pub use codec::{
     read_image_size, read_rgb, read_rgb8, write_rgb_like,
 };
 pub use depth_png::DepthPng;
-pub use layout::DatasetFormat;
+pub use layout::{DatasetFormat, Layout};
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
 pub use no_symlinks::refuse_symlinks;
 pub use orbslam3::rgbd_inertial_settings;

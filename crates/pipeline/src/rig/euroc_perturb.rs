@@ -21,14 +21,14 @@
 //! written 16-bit as 257 × its 8-bit value; the manifest says so. Frames of a camera without
 //! image corruptions are copied byte for byte.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::{
     read_euroc, CameraColour, EurocCameraFrames, EurocDataset, EurocWriter, GROUND_TRUTH_DIR,
     IMU_DIR, MAV_DIR,
 };
-use rslam_core::dataset::DepthPng;
+use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::CoreError;
 use rslam_gpu::GpuContext;
 use rslam_perturb::calibration::CalibrationMode;
@@ -36,32 +36,20 @@ use rslam_perturb::imu::{ImuOrigin, PerturbedImu};
 use rslam_perturb::PerturbSpec;
 
 use super::calibration::PerturbedRig;
-use super::euroc_render::{CameraFrames, RigReport};
+use super::euroc_render::CameraFrames;
 use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
 use super::preset::Rig;
 use super::seeds::camera_seed;
 use super::tum_vi_files::TumViFiles;
+use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
-use crate::output_folder::{self, make_output, FolderState, Written};
+use crate::output_folder::{FolderState, Written};
 use crate::pipeline::Pipeline;
 use crate::plan::{restamping_item, FramePlan, SourceTiming};
 use crate::progress::Progress;
 use crate::sink::{finish_writer, EurocCameraSink};
 use crate::source::RecordedSource;
 use crate::{JobPart, PipelineError};
-
-/// One perturbed copy of a EuRoC dataset.
-pub struct PerturbEurocJob {
-    /// The folder holding `mav0/`, or `mav0/` itself.
-    pub input: PathBuf,
-    pub out: PathBuf,
-    pub spec: PerturbSpec,
-    pub seed: u64,
-    /// Replace whatever rslam output `out` holds.
-    pub force: bool,
-    /// The command as typed, for the manifest.
-    pub command: Vec<String>,
-}
 
 /// Whether `path` is a EuRoC dataset: a folder holding `mav0/`, or `mav0/` itself.
 pub fn is_euroc_input(path: &Path) -> bool {
@@ -227,14 +215,28 @@ fn write_camera(
     Ok(Some(sink))
 }
 
-pub fn perturb_euroc(
-    ctx: &GpuContext,
-    job: &PerturbEurocJob,
-    progress: &dyn Progress,
-) -> Result<RigReport, PipelineError> {
-    output_folder::check_not_input(&job.out, &job.input)?;
-    check_euroc_spec(&job.spec)?;
-    let dataset = read_euroc(&job.input)?;
+/// A EuRoC perturb, planned: the dataset read, its IMU perturbed, the calibration as written.
+pub(crate) struct EurocPerturb<'a> {
+    spec: &'a PerturbSpec,
+    dataset: EurocDataset,
+    perturbed: PerturbedRig,
+    seeds: Vec<u64>,
+    specs: Vec<PerturbSpec>,
+    imu: Option<PerturbedImu>,
+    stamps: Vec<Vec<u64>>,
+    imu_samples: usize,
+    tum_vi: Option<TumViFiles>,
+    manifest: Manifest,
+}
+
+pub(crate) fn plan<'a>(
+    input: &Path,
+    spec: &'a PerturbSpec,
+    seed: u64,
+    command: &[String],
+) -> Result<EurocPerturb<'a>, PipelineError> {
+    check_euroc_spec(spec)?;
+    let dataset = read_euroc(input)?;
     let Some(cam0) = dataset.cameras.first() else {
         return Err(PipelineError::input(
             &dataset.mav_dir,
@@ -248,14 +250,14 @@ pub fn perturb_euroc(
         time_offsets_ns: vec![0; dataset.cameras.len()],
         imu: dataset.imu.as_ref().map(|imu| imu.imu.clone()),
     };
-    let perturbed = PerturbedRig::new(&recorded, &job.spec, job.seed)?;
+    let perturbed = PerturbedRig::new(&recorded, spec, seed)?;
     let seeds: Vec<u64> = (0..dataset.cameras.len())
-        .map(|i| camera_seed(job.seed, i))
+        .map(|i| camera_seed(seed, i))
         .collect();
     let specs: Vec<PerturbSpec> = dataset
         .cameras
         .iter()
-        .map(|c| job.spec.for_camera(&c.camera.name))
+        .map(|c| spec.for_camera(&c.camera.name))
         .collect();
     let cam0_times = times_s(cam0);
     let cam0_plan = FramePlan::recorded(
@@ -267,13 +269,13 @@ pub fn perturb_euroc(
         &specs[0],
         seeds[0],
     );
-    let imu = perturb_recorded_imu(&dataset, &job.spec, job.seed)?;
+    let imu = perturb_recorded_imu(&dataset, spec, seed)?;
     let stamps = dataset
         .cameras
         .iter()
         .map(|c| {
             let times: Vec<u64> = c.frames.iter().map(|f| f.t_ns).collect();
-            camera_stamps(&job.spec, &c.camera.name, &times)
+            camera_stamps(spec, &c.camera.name, &times)
         })
         .collect::<Result<Vec<_>, _>>()?;
     let imu_samples = match (&imu, &dataset.imu) {
@@ -291,7 +293,6 @@ pub fn perturb_euroc(
         None => None,
     };
     let mut extra = serde_json::json!({
-        "adapter": ctx.describe(),
         "layout": if tum_vi.is_some() { "tum-vi" } else { "euroc" },
         "input": "recorded",
         "cameras": dataset.cameras.iter().zip(&seeds).zip(&specs).map(|((c, seed), spec)| serde_json::json!({
@@ -308,7 +309,7 @@ pub fn perturb_euroc(
         "ground_truth_copied": dataset.ground_truth.is_some()
             && !imu.as_ref().is_some_and(|p| p.ground_truth_changed),
     });
-    if !job.spec.calibration.is_empty() {
+    if !spec.calibration.is_empty() {
         extra["calibration"] = perturbed.record(&recorded);
     }
     if let Some(files) = &tum_vi {
@@ -320,45 +321,86 @@ pub fn perturb_euroc(
         );
     }
     let manifest = ManifestParts {
-        command: &job.command,
-        source: job.input.display().to_string(),
+        command,
+        source: input.display().to_string(),
         source_hash: String::new(),
         format: None,
         camera: Some(cam0.camera.intrinsics),
         distortion: None,
         depth_png: DepthPng::default(),
         rate_hz: cam0.camera.rate_hz,
-        seed: job.seed,
-        spec: &job.spec,
+        seed,
+        spec,
         plan: &cam0_plan,
         extra,
     }
     .build()?;
     let manifest = with_imu_report(manifest, imu.as_ref().map(|p| &p.report))?;
-    let cameras: Vec<CameraFrames> = dataset
-        .cameras
-        .iter()
-        .map(|c| CameraFrames {
-            name: c.camera.name.clone(),
-            frames: c.frames.len(),
-        })
-        .collect();
+    Ok(EurocPerturb {
+        spec,
+        dataset,
+        perturbed,
+        seeds,
+        specs,
+        imu,
+        stamps,
+        imu_samples,
+        tum_vi,
+        manifest,
+    })
+}
 
-    let made = make_output(&job.out, manifest, job.force, |found, manifest| {
+impl Planned for EurocPerturb<'_> {
+    fn manifest(&self) -> &Manifest {
+        &self.manifest
+    }
+
+    fn streams(&self) -> Streams {
+        Streams::Rig {
+            cameras: self
+                .dataset
+                .cameras
+                .iter()
+                .map(|c| CameraFrames {
+                    name: c.camera.name.clone(),
+                    frames: c.frames.len(),
+                })
+                .collect(),
+            imu_samples: self.imu_samples,
+        }
+    }
+
+    fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
+        Ok(Box::new(move |out, found, manifest, progress| {
+            self.write(ctx, out, found, manifest, progress)
+        }))
+    }
+}
+
+impl EurocPerturb<'_> {
+    /// Writes the output into the prepared folder `out`, sealing it with `manifest`.
+    fn write(
+        &self,
+        ctx: &GpuContext,
+        out: &Path,
+        found: FolderState,
+        manifest: Manifest,
+        progress: &dyn Progress,
+    ) -> Result<Written, PipelineError> {
+        let (dataset, perturbed) = (&self.dataset, &self.perturbed);
         let (cameras_written, imu_written) = (
             perturbed.written.cameras.clone(),
             perturbed.written.imu.clone(),
         );
-        let writer = Arc::new(match tum_vi {
-            Some(_) => {
-                EurocWriter::open_calibration_elsewhere(&job.out, cameras_written, imu_written)?
-            }
-            None => EurocWriter::open(&job.out, cameras_written, imu_written)?,
+        let writer = Arc::new(match self.tum_vi {
+            Some(_) => EurocWriter::open_calibration_elsewhere(out, cameras_written, imu_written)?,
+            None => EurocWriter::open(out, cameras_written, imu_written)?,
         });
         // A resumed run keeps each camera's frames up to the first one missing; an item that
         // carries a state from frame to frame (auto_exposure) needs every frame made again.
-        let resume = found == FolderState::Resume && job.spec.stateful_item().is_none();
-        let kept = stamps
+        let resume = found == FolderState::Resume && self.spec.stateful_item().is_none();
+        let kept = self
+            .stamps
             .iter()
             .enumerate()
             .map(|(i, times_ns)| match resume {
@@ -366,15 +408,20 @@ pub fn perturb_euroc(
                 false => Ok(0),
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let made = cameras.iter().zip(&kept).map(|(c, k)| c.frames - k).sum();
+        let made = dataset
+            .cameras
+            .iter()
+            .zip(&kept)
+            .map(|(c, k)| c.frames.len() - k)
+            .sum();
         progress.start(made, "perturbing");
         let mut sinks = Vec::new();
         for (i, (((camera, &seed), times_ns), spec)) in dataset
             .cameras
             .iter()
-            .zip(&seeds)
-            .zip(stamps)
-            .zip(&specs)
+            .zip(&self.seeds)
+            .zip(self.stamps.iter().cloned())
+            .zip(&self.specs)
             .enumerate()
         {
             let at = (i, seed, kept[i]);
@@ -387,16 +434,15 @@ pub fn perturb_euroc(
         }
         progress.finish();
 
-        write_sensor_files(&dataset, &perturbed.written, imu.as_ref(), &writer)?;
-        if let Some(files) = &tum_vi {
+        write_sensor_files(dataset, &perturbed.written, self.imu.as_ref(), &writer)?;
+        if let Some(files) = &self.tum_vi {
             files.write(&writer)?;
         }
         Ok(Written {
             made,
             manifest: finish_writer(writer, manifest)?,
         })
-    })?;
-    Ok(RigReport::of(cameras, imu_samples, made))
+    }
 }
 
 #[cfg(test)]

@@ -7,46 +7,33 @@
 //! the spline's valid range, the IMU at its rate. Each camera is its own source, pipeline and
 //! sink on the GPU; frames are read back once and encoded on a worker thread.
 
-use std::path::PathBuf;
+use std::path::Path;
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::{EurocWriter, RadialTangential};
 use rslam_core::dataset::{DepthPng, Manifest};
-use rslam_core::{Distortion, Pose};
+use rslam_core::{Distortion, Pose, SplineSe3};
 use rslam_gpu::GpuContext;
 use rslam_perturb::imu::shift_stamp;
 use rslam_perturb::PerturbSpec;
 
 use super::calibration::{PerturbedRig, PER_FRAME_FILE};
 use super::imu_items::{camera_stamps, with_imu_report};
-use super::imu_stream::imu_and_ground_truth;
+use super::imu_stream::{imu_and_ground_truth, ImuStreams};
 use super::motion::{body_path, camera_poses, motion_spline, nanoseconds, sample_times};
 use super::preset::Rig;
-use super::rig_spec::{check_rig_spec, RigLayout};
 use super::seeds::{camera_seed, imu_seed};
 use crate::agents::record_agent;
+use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
-use crate::output_folder::{make_output, FolderState, Made, Written};
+use crate::output_folder::{FolderState, Written};
 use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
 use crate::progress::Progress;
-use crate::scene_job::SceneJob;
+use crate::scene_job::{ResolvedScene, SceneJob};
 use crate::sink::{finish_writer, EurocCameraSink};
 use crate::source::SceneSource;
 use crate::{JobPart, PipelineError};
-
-/// One rig render.
-pub struct RigRenderJob {
-    /// Scene, path (cam0's), frame count, the path's rate, spec and seed. Its `camera` is not
-    /// used: the rig's cameras are.
-    pub scene: SceneJob,
-    pub rig: Rig,
-    pub out: PathBuf,
-    /// Replace whatever rslam output `out` holds.
-    pub force: bool,
-    /// The command as typed, for the manifest.
-    pub command: Vec<String>,
-}
 
 /// Frames one camera has in the output.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -56,35 +43,8 @@ pub struct CameraFrames {
     pub frames: usize,
 }
 
-/// What a rig render did.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RigReport {
-    pub cameras: Vec<CameraFrames>,
-    /// IMU samples written (0 without an IMU).
-    pub imu_samples: usize,
-    /// What the output folder held when the run began.
-    pub found: FolderState,
-    /// Frames made by this run, all cameras together (fewer than written when it resumed an
-    /// unfinished one, none when the folder was complete).
-    pub made: usize,
-    /// The manifest as written (as found, when the folder was complete already).
-    pub manifest: Manifest,
-}
-
-impl RigReport {
-    pub(crate) fn of(cameras: Vec<CameraFrames>, imu_samples: usize, made: Made) -> Self {
-        Self {
-            cameras,
-            imu_samples,
-            found: made.found,
-            made: made.made,
-            manifest: made.manifest,
-        }
-    }
-}
-
 /// `rig` seen through the spec's lens: every camera's distortion is its coefficients (radtan,
-/// as [`check_rig_spec`] lets through), so that sensor.yaml and ORB-SLAM3's settings state it.
+/// as [`super::check_rig_spec`] lets through), so that sensor.yaml and ORB-SLAM3's settings state it.
 fn through_lens(rig: &Rig, spec: &PerturbSpec) -> Rig {
     let mut rig = rig.clone();
     if let Some(Distortion::Radtan { k1, k2, p1, p2 }) = spec.distortion {
@@ -105,7 +65,7 @@ struct CameraRun {
 
 /// The frames each camera of `rig` gets from a path of `poses` poses evenly spaced at
 /// `path_rate_hz`, played `speed_up` times faster ([`crate::plan::speed_up`]), as
-/// [`render_euroc`] samples them, without the scene (for a plan).
+/// a rig render samples them, without the scene (for a plan).
 pub fn rig_camera_frames(
     rig: &Rig,
     poses: usize,
@@ -125,22 +85,35 @@ pub fn rig_camera_frames(
         .collect())
 }
 
-pub fn render_euroc(
-    ctx: &GpuContext,
-    job: &RigRenderJob,
-    progress: &dyn Progress,
-) -> Result<RigReport, PipelineError> {
-    check_rig_spec(&job.scene.spec, RigLayout::Euroc)?;
-    let rig = &through_lens(&job.rig, &job.scene.spec);
+/// A rig render, planned: the scene loaded, the body's motion, each camera's capture times,
+/// the IMU's readings and the body's ground truth.
+pub(crate) struct RigRender<'a> {
+    scene: &'a SceneJob,
+    /// The rig through the spec's lens.
+    rig: Rig,
+    perturbed: PerturbedRig,
+    resolved: ResolvedScene,
+    spline: SplineSe3,
+    runs: Vec<CameraRun>,
+    streams: ImuStreams,
+    manifest: Manifest,
+}
+
+pub(crate) fn plan<'a>(
+    scene: &'a SceneJob,
+    rig: &Rig,
+    command: &[String],
+) -> Result<RigRender<'a>, PipelineError> {
+    let rig = through_lens(rig, &scene.spec);
     let Some(cam0) = rig.cameras.first() else {
         return Err(PipelineError::option(JobPart::Rig, "the rig has no camera"));
     };
-    let perturbed = PerturbedRig::new(rig, &job.scene.spec, job.scene.seed)?;
-    let resolved = job.scene.resolve()?;
+    let perturbed = PerturbedRig::new(&rig, &scene.spec, scene.seed)?;
+    let resolved = scene.resolve()?;
     let spline = motion_spline(&body_path(
         &resolved.clean.timestamps,
         &resolved.poses,
-        speed_up(&job.scene.spec),
+        speed_up(&scene.spec),
         &cam0.body_from_camera,
     ))?;
     let runs: Vec<CameraRun> = rig
@@ -149,8 +122,8 @@ pub fn render_euroc(
         .enumerate()
         .map(|(i, camera)| CameraRun {
             times_s: sample_times(&spline, camera.rate_hz),
-            seed: camera_seed(job.scene.seed, i),
-            spec: camera_frame_spec(&job.scene.spec, &camera.name),
+            seed: camera_seed(scene.seed, i),
+            spec: camera_frame_spec(&scene.spec, &camera.name),
         })
         .collect();
     let cam0_plan = FramePlan::rendered(
@@ -159,19 +132,18 @@ pub fn render_euroc(
         &runs[0].spec,
         runs[0].seed,
     );
-    let imu_seed = imu_seed(job.scene.seed);
+    let imu_seed = imu_seed(scene.seed);
     let streams = imu_and_ground_truth(
-        &job.scene,
+        scene,
         &rig.name,
         perturbed.actual.imu.as_ref(),
         &spline,
         &runs[0].times_s,
     )?;
     let mut extra = serde_json::json!({
-        "adapter": ctx.describe(),
         "layout": "euroc",
         "rig": rig.name,
-        "path_rate_hz": job.scene.rate_hz,
+        "path_rate_hz": scene.rate_hz,
         "cameras": rig.cameras.iter().zip(&runs).zip(&rig.time_offsets_ns).map(|((c, r), &offset_ns)| {
             let mut camera = serde_json::json!({
                 "name": c.name,
@@ -189,50 +161,91 @@ pub fn render_euroc(
             "seed": imu_seed,
         })),
     });
-    record_agent(&mut extra, &job.scene);
-    if !job.scene.spec.calibration.is_empty() {
-        extra["calibration"] = perturbed.record(rig);
+    record_agent(&mut extra, scene);
+    if !scene.spec.calibration.is_empty() {
+        extra["calibration"] = perturbed.record(&rig);
     }
     let manifest = ManifestParts {
-        command: &job.command,
+        command,
         source: resolved.scene.name.clone(),
         source_hash: resolved.scene.content_hash(),
         format: None,
         camera: Some(cam0.intrinsics),
-        distortion: job.scene.spec.distortion,
+        distortion: scene.spec.distortion,
         depth_png: DepthPng::default(),
         rate_hz: cam0.rate_hz,
-        seed: job.scene.seed,
-        spec: &job.scene.spec,
+        seed: scene.seed,
+        spec: &scene.spec,
         plan: &cam0_plan,
         extra,
     }
     .build()?;
     let manifest = with_imu_report(manifest, streams.report.as_ref())?;
-    let cameras: Vec<CameraFrames> = rig
-        .cameras
-        .iter()
-        .zip(&runs)
-        .map(|(c, r)| CameraFrames {
-            name: c.name.clone(),
-            frames: r.times_s.len(),
-        })
-        .collect();
+    Ok(RigRender {
+        scene,
+        rig,
+        perturbed,
+        resolved,
+        spline,
+        runs,
+        streams,
+        manifest,
+    })
+}
 
-    let made = make_output(&job.out, manifest, job.force, |found, manifest| {
+impl Planned for RigRender<'_> {
+    fn manifest(&self) -> &Manifest {
+        &self.manifest
+    }
+
+    fn streams(&self) -> Streams {
+        Streams::Rig {
+            cameras: self
+                .rig
+                .cameras
+                .iter()
+                .zip(&self.runs)
+                .map(|(c, r)| CameraFrames {
+                    name: c.name.clone(),
+                    frames: r.times_s.len(),
+                })
+                .collect(),
+            imu_samples: self.streams.imu.len(),
+        }
+    }
+
+    fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
+        Ok(Box::new(move |out, found, manifest, progress| {
+            self.write(ctx, out, found, manifest, progress)
+        }))
+    }
+}
+
+impl RigRender<'_> {
+    /// Writes the output into the prepared folder `out`, sealing it with `manifest`.
+    fn write(
+        &self,
+        ctx: &GpuContext,
+        out: &Path,
+        found: FolderState,
+        manifest: Manifest,
+        progress: &dyn Progress,
+    ) -> Result<Written, PipelineError> {
+        let (rig, runs, perturbed, spec) =
+            (&self.rig, &self.runs, &self.perturbed, &self.scene.spec);
         let writer = Arc::new(EurocWriter::open(
-            &job.out,
+            out,
             perturbed.written.cameras.clone(),
             perturbed.written.imu.clone(),
         )?);
         // A resumed run keeps each camera's frames up to the first one missing; an item that
         // carries a state from frame to frame (auto_exposure) needs every frame made again.
-        let resume = found == FolderState::Resume && job.scene.spec.stateful_item().is_none();
+        let resume = found == FolderState::Resume && spec.stateful_item().is_none();
         let mut stamps = Vec::new();
         let mut kept = Vec::new();
-        for (i, (camera, run)) in rig.cameras.iter().zip(&runs).enumerate() {
+        for (i, (camera, run)) in rig.cameras.iter().zip(runs).enumerate() {
             let times_ns = clock_stamps(rig, i, &run.times_s)?;
-            let times_ns = camera_stamps(&job.scene.spec, &camera.name, &times_ns)?;
+            let times_ns = camera_stamps(spec, &camera.name, &times_ns)?;
             kept.push(match resume {
                 true => writer.keep_written_frames(i, &times_ns)?,
                 false => 0,
@@ -246,10 +259,13 @@ pub fn render_euroc(
             .sum();
         progress.start(made, "rendering");
         let mut sinks = Vec::new();
-        for (i, ((camera, run), times_ns)) in rig.cameras.iter().zip(&runs).zip(stamps).enumerate()
-        {
-            let poses = camera_poses(&spline, |k| perturbed.body_from_camera(i, k), &run.times_s)?;
-            let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
+        for (i, ((camera, run), times_ns)) in rig.cameras.iter().zip(runs).zip(stamps).enumerate() {
+            let poses = camera_poses(
+                &self.spline,
+                |k| perturbed.body_from_camera(i, k),
+                &run.times_s,
+            )?;
+            let mut source = SceneSource::new(ctx, &self.resolved.scene, camera.intrinsics, poses)?;
             source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
             let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
             if i == 0 {
@@ -268,15 +284,14 @@ pub fn render_euroc(
         progress.finish();
 
         if rig.imu.is_some() {
-            writer.write_imu(&streams.imu)?;
+            writer.write_imu(&self.streams.imu)?;
         }
-        writer.write_ground_truth(&streams.ground_truth)?;
+        writer.write_ground_truth(&self.streams.ground_truth)?;
         Ok(Written {
             made,
             manifest: finish_writer(writer, manifest)?,
         })
-    })?;
-    Ok(RigReport::of(cameras, streams.imu.len(), made))
+    }
 }
 
 /// Camera `index`'s stamps of frames captured at `times_s`: on its own clock, which runs ahead of

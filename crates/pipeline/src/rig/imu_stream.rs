@@ -12,7 +12,7 @@ use crate::scene_job::SceneJob;
 use crate::PipelineError;
 
 /// The rows of imu0/data.csv and of the ground truth, IMU items applied.
-pub(super) struct Streams {
+pub(super) struct ImuStreams {
     pub imu: Vec<ImuRow>,
     pub ground_truth: Vec<GroundTruthState>,
     /// What the IMU items drew, for the manifest.
@@ -29,12 +29,12 @@ pub(super) fn imu_and_ground_truth(
     imu: Option<&EurocImu>,
     spline: &SplineSe3,
     cam0_times: &[f64],
-) -> Result<Streams, PipelineError> {
+) -> Result<ImuStreams, PipelineError> {
     let spec = &scene.spec;
     let imu_seed = imu_seed(scene.seed);
     let Some(imu) = imu else {
         refuse_imu_items(spec, &format!("the '{rig_name}' rig"))?;
-        return Ok(Streams {
+        return Ok(ImuStreams {
             imu: Vec::new(),
             ground_truth: ground_truth_rows(spline, &[], cam0_times)?,
             report: None,
@@ -44,7 +44,7 @@ pub(super) fn imu_and_ground_truth(
     let rows = imu_rows(&samples)?;
     let ground_truth = ground_truth_rows(spline, &samples, cam0_times)?;
     if spec.imu.is_empty() {
-        return Ok(Streams {
+        return Ok(ImuStreams {
             imu: rows,
             ground_truth,
             report: None,
@@ -58,7 +58,7 @@ pub(super) fn imu_and_ground_truth(
         ImuOrigin::Synthesised,
         scene.seed,
     )?;
-    Ok(Streams {
+    Ok(ImuStreams {
         imu: perturbed.samples,
         ground_truth: perturbed.ground_truth,
         report: Some(perturbed.report),

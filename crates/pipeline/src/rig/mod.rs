@@ -12,11 +12,11 @@
 //! - [`preset`]: the rig presets ([`RigPreset`]): `rgbd` (the one RGB-D camera of a render
 //!   without a rig), `rgbd-imu` ([`Rig::rgbd_imu`]), `stereo` and `stereo-imu` ([`Rig::stereo`],
 //!   [`Rig::stereo_imu`]).
-//! - [`euroc_render`]: [`render_euroc`], the run of a rig in the EuRoC layout.
-//! - [`rgbd_imu_render`]: [`render_rgbd_imu`], the `rgbd-imu` run: the TUM layout plus the IMU's
-//!   files as EuRoC has them and ORB-SLAM3's RGB-D-inertial settings.
+//! - [`euroc_render`]: a rig in the EuRoC layout, planned for a [`crate::Job`].
+//! - [`rgbd_imu_render`]: the `rgbd-imu` rig, planned: the TUM layout plus the IMU's files as
+//!   EuRoC has them and ORB-SLAM3's RGB-D-inertial settings.
 //! - [`rgbd_imu_perturb`]: the inertial files an `rgbd-imu` output's perturbed copy keeps.
-//! - [`euroc_perturb`]: [`perturb_euroc`], a recorded EuRoC dataset (MH_01_easy, …) copied with
+//! - [`euroc_perturb`]: a recorded EuRoC dataset (MH_01_easy, …) copied with
 //!   every camera's frames corrupted (image corruptions) and its IMU perturbed (IMU items); also
 //!   TUM-VI's EuRoC-style export, whose own files (`dso/`, `mocap0/`) [`tum_vi_files`] keeps.
 //!
@@ -47,12 +47,12 @@ mod seeds;
 mod tum_vi_files;
 
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
-pub use euroc_perturb::{check_euroc_spec, is_euroc_input, perturb_euroc, PerturbEurocJob};
-pub use euroc_render::{render_euroc, rig_camera_frames, CameraFrames, RigRenderJob, RigReport};
+pub use euroc_perturb::{check_euroc_spec, is_euroc_input};
+pub use euroc_render::{rig_camera_frames, CameraFrames};
 pub use imu_items::{refuse_imu_items, with_imu_report};
 pub use preset::{
     d435i_imu, Rig, RigPreset, EUROC_CAM0_INTRINSICS, PRESET_NAMES, RIG_NAMES, STEREO_BASELINE_M,
 };
-pub use rgbd_imu_render::{render_rgbd_imu, rgbd_imu_frame_count, ORBSLAM3_RGBD_INERTIAL_FILE};
+pub use rgbd_imu_render::{rgbd_imu_frame_count, ORBSLAM3_RGBD_INERTIAL_FILE};
 pub use rig_spec::{check_rig_spec, RigLayout};
 pub use seeds::{camera_seed, imu_seed};

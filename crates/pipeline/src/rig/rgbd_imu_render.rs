@@ -11,27 +11,27 @@
 //! pose at each frame's capture time; under `cam_imu_offset` the frames' stamps move and it does
 //! not (its clock is the IMU's, as the body's ground truth).
 
-use rslam_core::dataset::euroc::inertial_files;
-use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat};
-use rslam_core::{SplineSe3, Trajectory};
+use rslam_core::dataset::euroc::{inertial_files, EurocCamera};
+use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat, DepthPng, Manifest};
+use rslam_core::{Pose, SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
+use rslam_perturb::PerturbSpec;
 
 use super::calibration::{PerturbedRig, PER_FRAME_FILE};
 use super::imu_items::{camera_stamps, with_imu_report};
 use super::imu_stream::imu_and_ground_truth;
 use super::motion::{body_path, camera_poses, motion_spline, nanoseconds, sample_times};
 use super::preset::Rig;
-use super::rig_spec::{check_rig_spec, RigLayout};
 use super::seeds::imu_seed;
 use crate::agents::record_agent;
-use crate::dataset_run::{write_dataset, DatasetOutput, RunReport};
+use crate::dataset_run::{write_dataset, DatasetOutput};
+use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
 use crate::plan::{self, camera_frame_spec, FramePlan, SourceTiming};
-use crate::progress::Progress;
-use crate::render::RenderJob;
+use crate::scene_job::{ResolvedScene, SceneJob};
 use crate::source::SceneSource;
-use crate::{JobPart, PipelineError};
+use crate::PipelineError;
 
 /// ORB-SLAM3 v1.0 RGB-D-inertial settings of the `rgbd-imu` rig, in the dataset root.
 pub const ORBSLAM3_RGBD_INERTIAL_FILE: &str = "orbslam3_rgbd_inertial.yaml";
@@ -70,26 +70,32 @@ pub fn rgbd_imu_frame_count(
     Ok(frame_times(&spline, &rig).len())
 }
 
-/// Renders `job` (its format must be TUM) with [`Rig::rgbd_imu`] of its camera and rate. Items
-/// are those of a rig ([`check_rig_spec`]); IMU items, `cam_imu_offset` and the calibration
+/// An `rgbd-imu` render, planned: the scene loaded, the motion sampled by the camera and the
+/// IMU, the frame plan made and the inertial files written in memory.
+pub(crate) struct RgbdImuRender<'a> {
+    scene: &'a SceneJob,
+    resolved: ResolvedScene,
+    camera: EurocCamera,
+    frame_spec: PerturbSpec,
+    plan: FramePlan,
+    poses: Vec<Pose>,
+    ground_truth: Trajectory,
+    sensor_files: Vec<(String, String)>,
+    manifest: Manifest,
+}
+
+/// Plans `scene` seen by [`Rig::rgbd_imu`] of its camera and rate, in the TUM layout. Items
+/// are those of a rig ([`super::check_rig_spec`], checked by the job); IMU items, `cam_imu_offset` and the calibration
 /// items of `cam0` and `imu0` apply. An unfinished output of the same job is resumed frame by
 /// frame, as a one-camera render is.
-pub fn render_rgbd_imu(
-    ctx: &GpuContext,
-    job: &RenderJob,
-    progress: &dyn Progress,
-) -> Result<RunReport, PipelineError> {
-    if job.format != DatasetFormat::Tum {
-        return Err(PipelineError::option(
-            JobPart::Rig,
-            "'rgbd-imu': needs the TUM layout (with imu0/ beside it)",
-        ));
-    }
-    let scene = &job.scene;
+pub(crate) fn plan<'a>(
+    scene: &'a SceneJob,
+    depth_png: DepthPng,
+    command: &[String],
+) -> Result<RgbdImuRender<'a>, PipelineError> {
     let spec = &scene.spec;
-    check_rig_spec(spec, RigLayout::RgbdImu)?;
     let rig = Rig::rgbd_imu(scene.camera, scene.rate_hz);
-    let camera = &rig.cameras[0];
+    let camera = rig.cameras[0].clone();
     let frame_spec = camera_frame_spec(spec, &camera.name);
     let perturbed = PerturbedRig::new(&rig, spec, scene.seed)?;
     let resolved = scene.resolve()?;
@@ -113,7 +119,7 @@ pub fn render_rgbd_imu(
         .collect::<Result<Vec<_>, _>>()?;
     let stamps_ns = camera_stamps(spec, &camera.name, &times_ns)?;
     let stamps_s: Vec<f64> = stamps_ns.iter().map(|&t| t as f64 * 1e-9).collect();
-    let plan = FramePlan::recorded(
+    let frame_plan = FramePlan::recorded(
         &SourceTiming {
             rgb_times: &stamps_s,
             depth_offsets: &vec![0.0; stamps_s.len()],
@@ -129,7 +135,6 @@ pub fn render_rgbd_imu(
     );
 
     let mut extra = serde_json::json!({
-        "adapter": ctx.describe(),
         "rig": rig.name,
         "path_rate_hz": scene.rate_hz,
         "imu": rig.imu.as_ref().map(|imu| serde_json::json!({
@@ -142,17 +147,17 @@ pub fn render_rgbd_imu(
         extra["calibration"] = perturbed.record(&rig);
     }
     let manifest = ManifestParts {
-        command: &job.command,
+        command,
         source: resolved.scene.name.clone(),
         source_hash: resolved.scene.content_hash(),
         format: Some(DatasetFormat::Tum),
         camera: Some(camera.intrinsics),
         distortion: None,
-        depth_png: job.depth_png,
+        depth_png,
         rate_hz: camera.rate_hz,
         seed: scene.seed,
         spec,
-        plan: &plan,
+        plan: &frame_plan,
         extra,
     }
     .build()?;
@@ -175,21 +180,50 @@ pub fn render_rgbd_imu(
             ),
         ));
     }
-
-    let mut source = SceneSource::new(ctx, &resolved.scene, camera.intrinsics, poses)?;
-    source.set_sensor(ctx, &frame_spec, camera.rate_hz)?;
-    let mut pipeline = Pipeline::new(ctx, source, &frame_spec, scene.seed)?;
-    let output = DatasetOutput {
-        out: &job.out,
-        format: DatasetFormat::Tum,
-        camera: camera.intrinsics,
-        force: job.force,
-        plan: &plan,
-        ground_truth: &ground_truth,
-        manifest,
+    Ok(RgbdImuRender {
+        scene,
+        resolved,
+        camera,
+        frame_spec,
+        plan: frame_plan,
+        poses,
+        ground_truth,
         sensor_files,
-    };
-    write_dataset(ctx, &mut pipeline, output, progress, "rendering")
+        manifest,
+    })
+}
+
+impl Planned for RgbdImuRender<'_> {
+    fn manifest(&self) -> &Manifest {
+        &self.manifest
+    }
+
+    fn streams(&self) -> Streams {
+        Streams::Frames(self.plan.len())
+    }
+
+    fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
+        let camera = &self.camera;
+        let mut source = SceneSource::new(
+            ctx,
+            &self.resolved.scene,
+            camera.intrinsics,
+            self.poses.clone(),
+        )?;
+        source.set_sensor(ctx, &self.frame_spec, camera.rate_hz)?;
+        let mut pipeline = Pipeline::new(ctx, source, &self.frame_spec, self.scene.seed)?;
+        Ok(Box::new(move |out, _found, manifest, progress| {
+            let output = DatasetOutput {
+                out,
+                format: DatasetFormat::Tum,
+                camera: camera.intrinsics,
+                plan: &self.plan,
+                ground_truth: &self.ground_truth,
+                sensor_files: self.sensor_files.clone(),
+            };
+            write_dataset(ctx, &mut pipeline, output, manifest, progress, "rendering")
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -17,11 +17,11 @@
 
 use std::path::{Path, PathBuf};
 
+use rslam_core::dataset::Layout;
 use rslam_core::limits::MAX_REPEATS;
 use rslam_core::read_text_file;
 use serde::Deserialize;
 
-use crate::layout::Layout;
 use crate::suite_file::line_of;
 use crate::SuiteError;
 

@@ -114,7 +114,7 @@ fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Result<(), Suit
                 "--methods",
                 format!(
                     "method '{}' reads the {} layout but {} sequence(s) of the suite are {} (e.g. {}): make the suite with {}",
-                    method.name, method.reads, other.len(), first.layout(), first.name, method.reads.how_to_make()
+                    method.name, method.reads, other.len(), first.layout(), first.name, crate::layout::how_to_make(method.reads)
                 ),
             ));
         }
