@@ -237,6 +237,38 @@ fn status_names_conflicts_and_run_leaves_them_alone_unless_forced() {
     assert_eq!(manifest.perturbation, "fog:2");
 }
 
+/// The suite asks the job's rule whether a sequence is finished: one whose listed file went
+/// missing is partial, not complete, and the next run makes that file again, to the same bytes.
+#[test]
+fn a_sequence_missing_a_listed_file_is_partial_and_the_next_run_restores_it() {
+    let ws = Workspace::new();
+    suite_in(
+        &ws,
+        &format!(
+            "[[sequence]]\nname = \"room0__x\"\nscene = \"room0\"\nframes = 3\ncamera = \"{SMALL_CAMERA}\"\nperturb = \"fog:1\"\n"
+        ),
+    );
+    ws.rslam(&["suite", "run", "suite"]).success();
+    let dir = ws.path("suite/datasets/room0__x");
+    let made = tree(&dir);
+    std::fs::remove_file(dir.join("results/frame000001.jpg")).unwrap();
+    let status = ws.rslam(&["suite", "status", "suite"]);
+    assert_eq!(status.output.status.code(), Some(1), "{}", status.stdout());
+    assert!(
+        status.stdout().contains("0 complete, 1 partial"),
+        "{}",
+        status.stdout()
+    );
+    let resumed = ws.rslam(&["suite", "run", "suite"]);
+    resumed.success();
+    assert!(
+        resumed.stderr().contains("room0__x: resumed"),
+        "{}",
+        resumed.stderr()
+    );
+    assert_eq!(tree(&dir), made, "the same bytes as the first run");
+}
+
 #[test]
 fn a_suite_that_cannot_fit_is_refused_before_anything_is_written() {
     let ws = Workspace::new();

@@ -21,7 +21,7 @@ use crate::output_folder::{self, make_output, FolderState, Holding, Written};
 use crate::perturb_dataset::RecordedDataset;
 use crate::progress::Progress;
 use crate::rig::{CameraFrames, Rig, RigLayout, RigPreset};
-use crate::scene_job::SceneJob;
+use crate::scene_job::{SceneCache, SceneJob};
 use crate::{perturb_dataset, perturb_images, render, rig, PipelineError};
 
 /// What to make, and where.
@@ -194,6 +194,11 @@ impl Job {
     /// Plans the job on the CPU: reads or loads its source, refuses what its sensors and layout
     /// cannot take, makes the poses, frame plan and IMU streams, and the manifest.
     pub fn plan(&self) -> Result<PlannedJob<'_>, PipelineError> {
+        self.plan_with(&SceneCache::default())
+    }
+
+    /// Like [`Job::plan`], a scene taken from `scenes` (loaded there on first use).
+    pub fn plan_with(&self, scenes: &SceneCache) -> Result<PlannedJob<'_>, PipelineError> {
         let command = &self.command;
         let planned: Box<dyn Planned + '_> = match &self.source {
             Source::Image { spec, .. } => {
@@ -207,12 +212,14 @@ impl Job {
                 sensors.check_spec(&scene.spec)?;
                 match sensors {
                     Sensors::Camera { format, depth_png } => {
-                        Box::new(render::plan(scene, *format, *depth_png, command)?)
+                        Box::new(render::plan(scene, *format, *depth_png, command, scenes)?)
                     }
-                    Sensors::CameraImu { depth_png } => {
-                        Box::new(rig::rgbd_imu_render::plan(scene, *depth_png, command)?)
+                    Sensors::CameraImu { depth_png } => Box::new(rig::rgbd_imu_render::plan(
+                        scene, *depth_png, command, scenes,
+                    )?),
+                    Sensors::Rig(rig) => {
+                        Box::new(rig::euroc_render::plan(scene, rig, command, scenes)?)
                     }
-                    Sensors::Rig(rig) => Box::new(rig::euroc_render::plan(scene, rig, command)?),
                 }
             }
             Source::Dataset {
@@ -248,12 +255,16 @@ impl Job {
     /// ([`output_folder::holding`]); the job is planned only when the folder holds a record to
     /// compare it with. Without a GPU at hand (`adapter` `None`) an output counts as this job's
     /// when it is this job's on the GPU that made it.
-    pub fn holding(&self, adapter: Option<&str>) -> Result<Holding, PipelineError> {
+    pub fn holding(
+        &self,
+        adapter: Option<&str>,
+        scenes: &SceneCache,
+    ) -> Result<Holding, PipelineError> {
         let adapter = match adapter {
             Some(adapter) => adapter.to_string(),
             None => recorded_adapter(&self.out).unwrap_or_default(),
         };
-        output_folder::holding(&self.out, || match &self.plan()?.planned {
+        output_folder::holding(&self.out, || match &self.plan_with(scenes)?.planned {
             Some(planned) => Ok(PlannedJob::manifest_on(planned.as_ref(), &adapter)),
             None => Err(PipelineError::output(
                 &self.out,

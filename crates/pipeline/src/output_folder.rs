@@ -86,8 +86,9 @@ pub enum Holding {
     /// This job finished here once, but `why` (files it listed are gone, its checksum list was
     /// changed): a run makes what is missing and seals it again.
     Broken(String),
-    /// Another job's output, finished or not: what it is and how it differs from this job.
-    OtherJob(String),
+    /// Another job's output: `finished` or an unfinished run, `what` it is and how it differs
+    /// from this job.
+    OtherJob { finished: bool, what: String },
     /// An rslam record (`rslam.json`, `rslam.run.json`) that cannot be read.
     Unreadable(CoreError),
     /// Files, but no rslam record: not rslam's output.
@@ -104,10 +105,10 @@ pub fn holding(
     if !root.exists() || is_empty(root)? {
         return Ok(Holding::Nothing);
     }
-    let (record, what) = if root.join(RUN_FILE).is_file() {
-        (RUN_FILE, "an unfinished run")
+    let (record, finished) = if root.join(RUN_FILE).is_file() {
+        (RUN_FILE, false)
     } else if root.join(MANIFEST_FILE).is_file() {
-        (MANIFEST_FILE, "the finished output")
+        (MANIFEST_FILE, true)
     } else {
         return Ok(Holding::NotRslam);
     };
@@ -116,10 +117,13 @@ pub fn holding(
         Err(e) => return Ok(Holding::Unreadable(e)),
     };
     let job = job()?;
-    Ok(match (earlier.job() == job.job(), record) {
-        (false, _) => Holding::OtherJob(describe_other(&earlier, &job, what)),
-        (true, RUN_FILE) => Holding::Unfinished,
-        (true, _) => match sealed_files(root, &earlier) {
+    Ok(match (earlier.job() == job.job(), finished) {
+        (false, _) => Holding::OtherJob {
+            finished,
+            what: describe_other(&earlier, &job, finished),
+        },
+        (true, false) => Holding::Unfinished,
+        (true, true) => match sealed_files(root, &earlier) {
             Ok(()) => Holding::Complete,
             Err(why) => Holding::Broken(why),
         },
@@ -145,10 +149,10 @@ fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, Pipe
                 .map_err(|e| CoreError::io(root.join(MANIFEST_FILE), e))?;
             FolderState::Resume
         }
-        Holding::OtherJob(holds) => {
+        Holding::OtherJob { what, .. } => {
             return Err(PipelineError::OtherJob {
                 path: root.to_path_buf(),
-                holds,
+                holds: what,
             })
         }
         Holding::Unreadable(e) => return Err(e.into()),
@@ -179,7 +183,11 @@ fn finish(root: &Path) -> Result<(), PipelineError> {
 
 /// Another job's record, as an error or the suite names it: its command, perturbation, seed and
 /// the fields in which it differs from `job`.
-fn describe_other(earlier: &Manifest, job: &Manifest, what: &str) -> String {
+fn describe_other(earlier: &Manifest, job: &Manifest, finished: bool) -> String {
+    let what = match finished {
+        true => "the finished output",
+        false => "an unfinished run",
+    };
     format!(
         "{what} of another job (`{}`, perturbation '{}', seed {}; differs in {})",
         earlier.command.join(" "),

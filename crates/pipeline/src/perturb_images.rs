@@ -20,7 +20,7 @@ use crate::encoder_pool::EncoderPool;
 use crate::frame_loop::FrameRun;
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
-use crate::output_folder::{FolderState, Written};
+use crate::output_folder::Written;
 use crate::plan::{restamps, FramePlan};
 use crate::progress::Progress;
 use crate::upload_ahead::UploadAhead;
@@ -187,49 +187,35 @@ impl Planned for ImagesPerturb<'_> {
     }
 
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
-        Ok(Box::new(move |out, found, manifest, progress| {
-            self.write(ctx, out, found, manifest, progress)
+        Ok(Box::new(move |out, _found, manifest, progress| {
+            let names = &self.names;
+            // As in a dataset run: a stateful item's frames follow from the ones before them.
+            let redo_all = self.spec.stateful_item().is_some();
+            let missing: Vec<usize> = (0..names.len())
+                .filter(|&i| redo_all || !out.join(&names[i]).is_file())
+                .collect();
+            let content = Arc::new(ContentWriter::new(out));
+            let destination = Destination::Folder {
+                content: content.clone(),
+                names: Arc::new(names.clone()),
+            };
+            run_images(
+                ctx,
+                self.files,
+                self.spec,
+                self.seed,
+                &missing,
+                &destination,
+                progress,
+            )?;
+            drop(destination);
+            let content = Arc::try_unwrap(content)
+                .map_err(|_| PipelineError::Worker("image writer still shared".into()))?;
+            Ok(Written {
+                made: missing.len(),
+                manifest: content.finish(manifest)?,
+            })
         }))
-    }
-}
-
-impl ImagesPerturb<'_> {
-    /// Writes the output into the prepared folder `out`, sealing it with `manifest`.
-    fn write(
-        &self,
-        ctx: &GpuContext,
-        out: &Path,
-        _found: FolderState,
-        manifest: Manifest,
-        progress: &dyn Progress,
-    ) -> Result<Written, PipelineError> {
-        let names = &self.names;
-        // As in a dataset run: a stateful item's frames follow from the ones before them.
-        let redo_all = self.spec.stateful_item().is_some();
-        let missing: Vec<usize> = (0..names.len())
-            .filter(|&i| redo_all || !out.join(&names[i]).is_file())
-            .collect();
-        let content = Arc::new(ContentWriter::new(out));
-        let destination = Destination::Folder {
-            content: content.clone(),
-            names: Arc::new(names.clone()),
-        };
-        run_images(
-            ctx,
-            self.files,
-            self.spec,
-            self.seed,
-            &missing,
-            &destination,
-            progress,
-        )?;
-        drop(destination);
-        let content = Arc::try_unwrap(content)
-            .map_err(|_| PipelineError::Worker("image writer still shared".into()))?;
-        Ok(Written {
-            made: missing.len(),
-            manifest: content.finish(manifest)?,
-        })
     }
 }
 

@@ -10,7 +10,7 @@ use crate::dataset_run::{write_dataset, DatasetOutput};
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
-use crate::scene_job::{ResolvedScene, SceneJob};
+use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
 use crate::source::SceneSource;
 use crate::PipelineError;
 
@@ -28,15 +28,16 @@ pub(crate) fn plan<'a>(
     format: DatasetFormat,
     depth_png: DepthPng,
     command: &[String],
+    scenes: &SceneCache,
 ) -> Result<CameraRender<'a>, PipelineError> {
-    let resolved = scene.resolve()?;
+    let resolved = scene.resolve_in(scenes)?;
     let ground_truth = resolved.plan.ground_truth(&resolved.poses);
     let mut extra = serde_json::json!({});
     record_agent(&mut extra, scene);
     let manifest = ManifestParts {
         command,
         source: resolved.scene.name.clone(),
-        source_hash: resolved.scene.content_hash(),
+        source_hash: resolved.source_hash().to_string(),
         format: Some(format),
         camera: Some(scene.camera),
         distortion: scene.spec.distortion,

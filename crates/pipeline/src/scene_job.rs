@@ -2,7 +2,9 @@
 //! viewer shows. Resolving it loads the mesh, reads the path, deviates the poses (`rot`, `trans`)
 //! and makes the frame plan (`fast`, `misalign`, severities).
 
+use std::collections::HashMap;
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use rslam_core::trajectory_io::read_trajectory;
 use rslam_core::{Intrinsics, Pose};
@@ -29,26 +31,69 @@ pub struct SceneJob {
     pub agent: Option<usize>,
 }
 
+/// A loaded scene and its content hash, hashed on first use (the viewer never needs it).
+type Loaded = (Arc<Scene>, Arc<OnceLock<String>>);
+
+/// Scenes loaded once, each hashed at most once, for every job resolved with this cache: a
+/// suite plans hundreds of jobs over a few scenes.
+#[derive(Default)]
+pub struct SceneCache {
+    loaded: Mutex<HashMap<String, Loaded>>,
+}
+
+impl SceneCache {
+    /// The scene `name_or_path` ([`load_scene`]), loaded on first use.
+    fn load(&self, name_or_path: &str) -> Result<Loaded, PipelineError> {
+        let hit = self.lock().get(name_or_path).cloned();
+        if let Some(hit) = hit {
+            return Ok(hit);
+        }
+        let loaded = (Arc::new(load_scene(name_or_path)?), Arc::default());
+        self.lock().insert(name_or_path.to_string(), loaded.clone());
+        Ok(loaded)
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, HashMap<String, Loaded>> {
+        // A panic elsewhere cannot leave a half-inserted entry: the map stays usable.
+        self.loaded
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+    }
+}
+
 /// A [`SceneJob`] made concrete: the mesh, one (deviated) pose per source frame, the plan.
 pub struct ResolvedScene {
-    pub scene: Scene,
+    pub scene: Arc<Scene>,
+    hash: Arc<OnceLock<String>>,
     /// The path as given, at the job's rate, before any deviation.
     pub clean: rslam_core::Trajectory,
     pub poses: Vec<Pose>,
     pub plan: FramePlan,
 }
 
+impl ResolvedScene {
+    /// The scene's content hash: the manifest's `source_hash`.
+    pub fn source_hash(&self) -> &str {
+        self.hash.get_or_init(|| self.scene.content_hash())
+    }
+}
+
 impl SceneJob {
     pub fn resolve(&self) -> Result<ResolvedScene, PipelineError> {
+        self.resolve_in(&SceneCache::default())
+    }
+
+    /// Like [`SceneJob::resolve`], the scene taken from `scenes` (loaded there on first use).
+    pub fn resolve_in(&self, scenes: &SceneCache) -> Result<ResolvedScene, PipelineError> {
         if !(self.rate_hz.is_finite() && self.rate_hz > 0.0) {
             return Err(PipelineError::option(
                 JobPart::Rate,
                 format!("{}: expected a positive number of Hz", self.rate_hz),
             ));
         }
-        let scene = load_scene(&self.scene)?;
-        let clean = self.camera_path(&scene)?;
-        self.resolve_path(scene, clean)
+        let loaded = scenes.load(&self.scene)?;
+        let clean = self.camera_path(&loaded.0)?;
+        self.resolve_path(loaded, clean)
     }
 
     /// Like [`SceneJob::resolve`], along `poses` (camera-to-world, one per frame at `rate_hz`)
@@ -66,16 +111,21 @@ impl SceneJob {
                 "expected at least one pose",
             ));
         }
-        self.resolve_path(load_scene(&self.scene)?, poses)
+        self.resolve_path(SceneCache::default().load(&self.scene)?, poses)
     }
 
     /// The clean path deviated by the spec's `rot`/`trans`, and the plan.
-    fn resolve_path(&self, scene: Scene, clean: Vec<Pose>) -> Result<ResolvedScene, PipelineError> {
+    fn resolve_path(
+        &self,
+        (scene, hash): Loaded,
+        clean: Vec<Pose>,
+    ) -> Result<ResolvedScene, PipelineError> {
         let clean = rslam_core::Trajectory::from_poses_at_rate(clean, self.rate_hz);
         let deviated = rslam_perturb::trajectory::deviate(&clean, &self.spec, self.seed);
         let plan = FramePlan::rendered(deviated.len(), self.rate_hz, &self.spec, self.seed);
         Ok(ResolvedScene {
             scene,
+            hash,
             clean,
             poses: deviated.poses,
             plan,

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use rslam_core::dataset::refuse_symlinks;
 use rslam_gpu::GpuContext;
-use rslam_pipeline::{FolderState, PipelineError, Progress};
+use rslam_pipeline::{FolderState, PipelineError, Progress, SceneCache};
 
 use crate::disk::{available_bytes, format_bytes};
 use crate::plan::plan;
@@ -139,7 +139,8 @@ fn make_one(
         return Ok(SequenceOutcome::Busy);
     };
     // Another process may have finished it between the inspection and the lock.
-    if inspect(sequence, &suite.dir) == SequenceState::Complete {
+    let scenes = SceneCache::default();
+    if inspect(sequence, &suite.dir, &scenes) == SequenceState::Complete {
         return Ok(SequenceOutcome::Made {
             frames: 0,
             found: FolderState::Complete,
@@ -149,11 +150,10 @@ fn make_one(
     let started = Instant::now();
     let sequence_progress = progress.sequence(&sequence.name);
     let force = matches!(state, SequenceState::Conflict(_));
-    let (made, found) = match sequence.render(ctx, &suite.dir, force, &*sequence_progress) {
+    let render = |force| sequence.render(ctx, &suite.dir, force, &scenes, &*sequence_progress);
+    let (made, found) = match render(force) {
         // An unfinished run of another job (another GPU, an edited row) was never usable.
-        Err(PipelineError::OtherJob { .. }) if *state == SequenceState::Partial => {
-            sequence.render(ctx, &suite.dir, true, &*sequence_progress)?
-        }
+        Err(PipelineError::OtherJob { .. }) if *state == SequenceState::Partial => render(true)?,
         report => report?,
     };
     let seconds = started.elapsed().as_secs_f64();

@@ -12,7 +12,8 @@ use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::rig::{rgbd_imu_frame_count, rig_camera_frames};
 use rslam_pipeline::{
-    run, speed_up, FolderState, FramePlan, Job, PipelineError, Progress, SceneJob, Sensors, Source,
+    speed_up, FolderState, FramePlan, Job, PipelineError, Progress, SceneCache, SceneJob, Sensors,
+    Source,
 };
 
 use crate::SuiteError;
@@ -151,16 +152,18 @@ impl Sequence {
         }
     }
 
-    /// Renders the sequence (`force`: replacing another job's output): the frames this run
-    /// made, and what the folder held before.
+    /// Renders the sequence (`force`: replacing another job's output), its scene taken from
+    /// `scenes`: the frames this run made, and what the folder held before.
     pub fn render(
         &self,
         ctx: &GpuContext,
         suite_dir: &Path,
         force: bool,
+        scenes: &SceneCache,
         progress: &dyn Progress,
     ) -> Result<(usize, FolderState), PipelineError> {
-        let report = run(ctx, &self.job(suite_dir, force), progress)?;
+        let job = self.job(suite_dir, force);
+        let report = job.plan_with(scenes)?.run(ctx, progress)?;
         Ok((report.made, report.found))
     }
 

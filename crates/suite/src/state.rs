@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use rslam_pipeline::Holding;
+use rslam_pipeline::{Holding, SceneCache};
 use serde::Serialize;
 
 use crate::sequence::Sequence;
@@ -32,15 +32,23 @@ impl SequenceState {
     }
 }
 
-/// What `sequence`'s folder holds, by the rule a run uses for its job ([`rslam_pipeline::Job::holding`]): made
-/// on whichever GPU made it, since every GPU makes the same job (in its own float rounding).
-pub fn inspect(sequence: &Sequence, suite_dir: &Path) -> SequenceState {
-    match sequence.job(suite_dir, false).holding(None) {
+/// What `sequence`'s folder holds, by the rule a run uses for its job
+/// ([`rslam_pipeline::Job::holding`]), its scene taken from `scenes`: made on whichever GPU made
+/// it, since every GPU makes the same job (in its own float rounding).
+pub fn inspect(sequence: &Sequence, suite_dir: &Path, scenes: &SceneCache) -> SequenceState {
+    match sequence.job(suite_dir, false).holding(None, scenes) {
         Ok(Holding::Nothing) => SequenceState::Missing,
         Ok(Holding::Complete) => SequenceState::Complete,
-        // A run resumes it: it finishes what is missing and seals the folder again.
-        Ok(Holding::Unfinished | Holding::Broken(_)) => SequenceState::Partial,
-        Ok(Holding::OtherJob(what)) => SequenceState::Conflict(format!("holds {what}")),
+        // A run resumes it: it finishes what is missing and seals the folder again. An unfinished
+        // run of another job (another GPU, an edited row) is never usable: a run starts it over.
+        Ok(
+            Holding::Unfinished
+            | Holding::Broken(_)
+            | Holding::OtherJob {
+                finished: false, ..
+            },
+        ) => SequenceState::Partial,
+        Ok(Holding::OtherJob { what, .. }) => SequenceState::Conflict(format!("holds {what}")),
         Ok(Holding::Unreadable(e)) => SequenceState::Conflict(e.to_string()),
         Ok(Holding::NotRslam) => {
             SequenceState::Conflict("holds files but no rslam.json: not rslam output".into())

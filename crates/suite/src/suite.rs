@@ -9,7 +9,7 @@ use rslam_core::trajectory_io::ReadOptions;
 use rslam_core::{read_text_file, Intrinsics};
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::rig::{PRESET_NAMES, RIG_NAMES};
-use rslam_pipeline::{JobPart, PipelineError, Rig, RigPreset, Sensors};
+use rslam_pipeline::{JobPart, PipelineError, Rig, RigPreset, SceneCache, Sensors};
 
 use crate::sequence::{sequence_seed, Sequence};
 use crate::shard::Shard;
@@ -91,10 +91,12 @@ impl Suite {
 impl Suite {
     /// The sequences of `shard` with what their folders hold, in suite order.
     pub fn shard_states(&self, shard: Shard) -> Vec<(&Sequence, SequenceState)> {
+        // Each scene is loaded once for all its sequences.
+        let scenes = SceneCache::default();
         self.sequences
             .iter()
             .filter(|s| shard.contains(&s.name))
-            .map(|s| (s, inspect(s, &self.dir)))
+            .map(|s| (s, inspect(s, &self.dir, &scenes)))
             .collect()
     }
 

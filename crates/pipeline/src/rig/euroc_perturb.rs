@@ -372,76 +372,64 @@ impl Planned for EurocPerturb<'_> {
 
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
         Ok(Box::new(move |out, found, manifest, progress| {
-            self.write(ctx, out, found, manifest, progress)
-        }))
-    }
-}
+            let (dataset, perturbed) = (&self.dataset, &self.perturbed);
+            let (cameras_written, imu_written) = (
+                perturbed.written.cameras.clone(),
+                perturbed.written.imu.clone(),
+            );
+            let writer = Arc::new(match self.tum_vi {
+                Some(_) => {
+                    EurocWriter::open_calibration_elsewhere(out, cameras_written, imu_written)?
+                }
+                None => EurocWriter::open(out, cameras_written, imu_written)?,
+            });
+            // A resumed run keeps each camera's frames up to the first one missing; an item that
+            // carries a state from frame to frame (auto_exposure) needs every frame made again.
+            let resume = found == FolderState::Resume && self.spec.stateful_item().is_none();
+            let kept = self
+                .stamps
+                .iter()
+                .enumerate()
+                .map(|(i, times_ns)| match resume {
+                    true => writer.keep_written_frames(i, times_ns),
+                    false => Ok(0),
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            let made = dataset
+                .cameras
+                .iter()
+                .zip(&kept)
+                .map(|(c, k)| c.frames.len() - k)
+                .sum();
+            progress.start(made, "perturbing");
+            let mut sinks = Vec::new();
+            for (i, (((camera, &seed), times_ns), spec)) in dataset
+                .cameras
+                .iter()
+                .zip(&self.seeds)
+                .zip(self.stamps.iter().cloned())
+                .zip(&self.specs)
+                .enumerate()
+            {
+                let at = (i, seed, kept[i]);
+                sinks.extend(write_camera(
+                    ctx, spec, camera, at, times_ns, &writer, progress,
+                )?);
+            }
+            for sink in sinks {
+                sink.finish()?;
+            }
+            progress.finish();
 
-impl EurocPerturb<'_> {
-    /// Writes the output into the prepared folder `out`, sealing it with `manifest`.
-    fn write(
-        &self,
-        ctx: &GpuContext,
-        out: &Path,
-        found: FolderState,
-        manifest: Manifest,
-        progress: &dyn Progress,
-    ) -> Result<Written, PipelineError> {
-        let (dataset, perturbed) = (&self.dataset, &self.perturbed);
-        let (cameras_written, imu_written) = (
-            perturbed.written.cameras.clone(),
-            perturbed.written.imu.clone(),
-        );
-        let writer = Arc::new(match self.tum_vi {
-            Some(_) => EurocWriter::open_calibration_elsewhere(out, cameras_written, imu_written)?,
-            None => EurocWriter::open(out, cameras_written, imu_written)?,
-        });
-        // A resumed run keeps each camera's frames up to the first one missing; an item that
-        // carries a state from frame to frame (auto_exposure) needs every frame made again.
-        let resume = found == FolderState::Resume && self.spec.stateful_item().is_none();
-        let kept = self
-            .stamps
-            .iter()
-            .enumerate()
-            .map(|(i, times_ns)| match resume {
-                true => writer.keep_written_frames(i, times_ns),
-                false => Ok(0),
+            write_sensor_files(dataset, &perturbed.written, self.imu.as_ref(), &writer)?;
+            if let Some(files) = &self.tum_vi {
+                files.write(&writer)?;
+            }
+            Ok(Written {
+                made,
+                manifest: finish_writer(writer, manifest)?,
             })
-            .collect::<Result<Vec<_>, _>>()?;
-        let made = dataset
-            .cameras
-            .iter()
-            .zip(&kept)
-            .map(|(c, k)| c.frames.len() - k)
-            .sum();
-        progress.start(made, "perturbing");
-        let mut sinks = Vec::new();
-        for (i, (((camera, &seed), times_ns), spec)) in dataset
-            .cameras
-            .iter()
-            .zip(&self.seeds)
-            .zip(self.stamps.iter().cloned())
-            .zip(&self.specs)
-            .enumerate()
-        {
-            let at = (i, seed, kept[i]);
-            sinks.extend(write_camera(
-                ctx, spec, camera, at, times_ns, &writer, progress,
-            )?);
-        }
-        for sink in sinks {
-            sink.finish()?;
-        }
-        progress.finish();
-
-        write_sensor_files(dataset, &perturbed.written, self.imu.as_ref(), &writer)?;
-        if let Some(files) = &self.tum_vi {
-            files.write(&writer)?;
-        }
-        Ok(Written {
-            made,
-            manifest: finish_writer(writer, manifest)?,
-        })
+        }))
     }
 }
 

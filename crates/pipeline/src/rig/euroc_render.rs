@@ -7,7 +7,6 @@
 //! the spline's valid range, the IMU at its rate. Each camera is its own source, pipeline and
 //! sink on the GPU; frames are read back once and encoded on a worker thread.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::{EurocWriter, RadialTangential};
@@ -29,8 +28,7 @@ use crate::manifest::ManifestParts;
 use crate::output_folder::{FolderState, Written};
 use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
-use crate::progress::Progress;
-use crate::scene_job::{ResolvedScene, SceneJob};
+use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
 use crate::sink::{finish_writer, EurocCameraSink};
 use crate::source::SceneSource;
 use crate::{JobPart, PipelineError};
@@ -103,13 +101,14 @@ pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
     rig: &Rig,
     command: &[String],
+    scenes: &SceneCache,
 ) -> Result<RigRender<'a>, PipelineError> {
     let rig = through_lens(rig, &scene.spec);
     let Some(cam0) = rig.cameras.first() else {
         return Err(PipelineError::option(JobPart::Rig, "the rig has no camera"));
     };
     let perturbed = PerturbedRig::new(&rig, &scene.spec, scene.seed)?;
-    let resolved = scene.resolve()?;
+    let resolved = scene.resolve_in(scenes)?;
     let spline = motion_spline(&body_path(
         &resolved.clean.timestamps,
         &resolved.poses,
@@ -168,7 +167,7 @@ pub(crate) fn plan<'a>(
     let manifest = ManifestParts {
         command,
         source: resolved.scene.name.clone(),
-        source_hash: resolved.scene.content_hash(),
+        source_hash: resolved.source_hash().to_string(),
         format: None,
         camera: Some(cam0.intrinsics),
         distortion: scene.spec.distortion,
@@ -216,81 +215,70 @@ impl Planned for RigRender<'_> {
 
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
         Ok(Box::new(move |out, found, manifest, progress| {
-            self.write(ctx, out, found, manifest, progress)
-        }))
-    }
-}
-
-impl RigRender<'_> {
-    /// Writes the output into the prepared folder `out`, sealing it with `manifest`.
-    fn write(
-        &self,
-        ctx: &GpuContext,
-        out: &Path,
-        found: FolderState,
-        manifest: Manifest,
-        progress: &dyn Progress,
-    ) -> Result<Written, PipelineError> {
-        let (rig, runs, perturbed, spec) =
-            (&self.rig, &self.runs, &self.perturbed, &self.scene.spec);
-        let writer = Arc::new(EurocWriter::open(
-            out,
-            perturbed.written.cameras.clone(),
-            perturbed.written.imu.clone(),
-        )?);
-        // A resumed run keeps each camera's frames up to the first one missing; an item that
-        // carries a state from frame to frame (auto_exposure) needs every frame made again.
-        let resume = found == FolderState::Resume && spec.stateful_item().is_none();
-        let mut stamps = Vec::new();
-        let mut kept = Vec::new();
-        for (i, (camera, run)) in rig.cameras.iter().zip(runs).enumerate() {
-            let times_ns = clock_stamps(rig, i, &run.times_s)?;
-            let times_ns = camera_stamps(spec, &camera.name, &times_ns)?;
-            kept.push(match resume {
-                true => writer.keep_written_frames(i, &times_ns)?,
-                false => 0,
-            });
-            stamps.push(times_ns);
-        }
-        let made: usize = runs
-            .iter()
-            .zip(&kept)
-            .map(|(r, k)| r.times_s.len() - k)
-            .sum();
-        progress.start(made, "rendering");
-        let mut sinks = Vec::new();
-        for (i, ((camera, run), times_ns)) in rig.cameras.iter().zip(runs).zip(stamps).enumerate() {
-            let poses = camera_poses(
-                &self.spline,
-                |k| perturbed.body_from_camera(i, k),
-                &run.times_s,
-            )?;
-            let mut source = SceneSource::new(ctx, &self.resolved.scene, camera.intrinsics, poses)?;
-            source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
-            let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
-            if i == 0 {
-                if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
-                    writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
-                }
+            let (rig, runs, perturbed, spec) =
+                (&self.rig, &self.runs, &self.perturbed, &self.scene.spec);
+            let writer = Arc::new(EurocWriter::open(
+                out,
+                perturbed.written.cameras.clone(),
+                perturbed.written.imu.clone(),
+            )?);
+            // A resumed run keeps each camera's frames up to the first one missing; an item that
+            // carries a state from frame to frame (auto_exposure) needs every frame made again.
+            let resume = found == FolderState::Resume && spec.stateful_item().is_none();
+            let mut stamps = Vec::new();
+            let mut kept = Vec::new();
+            for (i, (camera, run)) in rig.cameras.iter().zip(runs).enumerate() {
+                let times_ns = clock_stamps(rig, i, &run.times_s)?;
+                let times_ns = camera_stamps(spec, &camera.name, &times_ns)?;
+                kept.push(match resume {
+                    true => writer.keep_written_frames(i, &times_ns)?,
+                    false => 0,
+                });
+                stamps.push(times_ns);
             }
-            let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
-            let sources: Vec<usize> = (kept[i]..run.times_s.len()).collect();
-            pipeline.run(ctx, &sources, progress, &mut sink)?;
-            sinks.push(sink);
-        }
-        for sink in sinks {
-            sink.finish()?;
-        }
-        progress.finish();
+            let made: usize = runs
+                .iter()
+                .zip(&kept)
+                .map(|(r, k)| r.times_s.len() - k)
+                .sum();
+            progress.start(made, "rendering");
+            let mut sinks = Vec::new();
+            for (i, ((camera, run), times_ns)) in
+                rig.cameras.iter().zip(runs).zip(stamps).enumerate()
+            {
+                let poses = camera_poses(
+                    &self.spline,
+                    |k| perturbed.body_from_camera(i, k),
+                    &run.times_s,
+                )?;
+                let mut source =
+                    SceneSource::new(ctx, &self.resolved.scene, camera.intrinsics, poses)?;
+                source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
+                let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
+                if i == 0 {
+                    if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
+                        writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
+                    }
+                }
+                let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
+                let sources: Vec<usize> = (kept[i]..run.times_s.len()).collect();
+                pipeline.run(ctx, &sources, progress, &mut sink)?;
+                sinks.push(sink);
+            }
+            for sink in sinks {
+                sink.finish()?;
+            }
+            progress.finish();
 
-        if rig.imu.is_some() {
-            writer.write_imu(&self.streams.imu)?;
-        }
-        writer.write_ground_truth(&self.streams.ground_truth)?;
-        Ok(Written {
-            made,
-            manifest: finish_writer(writer, manifest)?,
-        })
+            if rig.imu.is_some() {
+                writer.write_imu(&self.streams.imu)?;
+            }
+            writer.write_ground_truth(&self.streams.ground_truth)?;
+            Ok(Written {
+                made,
+                manifest: finish_writer(writer, manifest)?,
+            })
+        }))
     }
 }
 

@@ -29,7 +29,7 @@ use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
 use crate::plan::{self, camera_frame_spec, FramePlan, SourceTiming};
-use crate::scene_job::{ResolvedScene, SceneJob};
+use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
 use crate::source::SceneSource;
 use crate::PipelineError;
 
@@ -92,13 +92,14 @@ pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
     depth_png: DepthPng,
     command: &[String],
+    scenes: &SceneCache,
 ) -> Result<RgbdImuRender<'a>, PipelineError> {
     let spec = &scene.spec;
     let rig = Rig::rgbd_imu(scene.camera, scene.rate_hz);
     let camera = rig.cameras[0].clone();
     let frame_spec = camera_frame_spec(spec, &camera.name);
     let perturbed = PerturbedRig::new(&rig, spec, scene.seed)?;
-    let resolved = scene.resolve()?;
+    let resolved = scene.resolve_in(scenes)?;
     let spline = motion_spline(&body_path(
         &resolved.clean.timestamps,
         &resolved.poses,
@@ -149,7 +150,7 @@ pub(crate) fn plan<'a>(
     let manifest = ManifestParts {
         command,
         source: resolved.scene.name.clone(),
-        source_hash: resolved.scene.content_hash(),
+        source_hash: resolved.source_hash().to_string(),
         format: Some(DatasetFormat::Tum),
         camera: Some(camera.intrinsics),
         distortion: None,
