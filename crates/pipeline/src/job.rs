@@ -11,9 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rslam_core::dataset::{
-    DatasetFormat, DatasetOverrides, DepthPng, Layout, Manifest, MANIFEST_FILE, RUN_FILE,
-};
+use rslam_core::dataset::{DatasetFormat, DatasetOverrides, DepthPng, Layout, Manifest};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 
@@ -186,8 +184,18 @@ pub(crate) type Writing<'a> = Box<
 /// sensors and spec made.
 pub struct PlannedJob<'a> {
     job: &'a Job,
-    /// `None` for one image, which is written as a file without a manifest.
-    planned: Option<Box<dyn Planned + 'a>>,
+    plan: Plan<'a>,
+}
+
+enum Plan<'a> {
+    /// An output folder, written by its plan inside the folder's one life.
+    Folder(Box<dyn Planned + 'a>),
+    /// One image perturbed into one file: no folder, no manifest.
+    Image {
+        file: &'a Path,
+        spec: &'a PerturbSpec,
+        seed: u64,
+    },
 }
 
 impl Job {
@@ -201,11 +209,15 @@ impl Job {
     pub fn plan_with(&self, scenes: &SceneCache) -> Result<PlannedJob<'_>, PipelineError> {
         let command = &self.command;
         let planned: Box<dyn Planned + '_> = match &self.source {
-            Source::Image { spec, .. } => {
+            Source::Image { file, spec, seed } => {
                 perturb_images::check_image_spec(spec)?;
                 return Ok(PlannedJob {
                     job: self,
-                    planned: None,
+                    plan: Plan::Image {
+                        file,
+                        spec,
+                        seed: *seed,
+                    },
                 });
             }
             Source::Scene { scene, sensors } => {
@@ -247,29 +259,29 @@ impl Job {
         };
         Ok(PlannedJob {
             job: self,
-            planned: Some(planned),
+            plan: Plan::Folder(planned),
         })
     }
 
     /// What the output folder holds for this job, by the rule a run uses
     /// ([`output_folder::holding`]); the job is planned only when the folder holds a record to
     /// compare it with. Without a GPU at hand (`adapter` `None`) an output counts as this job's
-    /// when it is this job's on the GPU that made it.
+    /// when it is this job's on the GPU that made it (the one its record names).
     pub fn holding(
         &self,
         adapter: Option<&str>,
         scenes: &SceneCache,
     ) -> Result<Holding, PipelineError> {
-        let adapter = match adapter {
-            Some(adapter) => adapter.to_string(),
-            None => recorded_adapter(&self.out).unwrap_or_default(),
-        };
-        output_folder::holding(&self.out, || match &self.plan_with(scenes)?.planned {
-            Some(planned) => Ok(PlannedJob::manifest_on(planned.as_ref(), &adapter)),
-            None => Err(PipelineError::output(
-                &self.out,
-                "one image is written as a file, not into an output folder",
-            )),
+        output_folder::holding(&self.out, |earlier| {
+            let recorded = earlier.extra.get("adapter").and_then(|a| a.as_str());
+            let adapter = adapter.or(recorded).unwrap_or_default();
+            match &self.plan_with(scenes)?.plan {
+                Plan::Folder(planned) => Ok(PlannedJob::manifest_on(planned.as_ref(), adapter)),
+                Plan::Image { .. } => Err(PipelineError::output(
+                    &self.out,
+                    "one image is written as a file, not into an output folder",
+                )),
+            }
         })
     }
 
@@ -300,16 +312,17 @@ impl PlannedJob<'_> {
         progress: &dyn Progress,
     ) -> Result<JobReport, PipelineError> {
         let job = self.job;
-        let Some(planned) = &self.planned else {
-            if let Source::Image { file, spec, seed } = &job.source {
+        let planned = match &self.plan {
+            Plan::Folder(planned) => planned,
+            Plan::Image { file, spec, seed } => {
                 perturb_images::perturb_one(ctx, file, &job.out, spec, *seed, progress)?;
+                return Ok(JobReport {
+                    streams: Streams::Frames(1),
+                    made: 1,
+                    found: FolderState::Fresh,
+                    manifest: None,
+                });
             }
-            return Ok(JobReport {
-                streams: Streams::Frames(1),
-                made: 1,
-                found: FolderState::Fresh,
-                manifest: None,
-            });
         };
         if let Some(input) = job.input() {
             output_folder::check_not_input(&job.out, input)?;
@@ -328,14 +341,6 @@ impl PlannedJob<'_> {
             manifest: Some(made.manifest),
         })
     }
-}
-
-/// The GPU an rslam output in `out` (finished or not) records it was made on.
-fn recorded_adapter(out: &Path) -> Option<String> {
-    [RUN_FILE, MANIFEST_FILE].iter().find_map(|name| {
-        let manifest = Manifest::read_as(out, name).ok()?;
-        manifest.extra.get("adapter")?.as_str().map(str::to_string)
-    })
 }
 
 /// Plans `job`, then makes it on `ctx`.

@@ -97,10 +97,10 @@ pub enum Holding {
 
 /// What `root` holds for the job `job` gives (a manifest without its content digest; `command`
 /// and the digest are not part of what a job is), asked for only when `root` holds a record to
-/// compare it with.
+/// compare it with, and given that record.
 pub fn holding(
     root: &Path,
-    job: impl FnOnce() -> Result<Manifest, PipelineError>,
+    job: impl FnOnce(&Manifest) -> Result<Manifest, PipelineError>,
 ) -> Result<Holding, PipelineError> {
     if !root.exists() || is_empty(root)? {
         return Ok(Holding::Nothing);
@@ -116,7 +116,7 @@ pub fn holding(
         Ok(earlier) => earlier,
         Err(e) => return Ok(Holding::Unreadable(e)),
     };
-    let job = job()?;
+    let job = job(&earlier)?;
     Ok(match (earlier.job() == job.job(), finished) {
         (false, _) => Holding::OtherJob {
             finished,
@@ -133,7 +133,7 @@ pub fn holding(
 /// Prepares `root` for `job` and says what it holds.
 fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, PipelineError> {
     refuse_symlinks(root, root)?;
-    let state = match holding(root, || Ok(job.clone()))? {
+    let state = match holding(root, |_| Ok(job.clone()))? {
         Holding::Nothing => FolderState::Fresh,
         Holding::NotRslam => {
             return Err(PipelineError::output(

@@ -9,7 +9,7 @@ use rslam_core::{nearest_time, Pose, Trajectory};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 
-use crate::dataset_run::{write_dataset, DatasetOutput};
+use crate::dataset_run::{dataset_writing, DatasetOutput};
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
@@ -148,18 +148,15 @@ impl Planned for DatasetPerturb<'_> {
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
         let dataset = &self.dataset;
         let source = RecordedSource::dataset(dataset);
-        let mut pipeline = Pipeline::new(ctx, source, self.spec, self.seed)?;
-        Ok(Box::new(move |out, _found, manifest, progress| {
-            let output = DatasetOutput {
-                out,
-                format: dataset.format,
-                camera: dataset.intrinsics,
-                plan: &self.plan,
-                ground_truth: &self.ground_truth,
-                sensor_files: self.sensor_files.clone(),
-            };
-            write_dataset(ctx, &mut pipeline, output, manifest, progress, "perturbing")
-        }))
+        let pipeline = Pipeline::new(ctx, source, self.spec, self.seed)?;
+        let output = DatasetOutput {
+            format: dataset.format,
+            camera: dataset.intrinsics,
+            plan: &self.plan,
+            ground_truth: &self.ground_truth,
+            sensor_files: &self.sensor_files,
+        };
+        Ok(dataset_writing(ctx, pipeline, output, "perturbing"))
     }
 }
 

@@ -6,7 +6,7 @@ use rslam_core::Trajectory;
 use rslam_gpu::GpuContext;
 
 use crate::agents::record_agent;
-use crate::dataset_run::{write_dataset, DatasetOutput};
+use crate::dataset_run::{dataset_writing, DatasetOutput};
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
@@ -72,17 +72,14 @@ impl Planned for CameraRender<'_> {
         let mut source =
             SceneSource::new(ctx, &resolved.scene, scene.camera, resolved.poses.clone())?;
         source.set_sensor(ctx, &scene.spec, scene.rate_hz)?;
-        let mut pipeline = Pipeline::new(ctx, source, &scene.spec, scene.seed)?;
-        Ok(Box::new(move |out, _found, manifest, progress| {
-            let output = DatasetOutput {
-                out,
-                format: self.format,
-                camera: scene.camera,
-                plan: &resolved.plan,
-                ground_truth: &self.ground_truth,
-                sensor_files: Vec::new(),
-            };
-            write_dataset(ctx, &mut pipeline, output, manifest, progress, "rendering")
-        }))
+        let pipeline = Pipeline::new(ctx, source, &scene.spec, scene.seed)?;
+        let output = DatasetOutput {
+            format: self.format,
+            camera: scene.camera,
+            plan: &resolved.plan,
+            ground_truth: &self.ground_truth,
+            sensor_files: &[],
+        };
+        Ok(dataset_writing(ctx, pipeline, output, "rendering"))
     }
 }

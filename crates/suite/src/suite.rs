@@ -231,8 +231,12 @@ fn sensors(
     let sensors = Sensors::new(preset, layout, depth_png).map_err(worded)?;
     sensors.check_spec(spec).map_err(worded)?;
     if let Sensors::Rig(rig) = &sensors {
-        let cam0 = rig.cameras.first().ok_or("the rig has no camera")?;
-        return Ok((sensors.clone(), cam0.intrinsics, None));
+        let cam0 = rig
+            .cameras
+            .first()
+            .ok_or("the rig has no camera")?
+            .intrinsics;
+        return Ok((sensors, cam0, None));
     }
     let camera_text = row.camera.clone().unwrap_or_else(|| DEFAULT_CAMERA.into());
     let camera = Intrinsics::parse(&camera_text).map_err(|e| format!("camera: {e}"))?;

@@ -24,7 +24,7 @@ use super::motion::{body_path, camera_poses, motion_spline, nanoseconds, sample_
 use super::preset::Rig;
 use super::seeds::imu_seed;
 use crate::agents::record_agent;
-use crate::dataset_run::{write_dataset, DatasetOutput};
+use crate::dataset_run::{dataset_writing, DatasetOutput};
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
@@ -212,18 +212,15 @@ impl Planned for RgbdImuRender<'_> {
             self.poses.clone(),
         )?;
         source.set_sensor(ctx, &self.frame_spec, camera.rate_hz)?;
-        let mut pipeline = Pipeline::new(ctx, source, &self.frame_spec, self.scene.seed)?;
-        Ok(Box::new(move |out, _found, manifest, progress| {
-            let output = DatasetOutput {
-                out,
-                format: DatasetFormat::Tum,
-                camera: camera.intrinsics,
-                plan: &self.plan,
-                ground_truth: &self.ground_truth,
-                sensor_files: self.sensor_files.clone(),
-            };
-            write_dataset(ctx, &mut pipeline, output, manifest, progress, "rendering")
-        }))
+        let pipeline = Pipeline::new(ctx, source, &self.frame_spec, self.scene.seed)?;
+        let output = DatasetOutput {
+            format: DatasetFormat::Tum,
+            camera: camera.intrinsics,
+            plan: &self.plan,
+            ground_truth: &self.ground_truth,
+            sensor_files: &self.sensor_files,
+        };
+        Ok(dataset_writing(ctx, pipeline, output, "rendering"))
     }
 }
 
