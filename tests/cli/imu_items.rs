@@ -324,7 +324,7 @@ fn imu_items_without_an_imu_are_one_line_errors() {
         .fails_with(
             2,
             &[
-                "--perturb: 'imu_drop:0.1': IMU items need an IMU",
+                "--perturb item 'imu_drop:0.1': IMU items need an IMU",
                 "(no imu0/)",
             ],
         );

@@ -131,7 +131,10 @@ fn one_image_is_written_to_out_and_depth_corruptions_are_refused() {
         "--perturb",
         "depth_missing:3",
     ])
-    .fails_with(2, &["depth corruptions need depth images"]);
+    .fails_with(
+        2,
+        &["depth corruptions need depth, and an image input has none"],
+    );
     assert!(!ws.path("x.png").exists());
 }
 

@@ -91,7 +91,7 @@ fn rig_flags_fail_with_one_line_errors_naming_the_flag() {
     .fails_with(2, &[]);
     assert!(
         error_line(&err)
-            .contains("--perturb: 'misalign:2': the rig's cameras have no depth stream"),
+            .contains("--perturb item 'misalign:2': misalign delays depth against colour, and the 'stereo' rig's cameras have no depth stream"),
         "{err}"
     );
     assert!(!ws.path("x").exists());

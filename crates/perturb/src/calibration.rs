@@ -28,13 +28,41 @@ use glam::{DQuat, DVec3};
 use rslam_core::Pose;
 use serde::{Deserialize, Serialize};
 
+use crate::applies::{ItemEntry, Need};
 use crate::rng::RngKey;
 
 pub const BASELINE: &str = "baseline";
 pub const EXTRINSIC_ROT: &str = "extrinsic_rot";
 pub const EXTRINSIC_TRANS: &str = "extrinsic_trans";
-/// Every calibration item name, in the order `rslam list` shows them.
-pub const NAMES: [&str; 3] = [BASELINE, EXTRINSIC_ROT, EXTRINSIC_TRANS];
+
+/// The modes every calibration item takes, for `rslam list`.
+macro_rules! modes {
+    () => {
+        "rendered (default): images and IMU made with the moved sensor, the calibration files state the nominal one; @dynamic: rendered, a new draw on every frame of the moved camera (per-frame draws in calibration_per_frame.csv; not with @calibration); @calibration: images nominal, the written calibration moved; the manifest records both; a rendered item needs a scene, @calibration also takes a recorded EuRoC dataset"
+    };
+}
+
+/// The calibration items; the needs are the rendered mode's (`@calibration` needs a rig only).
+pub static CALIBRATION_ITEMS: &[ItemEntry] = &[
+    ItemEntry {
+        name: BASELINE,
+        syntax: "baseline:METRES[@dynamic|@calibration]",
+        description: concat!("cam1 moved by δ ~ N(0, σ) along cam0's x axis, once per sequence; ", modes!()),
+        needs: &[Need::Rig, Need::Scene],
+    },
+    ItemEntry {
+        name: EXTRINSIC_ROT,
+        syntax: "[SENSOR:]extrinsic_rot:DEGREES[@dynamic|@calibration]",
+        description: concat!("T_BS' = T_BS·Rx·Ry·Rz, per-axis angles ~ N(0, D°) in the sensor's frame, one draw per sequence; SENSOR cam0, cam1, imu0, …, without one every camera draws its own; @dynamic for cameras only (imu0 per sequence); ", modes!()),
+        needs: &[Need::Rig, Need::Scene],
+    },
+    ItemEntry {
+        name: EXTRINSIC_TRANS,
+        syntax: "[SENSOR:]extrinsic_trans:METRES[@dynamic|@calibration]",
+        description: concat!("T_BS' = T_BS·(I, Δt), Δt ~ N(0, M) per axis of the sensor's frame, one draw per sequence; SENSOR and @dynamic as for extrinsic_rot; ", modes!()),
+        needs: &[Need::Rig, Need::Scene],
+    },
+];
 
 const PURPOSE_OFFSET: u32 = 1;
 

@@ -18,6 +18,7 @@
 //! layouts of the parameter structs it writes into uniform blocks ([`uniform_layout`]), which a
 //! test checks against naga's layout of the WGSL structs.
 
+mod applies;
 pub mod calibration;
 mod catalogue;
 #[cfg(test)]
@@ -43,6 +44,7 @@ pub mod uniform_layout;
 #[cfg(test)]
 mod uniform_layout_tests;
 
+pub use applies::{ItemEntry, Lenses, Need, Setting};
 pub use catalogue::{find, names, CATALOGUE};
 pub use error::PerturbError;
 pub use listing::{listing, ListEntry};
@@ -50,5 +52,7 @@ pub use perturbation::{
     view, CatalogueEntry, ExplicitForm, FrameKey, GpuPerturbation, Group, Kit, Scratch, WORKGROUP,
 };
 pub use perturber::{dynamic_severity, severity_on, FrameSeverities, ItemSeverity, Perturber};
-pub use spec::{all_names, parse_severity, Deviation, FrameItem, Level, Misalign, PerturbSpec};
+pub use spec::{
+    all_names, parse_severity, Deviation, FrameItem, Level, Misalign, PerturbSpec, ITEM_TABLES,
+};
 pub use twin::{Tolerance, Twin, TwinRun, TwinState};

@@ -8,7 +8,7 @@ use serde::Serialize;
 use crate::rng::RngKey;
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::UniformLayout;
-use crate::PerturbError;
+use crate::{Need, PerturbError};
 
 /// Which frame texture a perturbation transforms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -54,6 +54,14 @@ pub struct CatalogueEntry {
 }
 
 impl CatalogueEntry {
+    /// What it needs of a job: depth for a depth corruption, frames in capture order for one
+    /// that carries a state; an image corruption takes any frames.
+    pub fn needs(&self) -> Vec<Need> {
+        let depth = (self.group == Group::Depth).then_some(Need::Depth);
+        let order = self.carries_state().then_some(Need::CaptureOrder);
+        depth.into_iter().chain(order).collect()
+    }
+
     /// Whether its GPU pass carries a state from frame to frame (auto_exposure's controller), so
     /// a frame's output depends on every frame before it in the run.
     pub fn carries_state(&self) -> bool {

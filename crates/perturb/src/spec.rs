@@ -33,10 +33,13 @@ use std::str::FromStr;
 use rslam_core::Distortion;
 use serde::{Deserialize, Serialize};
 
-use crate::calibration::{self, CalibrationItem};
+use crate::applies::{ItemEntry, Setting};
+use crate::calibration::{CalibrationItem, CALIBRATION_ITEMS};
 use crate::catalogue::{self, CATALOGUE};
 use crate::imu::{self, ImuSpec, IMU_ITEMS};
 use crate::sensor::{self, Exposure, RollingShutter, SENSOR_ITEMS};
+use crate::stream::STREAM_ITEMS;
+use crate::trajectory::TRAJECTORY_ITEMS;
 use crate::{Group, PerturbError};
 
 /// A parsed `--perturb` string; serialisable for the manifest, `Display` gives the canonical form.
@@ -106,8 +109,6 @@ pub struct Misalign {
     pub dynamic: bool,
 }
 
-const TRAJECTORY_AND_STREAM: [&str; 4] = ["rot", "trans", "fast", "misalign"];
-
 impl PerturbSpec {
     pub fn parse(text: &str) -> Result<Self, PerturbError> {
         let mut spec = PerturbSpec::default();
@@ -151,7 +152,7 @@ impl PerturbSpec {
         mode: Option<&str>,
     ) -> Result<(), PerturbError> {
         let err = |message: String| PerturbError::spec(item, message);
-        if calibration::NAMES.contains(&name) {
+        if CALIBRATION_ITEMS.iter().any(|e| e.name == name) {
             let parsed = CalibrationItem::parse(sensor, name, value, mode).map_err(err)?;
             self.calibration.push(parsed);
             return Ok(());
@@ -265,7 +266,7 @@ impl PerturbSpec {
         items
     }
 
-    fn deviation_items(&self) -> Vec<String> {
+    pub(crate) fn deviation_items(&self) -> Vec<String> {
         [("rot", self.rotation), ("trans", self.translation)]
             .into_iter()
             .filter_map(|(name, deviation)| {
@@ -276,7 +277,7 @@ impl PerturbSpec {
             .collect()
     }
 
-    fn sensor_items(&self) -> Vec<String> {
+    pub(crate) fn sensor_items(&self) -> Vec<String> {
         let exposure = self.exposure.map(|e| e.to_string());
         let rolling = self.rolling_shutter.map(|r| r.to_string());
         let lens = self.distortion.as_ref().map(sensor::distortion::item);
@@ -317,6 +318,16 @@ impl PerturbSpec {
         }
     }
 
+    /// `fast` and `misalign`, as written canonically.
+    pub(crate) fn stream_items(&self) -> Vec<String> {
+        let fast = self.fast.map(|k| format!("fast:{k}"));
+        let misalign = self.misalign.map(|m| {
+            let mode = if m.dynamic { "@dynamic" } else { "" };
+            format!("misalign:{}{mode}", m.frames)
+        });
+        fast.into_iter().chain(misalign).collect()
+    }
+
     /// The first item addressed to a sensor not in `sensors` (`cam0`, `cam1`, `imu0`, …), with
     /// the message for it.
     pub fn unknown_sensor(&self, sensors: &[&str]) -> Option<PerturbError> {
@@ -332,37 +343,18 @@ impl PerturbSpec {
             if !sensors.contains(&sensor) {
                 return Some(PerturbError::spec(
                     item,
-                    format!(
-                        "no sensor '{sensor}' here; the sensors are {}",
-                        sensors.join(", ")
-                    ),
+                    crate::applies::no_such_sensor(sensor, sensors),
                 ));
             }
         }
         None
     }
 
-    /// Why this spec cannot perturb the frames of a one-camera input (a dataset, an RGB-D
-    /// render, image files): a calibration item, or an item addressed to a sensor other than
-    /// `cam0`, that one camera.
+    /// Why this spec cannot perturb the frames of one camera: a calibration item, or an item
+    /// addressed to a sensor other than `cam0`, that one camera. What else the frames take is
+    /// their job's to say ([`PerturbSpec::refusal`]).
     pub fn one_camera_problem(&self) -> Option<PerturbError> {
-        if let Some(item) = self.calibration.first() {
-            return Some(PerturbError::spec(
-                item.to_string(),
-                "a calibration item needs a rig (`rslam render --rig … --format euroc`, or `rslam perturb` of a EuRoC folder)",
-            ));
-        }
-        self.unknown_sensor(&["cam0"]).map(|_| {
-            let item = self
-                .frame_items()
-                .find(|i| i.sensor.as_deref().is_some_and(|s| s != "cam0"))
-                .map(|i| i.to_string())
-                .unwrap_or_default();
-            PerturbError::spec(
-                item,
-                "this input has one camera, cam0: address it as cam0 or give no sensor (other sensors need a rig)",
-            )
-        })
+        self.refusal(&Setting::any_one_camera())
     }
 }
 
@@ -516,28 +508,32 @@ impl fmt::Display for PerturbSpec {
         let mut parts: Vec<String> = self.calibration.iter().map(|i| i.to_string()).collect();
         parts.extend(self.scene_items());
         parts.extend(self.frame_items().map(|item| item.to_string()));
-        if let Some(k) = self.fast {
-            parts.push(format!("fast:{k}"));
-        }
-        if let Some(m) = self.misalign {
-            let mode = if m.dynamic { "@dynamic" } else { "" };
-            parts.push(format!("misalign:{}{mode}", m.frames));
-        }
+        parts.extend(self.stream_items());
         parts.extend(self.imu.items());
         write!(f, "{}", parts.join(","))
     }
 }
 
-/// Every name a spec accepts (catalogue entries, then trajectory and stream items, then sensor
-/// effects, then calibration items, then IMU items).
+/// The entries of every item that is not a frame corruption, in the order `rslam list` shows
+/// them: trajectory, stream, sensor, calibration, IMU.
+pub const ITEM_TABLES: [(&str, &[ItemEntry]); 5] = [
+    ("trajectory", TRAJECTORY_ITEMS),
+    ("stream", STREAM_ITEMS),
+    ("sensor", SENSOR_ITEMS),
+    ("calibration", CALIBRATION_ITEMS),
+    ("imu", IMU_ITEMS),
+];
+
+/// Every name a spec accepts (catalogue entries, then the other items of [`ITEM_TABLES`]).
 pub fn all_names() -> Vec<&'static str> {
     CATALOGUE
         .iter()
         .map(|e| e.name)
-        .chain(TRAJECTORY_AND_STREAM)
-        .chain(SENSOR_ITEMS.iter().map(|e| e.name))
-        .chain(calibration::NAMES)
-        .chain(IMU_ITEMS.iter().map(|e| e.name))
+        .chain(
+            ITEM_TABLES
+                .iter()
+                .flat_map(|(_, t)| t.iter().map(|e| e.name)),
+        )
         .collect()
 }
 

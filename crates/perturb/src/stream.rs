@@ -5,8 +5,24 @@
 //! `misalign:D` then delays depth on that stream: output frame j carries the depth of output
 //! frame max(0, j − D_j), with D_j = D, or under `@dynamic` uniform in {D−1, D, D+1}.
 
+use crate::applies::{ItemEntry, Need};
 use crate::rng::RngKey;
 use crate::spec::PerturbSpec;
+
+pub static STREAM_ITEMS: &[ItemEntry] = &[
+    ItemEntry {
+        name: "fast",
+        syntax: "fast:K",
+        description: "keeps frames 0, K, 2K, … re-stamped at the sensor rate: the camera moves K× faster (benchmark: 2, 4, 8)",
+        needs: &[Need::Sequence, Need::SpeedUp],
+    },
+    ItemEntry {
+        name: "misalign",
+        syntax: "misalign:FRAMES[@dynamic]",
+        description: "depth lags colour: RGB frame i pairs with depth frame max(0, i−D); @dynamic: D_i uniform in {D−1, D, D+1} per frame (benchmark: 5, 10, 20)",
+        needs: &[Need::Sequence, Need::Depth],
+    },
+];
 
 const PURPOSE_LAG: u32 = 1;
 

@@ -11,6 +11,7 @@
 use glam::{DQuat, DVec3};
 use rslam_core::{Pose, Trajectory};
 
+use crate::applies::{ItemEntry, Need};
 use crate::rng::RngKey;
 use crate::spec::{Deviation, PerturbSpec};
 
@@ -18,6 +19,21 @@ use crate::spec::{Deviation, PerturbSpec};
 pub const SMOOTH_TONES: u32 = 8;
 /// Frequency band of a smooth deviation: hand tremor and walking sway.
 pub const SMOOTH_BAND_HZ: (f64, f64) = (0.3, 3.0);
+
+pub static TRAJECTORY_ITEMS: &[ItemEntry] = &[
+    ItemEntry {
+        name: "rot",
+        syntax: "rot:DEGREES[@smooth]",
+        description: "R' = R·Rx·Ry·Rz, per-axis angles ~ N(0, D°), each pose independently (benchmark: 1, 3, 5); @smooth: temporally correlated instead, per axis a sum of 8 sinusoids with frequencies uniform in 0.3-3 Hz and random phases, same marginal σ",
+        needs: &[Need::Scene],
+    },
+    ItemEntry {
+        name: "trans",
+        syntax: "trans:METRES[@smooth]",
+        description: "t' = t + Δt, Δt ~ N(0, M) per world axis, each pose independently (benchmark: 0.0125, 0.025, 0.05); @smooth: temporally correlated instead, per axis a sum of 8 sinusoids with frequencies uniform in 0.3-3 Hz and random phases, same marginal σ",
+        needs: &[Need::Scene],
+    },
+];
 
 const PURPOSE_IID: u32 = 1;
 const PURPOSE_TONE: u32 = 2;
@@ -75,6 +91,17 @@ pub fn deviate(clean: &Trajectory, spec: &PerturbSpec, seed: u64) -> Trajectory 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_listed_descriptions_state_the_smooth_band_in_use() {
+        let smooth = format!(
+            "a sum of {SMOOTH_TONES} sinusoids with frequencies uniform in {}-{} Hz",
+            SMOOTH_BAND_HZ.0, SMOOTH_BAND_HZ.1
+        );
+        for entry in TRAJECTORY_ITEMS {
+            assert!(entry.description.contains(&smooth), "{}", entry.name);
+        }
+    }
 
     /// Sample std over 2000 poses must be within this fraction of σ (issue 4).
     const SIGMA_TOLERANCE: f64 = 0.10;

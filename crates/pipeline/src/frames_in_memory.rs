@@ -10,8 +10,7 @@ use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
 
 use crate::depth_colormap::DepthRange;
-use crate::perturb_dataset::{check_dataset_spec, dataset_plan, output_ground_truth};
-use crate::perturb_images::check_frame_items_only;
+use crate::perturb_dataset::{dataset_plan, output_ground_truth};
 use crate::pipeline::Pipeline;
 use crate::plan::FramePlan;
 use crate::progress::Silent;
@@ -19,7 +18,7 @@ use crate::scene_job::SceneJob;
 use crate::shown_frame::{Held, ShownFrame, ShownSources};
 use crate::sink::{MemorySink, RgbdFrame};
 use crate::source::{BufferSource, FrameSource, RecordedSource, SceneSource};
-use crate::{JobPart, PipelineError};
+use crate::{settings, JobPart, PipelineError};
 
 pub struct FramesInMemory<S> {
     pipeline: Pipeline<S>,
@@ -59,7 +58,10 @@ impl FramesInMemory<SceneSource> {
         job: &SceneJob,
         resolved: crate::scene_job::ResolvedScene,
     ) -> Result<Self, PipelineError> {
-        crate::rig::refuse_imu_items(&job.spec, "a one-camera scene")?;
+        settings::check(
+            &job.spec,
+            &settings::one_camera_render("a one-camera scene"),
+        )?;
         let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
         source.set_sensor(ctx, &job.spec, job.rate_hz)?;
         Ok(Self {
@@ -92,7 +94,7 @@ impl FramesInMemory<SceneSource> {
                 "scene frames without their path".into(),
             ));
         };
-        crate::rig::refuse_imu_items(spec, "a one-camera scene")?;
+        settings::check(spec, &settings::one_camera_render("a one-camera scene"))?;
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
         let shutter_changed = self.pipeline.source_mut().set_sensor(ctx, spec, *rate_hz)?;
@@ -138,7 +140,10 @@ impl FramesInMemory<RecordedSource> {
         spec: &PerturbSpec,
         seed: u64,
     ) -> Result<Self, PipelineError> {
-        check_dataset_spec(dataset, spec)?;
+        settings::check(
+            spec,
+            &settings::recorded_dataset(dataset, &dataset.root, false),
+        )?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, RecordedSource::dataset(dataset), spec, seed)?,
             plan: dataset_plan(dataset, spec, seed),
@@ -171,25 +176,12 @@ impl FramesInMemory<RecordedSource> {
                 "dataset frames without their dataset".into(),
             ));
         };
-        check_dataset_spec(dataset, spec)?;
+        settings::check(
+            spec,
+            &settings::recorded_dataset(dataset, &dataset.root, false),
+        )?;
         let plan = dataset_plan(dataset, spec, seed);
         self.take_spec(ctx, spec, seed, plan)
-    }
-}
-
-/// Buffers come in any order, any number of times; an item that carries a state from frame to
-/// frame (auto_exposure) needs its frames in capture order from the first, so it is refused.
-fn check_stateless(spec: &PerturbSpec) -> Result<(), PipelineError> {
-    match spec.stateful_item() {
-        Some(item) => Err(PipelineError::option(
-            JobPart::Spec,
-            format!(
-                "'{}' carries its state from frame to frame, so its frames must run in capture \
-                 order from the first: make a dataset of them instead (render or perturb to a folder)",
-                item.name
-            ),
-        )),
-        None => Ok(()),
     }
 }
 
@@ -201,9 +193,7 @@ impl FramesInMemory<BufferSource> {
         spec: &PerturbSpec,
         seed: u64,
     ) -> Result<Self, PipelineError> {
-        check_depth(spec, &source)?;
-        check_frame_items_only(spec)?;
-        check_stateless(spec)?;
+        settings::check(spec, &settings::frames_in_memory(source.has_depth()))?;
         let plan = FramePlan::images_at(source.frame_numbers(), source.has_depth(), spec, seed);
         let origin = Origin::Buffers;
         Ok(Self {
@@ -227,7 +217,7 @@ impl FramesInMemory<BufferSource> {
                 format!("{w}x{h} frames given to perturbations built for {width}x{height}"),
             ));
         }
-        check_depth(&self.spec, &source)?;
+        settings::check(&self.spec, &settings::frames_in_memory(source.has_depth()))?;
         self.plan = FramePlan::images_at(
             source.frame_numbers(),
             source.has_depth(),
@@ -247,10 +237,8 @@ impl FramesInMemory<BufferSource> {
         spec: &PerturbSpec,
         seed: u64,
     ) -> Result<(), PipelineError> {
-        check_frame_items_only(spec)?;
-        check_stateless(spec)?;
         let source = self.pipeline.source();
-        check_depth(spec, source)?;
+        settings::check(spec, &settings::frames_in_memory(source.has_depth()))?;
         let plan = FramePlan::images_at(source.frame_numbers(), source.has_depth(), spec, seed);
         self.take_spec(ctx, spec, seed, plan)
     }
@@ -371,14 +359,4 @@ impl<S: FrameSource> FramesInMemory<S> {
         })?;
         got.ok_or_else(|| PipelineError::Worker(format!("frame {index} was not delivered")))
     }
-}
-
-fn check_depth(spec: &PerturbSpec, source: &BufferSource) -> Result<(), PipelineError> {
-    if !spec.depth.is_empty() && !source.has_depth() {
-        return Err(PipelineError::option(
-            JobPart::Spec,
-            format!("'{spec}': depth corruptions need depth, and the frames have none"),
-        ));
-    }
-    Ok(())
 }

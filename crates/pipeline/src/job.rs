@@ -13,13 +13,14 @@ use std::path::{Path, PathBuf};
 
 use rslam_core::dataset::{DatasetFormat, DatasetOverrides, DepthPng, Layout, Manifest};
 use rslam_gpu::GpuContext;
-use rslam_perturb::PerturbSpec;
+use rslam_perturb::{PerturbSpec, Setting};
 
 use crate::output_folder::{self, make_output, FolderState, Holding, Written};
 use crate::perturb_dataset::RecordedDataset;
 use crate::progress::Progress;
-use crate::rig::{CameraFrames, Rig, RigLayout, RigPreset};
+use crate::rig::{CameraFrames, Rig, RigPreset};
 use crate::scene_job::{SceneCache, SceneJob};
+use crate::settings;
 use crate::{perturb_dataset, perturb_images, render, rig, PipelineError};
 
 /// What to make, and where.
@@ -112,20 +113,18 @@ impl Sensors {
         Err(PipelineError::RigLayout { rig, layout })
     }
 
-    /// Refuses the items of `spec` these sensors cannot take, naming the first: with one camera,
-    /// items for other sensors and IMU items; with a rig, what its layout cannot hold
-    /// ([`rig::check_rig_spec`]).
-    pub fn check_spec(&self, spec: &PerturbSpec) -> Result<(), PipelineError> {
+    /// What these sensors offer a spec's items ([`settings`]).
+    pub fn setting(&self) -> Setting {
         match self {
-            Self::Camera { .. } => {
-                if let Some(problem) = spec.one_camera_problem() {
-                    return Err(problem.into());
-                }
-                rig::refuse_imu_items(spec, "a one-camera render")
-            }
-            Self::CameraImu { .. } => rig::check_rig_spec(spec, RigLayout::RgbdImu),
-            Self::Rig(_) => rig::check_rig_spec(spec, RigLayout::Euroc),
+            Self::Camera { .. } => settings::one_camera_render("a one-camera render"),
+            Self::CameraImu { .. } => settings::rgbd_imu_render(),
+            Self::Rig(rig) => settings::euroc_rig_render(rig),
         }
+    }
+
+    /// Refuses the first item of `spec` these sensors cannot take.
+    pub fn check_spec(&self, spec: &PerturbSpec) -> Result<(), PipelineError> {
+        settings::check(spec, &self.setting())
     }
 
     pub fn layout(&self) -> Layout {
@@ -210,7 +209,7 @@ impl Job {
         let command = &self.command;
         let planned: Box<dyn Planned + '_> = match &self.source {
             Source::Image { file, spec, seed } => {
-                perturb_images::check_image_spec(spec)?;
+                settings::check(spec, &settings::image_files())?;
                 return Ok(PlannedJob {
                     job: self,
                     plan: Plan::Image {

@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use rslam_core::dataset::euroc::IMU_DIR;
 use rslam_core::dataset::{read_dataset, DatasetOverrides, DepthPng, Manifest, SourceDataset};
 use rslam_core::{nearest_time, Pose, Trajectory};
 use rslam_gpu::GpuContext;
@@ -17,7 +18,7 @@ use crate::plan::{self, FramePlan, SourceTiming};
 use crate::rig::rgbd_imu_perturb::recorded_inertial_files;
 use crate::rig::with_imu_report;
 use crate::source::RecordedSource;
-use crate::{JobPart, PipelineError};
+use crate::{settings, PipelineError};
 
 /// Largest |Δt| at which a ground-truth pose stands for a frame when re-stamping (TUM's 100 Hz
 /// motion capture has one within 5 ms of every frame).
@@ -40,40 +41,6 @@ pub fn dataset_plan(dataset: &SourceDataset, spec: &PerturbSpec, seed: u64) -> F
         spec,
         seed,
     )
-}
-
-/// Refuses what cannot be applied to recorded frames of a dataset without an IMU.
-pub fn check_dataset_spec(
-    dataset: &SourceDataset,
-    spec: &PerturbSpec,
-) -> Result<(), PipelineError> {
-    check_frame_items(dataset, spec)?;
-    crate::rig::refuse_imu_items(spec, "an RGB-D dataset")
-}
-
-/// Refuses frame items that cannot be applied to recorded frames.
-fn check_frame_items(dataset: &SourceDataset, spec: &PerturbSpec) -> Result<(), PipelineError> {
-    if let Some(problem) = spec.one_camera_problem() {
-        return Err(problem.into());
-    }
-    if let Some(item) = spec.scene_items().first() {
-        return Err(PipelineError::option(
-            JobPart::Spec,
-            format!("'{item}': trajectory deviations (rot, trans) and sensor effects (exposure, rolling_shutter, distortion) render the frames from the camera's poses and need a scene (mesh): render the scene with them instead"),
-        ));
-    }
-    if !spec.depth.is_empty() {
-        if let Some(frame) = dataset.frames.iter().find(|f| f.depth.is_none()) {
-            return Err(PipelineError::option(
-                JobPart::Spec,
-                format!(
-                    "'{spec}': depth corruptions need depth, but {} has none",
-                    frame.rgb.display()
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// A dataset perturb, planned: the dataset read, the frame plan made, the inertial files of an
@@ -101,12 +68,12 @@ pub(crate) fn plan<'a>(
     command: &[String],
 ) -> Result<DatasetPerturb<'a>, PipelineError> {
     let dataset = read_dataset(job.input, job.overrides)?;
+    let imu = job.input.join(IMU_DIR).is_dir();
+    settings::check(
+        job.spec,
+        &settings::recorded_dataset(&dataset, job.input, imu),
+    )?;
     let inertial = recorded_inertial_files(job.input, job.spec, job.seed)?;
-    if inertial.files.is_empty() {
-        check_dataset_spec(&dataset, job.spec)?;
-    } else {
-        check_frame_items(&dataset, job.spec)?;
-    }
     let plan = dataset_plan(&dataset, job.spec, job.seed);
     let ground_truth = output_ground_truth(&dataset, &plan, plan::restamps(job.spec));
     let manifest = ManifestParts {

@@ -21,10 +21,10 @@ use crate::frame_loop::FrameRun;
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::output_folder::Written;
-use crate::plan::{restamps, FramePlan};
+use crate::plan::FramePlan;
 use crate::progress::Progress;
 use crate::upload_ahead::UploadAhead;
-use crate::{JobPart, PipelineError};
+use crate::{settings, PipelineError};
 
 /// JPEG quality of perturbed JPEG images.
 const JPEG_QUALITY: u8 = 95;
@@ -51,26 +51,6 @@ pub fn image_files(dir: &Path) -> Result<Vec<PathBuf>, PipelineError> {
         ));
     }
     Ok(files)
-}
-
-/// Refuses what cannot be applied to separate images.
-pub fn check_image_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
-    if !spec.depth.is_empty() {
-        return Err(PipelineError::option(JobPart::Spec, format!("'{spec}': depth corruptions need depth images, and an image input has none; use a dataset (Replica or TUM layout)")));
-    }
-    if let Some(problem) = spec.one_camera_problem() {
-        return Err(problem.into());
-    }
-    check_frame_items_only(spec)
-}
-
-/// Refuses items that act on a sequence, a scene or an IMU rather than on each frame.
-pub fn check_frame_items_only(spec: &PerturbSpec) -> Result<(), PipelineError> {
-    crate::rig::refuse_imu_items(spec, "a set of frames")?;
-    if restamps(spec) || spec.misalign.is_some() || spec.needs_scene() {
-        return Err(PipelineError::option(JobPart::Spec, format!("'{spec}': rot, trans, fast and misalign act on RGB-D sequences, exposure, rolling_shutter and distortion on scenes; render a scene or perturb a dataset (Replica or TUM layout) instead")));
-    }
-    Ok(())
 }
 
 /// Where perturbed image i goes.
@@ -101,7 +81,7 @@ impl Destination {
 }
 
 /// Perturbs `file` into the file `out` (in its own format, no manifest); its spec was checked
-/// by the job's plan ([`check_image_spec`]).
+/// by the job's plan ([`crate::settings::image_files`]).
 pub(crate) fn perturb_one(
     ctx: &GpuContext,
     file: &Path,
@@ -138,7 +118,7 @@ pub(crate) fn plan<'a>(
     seed: u64,
     command: &[String],
 ) -> Result<ImagesPerturb<'a>, PipelineError> {
-    check_image_spec(spec)?;
+    settings::check(spec, &settings::image_files())?;
     let names: Vec<String> = files
         .iter()
         .map(|f| {

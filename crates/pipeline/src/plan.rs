@@ -52,12 +52,6 @@ pub fn restamps(spec: &PerturbSpec) -> bool {
     spec.fast.is_some()
 }
 
-/// The spec's item that re-stamps the frames (`fast:K`), for refusals where frames keep their
-/// recorded stamps.
-pub fn restamping_item(spec: &PerturbSpec) -> Option<String> {
-    spec.fast.map(|k| format!("fast:{k}"))
-}
-
 /// The spec as one camera of a rig takes it for its frames: its items
 /// ([`PerturbSpec::for_camera`]) without `fast`, which the rig's motion has taken already.
 pub fn camera_frame_spec(spec: &PerturbSpec, camera: &str) -> PerturbSpec {

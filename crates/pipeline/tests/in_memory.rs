@@ -194,7 +194,7 @@ fn buffers_pass_through_unchanged_and_are_perturbed_per_frame() {
     assert!(
         refused
             .to_string()
-            .contains("'auto_exposure' carries its state"),
+            .contains("auto_exposure carries its state from frame to frame"),
         "{refused}"
     );
     let mut fog =

@@ -10,7 +10,7 @@ use pyo3::types::PyDict;
 use rslam_core::Intrinsics;
 use rslam_perturb::{severity_on, PerturbSpec};
 use rslam_pipeline::source::BufferSource;
-use rslam_pipeline::{check_frame_items_only, FramesInMemory};
+use rslam_pipeline::{settings, FramesInMemory};
 
 use crate::arrays::{self, colors_to_numpy, read_color, read_depth};
 use crate::camera;
@@ -165,7 +165,8 @@ impl Perturber {
         camera: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let spec = PerturbSpec::parse(spec).map_err(crate::errors::perturb)?;
-        check_frame_items_only(&spec).map_err(crate::errors::pipeline)?;
+        settings::check(&spec, &settings::frames_in_memory(true))
+            .map_err(crate::errors::pipeline)?;
         let camera = camera.map(camera::intrinsics).transpose()?;
         let mut built = None;
         if let Some(k) = camera {

@@ -73,7 +73,7 @@ def test_perturber_severity_outside_1_to_5(spec):
 
 
 def test_perturber_refuses_sequence_items():
-    with pytest.raises(ValueError, match="rot, trans, fast and misalign act on RGB-D sequences"):
+    with pytest.raises(ValueError, match="'misalign:5': misalign acts on a sequence of frames in time"):
         rslam.Perturber("fog:1,misalign:5")
 
 

@@ -7,7 +7,7 @@ use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
 use rslam_core::limits::{MAX_POSES, MAX_SUITE_SEQUENCES};
 use rslam_core::trajectory_io::ReadOptions;
 use rslam_core::{read_text_file, Intrinsics};
-use rslam_perturb::PerturbSpec;
+use rslam_perturb::{PerturbError, PerturbSpec};
 use rslam_pipeline::rig::{PRESET_NAMES, RIG_NAMES};
 use rslam_pipeline::{JobPart, PipelineError, Rig, RigPreset, SceneCache, Sensors};
 
@@ -267,6 +267,9 @@ fn worded(error: PipelineError) -> String {
                 "rig: needs format = \"euroc\" (a stereo rig is written in the EuRoC layout), not {layout}; with {layout}, rig = \"rgbd\" or (tum) \"rgbd-imu\""
             ),
         },
+        PipelineError::Perturb(PerturbError::Spec { item, message }) => {
+            format!("perturb item '{item}': {message}")
+        }
         other => other.to_string(),
     }
 }
@@ -376,7 +379,7 @@ mod tests {
             ("format = \"replica\"\nrig = \"rgbd-imu\"\n", "rig rgbd-imu: needs format = \"tum\""),
             (
                 "format = \"tum\"\nrig = \"rgbd-imu\"\nperturb = \"distortion:equidistant(0.1,0,0,0)\"\n",
-                "perturb: 'distortion:equidistant",
+                "perturb item 'distortion:equidistant",
             ),
         ] {
             let err = row(keys).unwrap_err().to_string();
@@ -433,7 +436,7 @@ mod tests {
             ),
             (
                 "format = \"euroc\"\nrig = \"stereo\"\nperturb = \"misalign:2\"\n",
-                "sequence 'room0__a': perturb: 'misalign:2': the rig's cameras have no depth stream",
+                "sequence 'room0__a': perturb item 'misalign:2': misalign delays depth against colour, and the 'stereo' rig's cameras have no depth stream",
             ),
         ] {
             let err = row(keys);

@@ -4,7 +4,7 @@ use rslam_perturb::{listing, ListEntry};
 
 #[derive(clap::Args)]
 pub struct ListArgs {
-    /// Print the list as JSON (name, group, syntax, description, parameters per severity).
+    /// Print the list as JSON (name, group, syntax, description, needs, parameters per severity).
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the list as the book's catalogue page (docs/src/reference/catalogue.md).
@@ -30,7 +30,7 @@ const HEADINGS: [(&str, &str, &str); 7] = [
     ("depth", "Depth corruptions", "0 = invalid depth, stays invalid"),
     ("trajectory", "Trajectory deviations", "frames re-rendered along the deviated poses"),
     ("stream", "Stream operations", ""),
-    ("sensor", "Sensor effects", "the image formed from the camera's motion during capture; need a scene"),
+    ("sensor", "Sensor effects", "the image formed from the camera's motion during capture"),
     ("calibration", "Calibration of a rig", "--rig, or a EuRoC input with @calibration; image and depth items also take a camera: cam1:fog:3"),
     ("imu", "IMU items", "need an IMU: `render --rig stereo-imu --format euroc` or `--rig rgbd-imu --format tum`, or a EuRoC dataset with imu0/"),
 ];
@@ -45,6 +45,9 @@ fn text(entries: &[ListEntry]) -> String {
         for e in entries.iter().filter(|e| e.group == group) {
             out.push_str(&format!("  {:<20} {}\n", e.name, e.description));
             out.push_str(&format!("  {:<20} syntax: {}\n", "", e.syntax));
+            if !e.needs.is_empty() {
+                out.push_str(&format!("  {:<20} needs:  {}\n", "", e.needs.join(", ")));
+            }
             if !e.parameters.is_empty() {
                 out.push_str(&format!(
                     "  {:<20} 1..5:   {}\n",
@@ -76,6 +79,9 @@ fn markdown(entries: &[ListEntry]) -> String {
                 "### `{}`\n\n{}\n\nSyntax: `{}`\n",
                 e.name, e.description, e.syntax
             ));
+            if !e.needs.is_empty() {
+                out.push_str(&format!("\nNeeds {}.\n", e.needs.join(", ")));
+            }
             if !e.parameters.is_empty() {
                 out.push_str("\n| severity | parameters |\n|---|---|\n");
                 for (s, p) in e.parameters.iter().enumerate() {

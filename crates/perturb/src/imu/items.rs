@@ -13,7 +13,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::sensor::SensorEntry;
+use crate::applies::{ItemEntry, Need};
 
 pub const NOISE: &str = "imu_noise";
 pub const BIAS_STEP: &str = "imu_bias_step";
@@ -58,36 +58,42 @@ pub struct ImuSpec {
     pub cam_imu_offset_ms: Option<f64>,
 }
 
-pub static IMU_ITEMS: &[SensorEntry] = &[
-    SensorEntry {
+pub static IMU_ITEMS: &[ItemEntry] = &[
+    ItemEntry {
         name: NOISE,
         syntax: "imu_noise:K",
         description: "IMU noise densities and bias random walks × K (Kalibr's model, per axis). Rendered: the IMU is synthesised with them (any K ≥ 0); recorded: independent noise of (K² − 1)× imu0/sensor.yaml's variances is added (K ≥ 1), and its bias walk goes into the ground-truth biases. sensor.yaml keeps the nominal values",
+        needs: &[Need::Imu],
     },
-    SensorEntry {
+    ItemEntry {
         name: BIAS_STEP,
         syntax: "imu_bias_step:GYRO/ACC",
         description: "the gyroscope and accelerometer biases jump by GYRO rad/s and ACC m/s² (each a random direction) at a time uniform in the middle 80 % of the IMU's span; readings and ground-truth biases from then on; manifest: time and step vectors",
+        needs: &[Need::Imu],
     },
-    SensorEntry {
+    ItemEntry {
         name: SATURATION,
         syntax: "imu_saturation:GYRO/ACC",
         description: "each reading clipped per axis to ±GYRO rad/s and ±ACC m/s², as a sensor at the end of its range; manifest: samples clipped",
+        needs: &[Need::Imu],
     },
-    SensorEntry {
+    ItemEntry {
         name: DROP,
         syntax: "imu_drop:P | imu_drop:P/L",
         description: "IMU samples dropped, a fraction P of them: each independently, or in bursts of mean length L samples (two-state Markov chain); ground truth stays whole; manifest: samples dropped, longest gap",
+        needs: &[Need::Imu],
     },
-    SensorEntry {
+    ItemEntry {
         name: JITTER,
         syntax: "imu_jitter:MS",
         description: "IMU timestamps (not the readings) moved by N(0, MS ms), clipped to less than half the gap to either neighbour so that they stay strictly increasing (the std falls short of MS once MS nears a sixth of the sample period); manifest: realised std, draws clipped",
+        needs: &[Need::Imu],
     },
-    SensorEntry {
+    ItemEntry {
         name: CAM_IMU_OFFSET,
         syntax: "cam_imu_offset:MS",
         description: "every camera timestamp (data.csv and file name) + MS ms against the IMU's (negative allowed; Kalibr's timeshift_cam_imu = −MS); IMU and ground truth keep the body's clock; calibration files say 0",
+        needs: &[Need::Imu, Need::NewStamps],
     },
 ];
 

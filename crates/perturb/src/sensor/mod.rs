@@ -22,6 +22,8 @@ pub use rolling_shutter::RollingShutter;
 pub use schedule::{CameraPath, Shutter, SubRender, MAX_RENDERS};
 pub use shutter_pass::{twin, ShutterPass, WeightedRows, UNIFORMS};
 
+use crate::applies::{ItemEntry, Need};
+
 /// A time in milliseconds ≥ 0; the error names `what` and shows `example`.
 fn parse_milliseconds(value: &str, what: &str, example: &str) -> Result<f64, String> {
     value
@@ -31,27 +33,23 @@ fn parse_milliseconds(value: &str, what: &str, example: &str) -> Result<f64, Str
         .ok_or_else(|| format!("'{value}': expected {what} in milliseconds ≥ 0, e.g. {example}"))
 }
 
-/// One sensor item for `rslam list` and the spec parser's list of names.
-pub struct SensorEntry {
-    pub name: &'static str,
-    pub syntax: &'static str,
-    pub description: &'static str,
-}
-
-pub static SENSOR_ITEMS: &[SensorEntry] = &[
-    SensorEntry {
+pub static SENSOR_ITEMS: &[ItemEntry] = &[
+    ItemEntry {
         name: exposure::NAME,
         syntax: "exposure:MS[@K]",
-        description: "motion blur of the camera's own motion: K renders from poses spread over an exposure of MS ms (SE(3)-interpolated path), averaged in linear light; K from the predicted pixel motion (≤ 1 px per sub-frame, at most 64) unless @K; timestamp and ground truth at mid-exposure; needs a scene",
+        description: "motion blur of the camera's own motion: K renders from poses spread over an exposure of MS ms (SE(3)-interpolated path), averaged in linear light; K from the predicted pixel motion (≤ 1 px per sub-frame, at most 64) unless @K; timestamp and ground truth at mid-exposure",
+        needs: &[Need::Scene],
     },
-    SensorEntry {
+    ItemEntry {
         name: rolling_shutter::NAME,
         syntax: "rolling_shutter:MS",
-        description: "rows read out top to bottom over MS ms, each from the pose at its read-out time (colour and depth; bands of ≤ 0.5 px motion); timestamp and ground truth at the middle row; needs a scene",
+        description: "rows read out top to bottom over MS ms, each from the pose at its read-out time (colour and depth; bands of ≤ 0.5 px motion); timestamp and ground truth at the middle row",
+        needs: &[Need::Scene],
     },
-    SensorEntry {
+    ItemEntry {
         name: distortion::NAME,
         syntax: "distortion:radtan(k1,k2,p1,p2) | distortion:equidistant(k1,k2,k3,k4)",
-        description: "lens distortion, OpenCV radial-tangential or Kannala-Brandt equidistant (fisheye): rendered by a wider pinhole and resampled through the inverse model (colour bilinear, depth without mixing surfaces); written into cam_params.json and orbslam3.yaml; poses unchanged; needs a scene",
+        description: "lens distortion, OpenCV radial-tangential or Kannala-Brandt equidistant (fisheye): rendered by a wider pinhole and resampled through the inverse model (colour bilinear, depth without mixing surfaces); written into cam_params.json and orbslam3.yaml; poses unchanged",
+        needs: &[Need::Scene, Need::Lens],
     },
 ];

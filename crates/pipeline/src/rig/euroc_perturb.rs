@@ -31,13 +31,12 @@ use rslam_core::dataset::euroc::{
 use rslam_core::dataset::{DepthPng, Manifest};
 use rslam_core::CoreError;
 use rslam_gpu::GpuContext;
-use rslam_perturb::calibration::CalibrationMode;
 use rslam_perturb::imu::{ImuOrigin, PerturbedImu};
 use rslam_perturb::PerturbSpec;
 
 use super::calibration::PerturbedRig;
 use super::euroc_render::CameraFrames;
-use super::imu_items::{camera_stamps, perturb_imu_stream, refuse_imu_items, with_imu_report};
+use super::imu_items::{camera_stamps, perturb_imu_stream, with_imu_report};
 use super::preset::Rig;
 use super::seeds::camera_seed;
 use super::tum_vi_files::TumViFiles;
@@ -45,43 +44,15 @@ use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::output_folder::{FolderState, Written};
 use crate::pipeline::Pipeline;
-use crate::plan::{restamping_item, FramePlan, SourceTiming};
+use crate::plan::{FramePlan, SourceTiming};
 use crate::progress::Progress;
 use crate::sink::{finish_writer, EurocCameraSink};
 use crate::source::RecordedSource;
-use crate::{JobPart, PipelineError};
+use crate::{settings, PipelineError};
 
 /// Whether `path` is a EuRoC dataset: a folder holding `mav0/`, or `mav0/` itself.
 pub fn is_euroc_input(path: &Path) -> bool {
     path.join(MAV_DIR).is_dir() || (path.file_name().is_some_and(|n| n == MAV_DIR) && path.is_dir())
-}
-
-/// Refuses every item that is not an image corruption, an IMU item or a `@calibration` item,
-/// naming the first one.
-pub fn check_euroc_spec(spec: &PerturbSpec) -> Result<(), PipelineError> {
-    if let Some(item) = spec
-        .calibration
-        .iter()
-        .find(|i| i.mode == CalibrationMode::Rendered)
-    {
-        let item = item.to_string();
-        let base = item.split('@').next().unwrap_or(&item);
-        return Err(PipelineError::option(
-            JobPart::Spec,
-            format!("'{item}': a recorded dataset cannot be re-rendered with a moved sensor; perturb its written calibration instead: {base}@calibration"),
-        ));
-    }
-    let mut others = spec.scene_items();
-    others.extend(spec.depth.iter().map(|item| item.to_string()));
-    others.extend(restamping_item(spec));
-    others.extend(spec.misalign.map(|m| format!("misalign:{}", m.frames)));
-    match others.first() {
-        Some(item) => Err(PipelineError::option(
-            JobPart::Spec,
-            format!("'{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now (no depth, trajectory, stream or shutter items); see `rslam list`"),
-        )),
-        None => Ok(()),
-    }
 }
 
 /// Seconds from the camera's nanosecond stamps, for the frame plan (its times are not written:
@@ -167,10 +138,6 @@ fn perturb_recorded_imu(
     seed: u64,
 ) -> Result<Option<PerturbedImu>, PipelineError> {
     let Some(imu) = &dataset.imu else {
-        refuse_imu_items(
-            spec,
-            &format!("the dataset {} (no imu0/)", dataset.mav_dir.display()),
-        )?;
         return Ok(None);
     };
     if spec.imu.is_empty() {
@@ -235,8 +202,8 @@ pub(crate) fn plan<'a>(
     seed: u64,
     command: &[String],
 ) -> Result<EurocPerturb<'a>, PipelineError> {
-    check_euroc_spec(spec)?;
     let dataset = read_euroc(input)?;
+    settings::check(spec, &settings::recorded_euroc(&dataset))?;
     let Some(cam0) = dataset.cameras.first() else {
         return Err(PipelineError::input(
             &dataset.mav_dir,
@@ -430,60 +397,5 @@ impl Planned for EurocPerturb<'_> {
                 manifest: finish_writer(writer, manifest)?,
             })
         }))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn only_image_corruptions_and_calibration_items_pass_and_the_first_other_item_is_named() {
-        check_euroc_spec(&PerturbSpec::parse("gaussian_noise:3,fog:2@dynamic").unwrap()).unwrap();
-        check_euroc_spec(&PerturbSpec::parse("imu_noise:2,cam_imu_offset:3").unwrap()).unwrap();
-        check_euroc_spec(
-            &PerturbSpec::parse(
-                "cam1:fog:2,baseline:0.01@calibration,imu0:extrinsic_rot:1@calibration",
-            )
-            .unwrap(),
-        )
-        .unwrap();
-        for (text, item) in [
-            ("fog:2,depth_noise:3", "depth_noise:3"),
-            ("fast:2", "fast:2"),
-            ("misalign:4", "misalign:4"),
-            ("rot:1", "rot:1"),
-            ("exposure:20", "exposure:20"),
-        ] {
-            let spec = PerturbSpec::parse(text).unwrap();
-            let err = check_euroc_spec(&spec).unwrap_err().to_string();
-            assert!(
-                err.starts_with(&format!(
-                    "spec: '{item}': EuRoC inputs take image corruptions, IMU items and @calibration items only for now"
-                )),
-                "{err}"
-            );
-            assert!(!err.contains('\n'), "{err}");
-        }
-        for (text, fix) in [
-            ("baseline:0.01", "baseline:0.01@calibration"),
-            ("baseline:0.01@dynamic", "baseline:0.01@calibration"),
-            (
-                "cam1:extrinsic_rot:0.5@dynamic",
-                "cam1:extrinsic_rot:0.5@calibration",
-            ),
-            (
-                "cam1:extrinsic_trans:0.02",
-                "cam1:extrinsic_trans:0.02@calibration",
-            ),
-        ] {
-            let err = check_euroc_spec(&PerturbSpec::parse(text).unwrap())
-                .unwrap_err()
-                .to_string();
-            assert!(
-                err.contains("a recorded dataset cannot be re-rendered") && err.ends_with(fix),
-                "{err}"
-            );
-        }
     }
 }

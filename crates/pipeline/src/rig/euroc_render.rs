@@ -42,7 +42,7 @@ pub struct CameraFrames {
 }
 
 /// `rig` seen through the spec's lens: every camera's distortion is its coefficients (radtan,
-/// as [`super::check_rig_spec`] lets through), so that sensor.yaml and ORB-SLAM3's settings state it.
+/// as [`crate::settings::euroc_rig_render`] lets through), so that sensor.yaml and ORB-SLAM3's settings state it.
 fn through_lens(rig: &Rig, spec: &PerturbSpec) -> Rig {
     let mut rig = rig.clone();
     if let Some(Distortion::Radtan { k1, k2, p1, p2 }) = spec.distortion {
@@ -134,7 +134,6 @@ pub(crate) fn plan<'a>(
     let imu_seed = imu_seed(scene.seed);
     let streams = imu_and_ground_truth(
         scene,
-        &rig.name,
         perturbed.actual.imu.as_ref(),
         &spline,
         &runs[0].times_s,

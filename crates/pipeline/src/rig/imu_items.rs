@@ -1,5 +1,4 @@
-//! The spec's IMU items in the runs: refused where there is no IMU, applied to a rig's IMU
-//! stream and ground truth, and `cam_imu_offset` applied to the camera stamps (the cameras'
+//! The spec's IMU items in the runs: applied to a rig's IMU stream and ground truth, and `cam_imu_offset` applied to the camera stamps (the cameras'
 //! stamps move, not the IMU's: the IMU's clock is the body's, which the ground truth is in).
 
 use rslam_core::dataset::euroc::{GroundTruthState, ImuSample};
@@ -8,17 +7,6 @@ use rslam_perturb::imu::{shift_stamp, ImuOrigin, ImuReport, ImuStream, Perturbed
 use rslam_perturb::PerturbSpec;
 
 use crate::{JobPart, PipelineError};
-
-/// Refuses IMU items in a run that has no IMU, naming the first and saying what has none.
-pub fn refuse_imu_items(spec: &PerturbSpec, what: &str) -> Result<(), PipelineError> {
-    match spec.imu.items().first() {
-        Some(item) => Err(PipelineError::option(
-            JobPart::Spec,
-            format!("'{item}': IMU items need an IMU, and {what} has none; render a rig with an IMU (stereo-imu in the EuRoC layout, rgbd-imu in the TUM layout, a rig file with [imu]) or perturb a EuRoC dataset with imu0/"),
-        )),
-        None => Ok(()),
-    }
-}
 
 /// The spec's IMU items applied to `samples` and `ground_truth`, draws keyed by `seed`.
 pub fn perturb_imu_stream(
@@ -78,22 +66,6 @@ pub fn camera_stamps(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn imu_items_without_an_imu_are_one_line_errors_naming_the_item() {
-        let spec = PerturbSpec::parse("fog:1,imu_drop:0.1").unwrap();
-        let err = refuse_imu_items(&spec, "a TUM dataset")
-            .unwrap_err()
-            .to_string();
-        assert!(
-            err.starts_with(
-                "spec: 'imu_drop:0.1': IMU items need an IMU, and a TUM dataset has none"
-            ),
-            "{err}"
-        );
-        assert!(!err.contains('\n'));
-        refuse_imu_items(&PerturbSpec::parse("fog:1").unwrap(), "x").unwrap();
-    }
 
     #[test]
     fn the_offset_moves_every_stamp_exactly_or_refuses() {

@@ -5,7 +5,7 @@ use rslam_core::dataset::euroc::{EurocImu, GroundTruthState, ImuSample as ImuRow
 use rslam_core::SplineSe3;
 use rslam_perturb::imu::{ImuOrigin, ImuReport};
 
-use super::imu_items::{perturb_imu_stream, refuse_imu_items};
+use super::imu_items::perturb_imu_stream;
 use super::motion::{ground_truth_rows, imu_rows, imu_samples};
 use super::seeds::imu_seed;
 use crate::scene_job::SceneJob;
@@ -19,13 +19,12 @@ pub(super) struct ImuStreams {
     pub report: Option<ImuReport>,
 }
 
-/// `imu` (the IMU of rig `rig_name` as mounted) synthesised along the spline with
+/// `imu` (the rig's IMU as mounted) synthesised along the spline with
 /// [`imu_seed`]`(scene.seed)` (its noise scaled by `imu_noise`), the ground truth at its samples
 /// (at `cam0_times` without an IMU), then the other IMU items, drawn from the job's seed. The
 /// IMU is cheap beside the frames: made before them so that the manifest can say what was drawn.
 pub(super) fn imu_and_ground_truth(
     scene: &SceneJob,
-    rig_name: &str,
     imu: Option<&EurocImu>,
     spline: &SplineSe3,
     cam0_times: &[f64],
@@ -33,7 +32,6 @@ pub(super) fn imu_and_ground_truth(
     let spec = &scene.spec;
     let imu_seed = imu_seed(scene.seed);
     let Some(imu) = imu else {
-        refuse_imu_items(spec, &format!("the '{rig_name}' rig"))?;
         return Ok(ImuStreams {
             imu: Vec::new(),
             ground_truth: ground_truth_rows(spline, &[], cam0_times)?,

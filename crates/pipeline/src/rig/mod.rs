@@ -42,17 +42,15 @@ pub mod preset;
 pub mod rgbd_imu_perturb;
 pub mod rgbd_imu_render;
 pub mod rig_file;
-mod rig_spec;
 mod seeds;
 mod tum_vi_files;
 
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
-pub use euroc_perturb::{check_euroc_spec, is_euroc_input};
+pub use euroc_perturb::is_euroc_input;
 pub use euroc_render::{rig_camera_frames, CameraFrames};
-pub use imu_items::{refuse_imu_items, with_imu_report};
+pub use imu_items::with_imu_report;
 pub use preset::{
     d435i_imu, Rig, RigPreset, EUROC_CAM0_INTRINSICS, PRESET_NAMES, RIG_NAMES, STEREO_BASELINE_M,
 };
 pub use rgbd_imu_render::{rgbd_imu_frame_count, ORBSLAM3_RGBD_INERTIAL_FILE};
-pub use rig_spec::{check_rig_spec, RigLayout};
 pub use seeds::{camera_seed, imu_seed};

@@ -4,9 +4,9 @@
 //! `orbslam3_rgbd_inertial.yaml`) go with them, so the copy is still an RGB-D-inertial dataset.
 //! The frames keep their capture times, so the IMU still matches them. The IMU items that act on
 //! the IMU stream apply to `imu0/data.csv` (and the true biases of the ground truth) as for a
-//! recorded EuRoC IMU; every other inertial file is copied byte for byte. `fast`, which
-//! re-stamps the frames K times faster than a recorded IMU can follow, and `cam_imu_offset`,
-//! which re-stamps the frames, are refused.
+//! recorded EuRoC IMU; every other inertial file is copied byte for byte. `fast` and
+//! `cam_imu_offset`, which re-stamp the frames, are refused where the job is planned
+//! ([`crate::settings::recorded_dataset`]).
 
 use std::path::Path;
 
@@ -19,8 +19,7 @@ use rslam_perturb::PerturbSpec;
 
 use super::imu_items::perturb_imu_stream;
 use super::rgbd_imu_render::ORBSLAM3_RGBD_INERTIAL_FILE;
-use crate::plan::restamping_item;
-use crate::{JobPart, PipelineError};
+use crate::PipelineError;
 
 /// The inertial files of a perturbed copy, and what the IMU items drew.
 #[derive(Debug, Default)]
@@ -41,20 +40,6 @@ pub fn recorded_inertial_files(
     let (Some(imu), ground_truth) = read_inertial(root)? else {
         return Ok(RecordedInertial::default());
     };
-    let refused = restamping_item(spec).or_else(|| {
-        spec.imu
-            .cam_imu_offset_ns()
-            .map(|ns| format!("cam_imu_offset:{}", ns as f64 / 1e6))
-    });
-    if let Some(item) = refused {
-        return Err(PipelineError::option(
-            JobPart::Spec,
-            format!(
-                "'{item}': {} has an IMU (imu0/) that cannot follow re-stamped frames; on this layout frame corruptions, misalign and the IMU stream items (imu_noise, imu_bias_step, imu_saturation, imu_drop, imu_jitter) apply",
-                root.display()
-            ),
-        ));
-    }
     let imu_file = format!("{IMU_DIR}/data.csv");
     let truth_file = format!("{GROUND_TRUTH_DIR}/data.csv");
     let mut files = Vec::new();

@@ -85,8 +85,8 @@ pub(crate) struct RgbdImuRender<'a> {
 }
 
 /// Plans `scene` seen by [`Rig::rgbd_imu`] of its camera and rate, in the TUM layout. Items
-/// are those of a rig ([`super::check_rig_spec`], checked by the job); IMU items, `cam_imu_offset` and the calibration
-/// items of `cam0` and `imu0` apply. An unfinished output of the same job is resumed frame by
+/// are those [`crate::settings::rgbd_imu_render`] takes (checked by the job): IMU items,
+/// `cam_imu_offset` and the calibration items of `cam0` and `imu0` apply. An unfinished output of the same job is resumed frame by
 /// frame, as a one-camera render is.
 pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
@@ -107,13 +107,7 @@ pub(crate) fn plan<'a>(
         &camera.body_from_camera,
     ))?;
     let times_s = frame_times(&spline, &rig);
-    let streams = imu_and_ground_truth(
-        scene,
-        &rig.name,
-        perturbed.actual.imu.as_ref(),
-        &spline,
-        &times_s,
-    )?;
+    let streams = imu_and_ground_truth(scene, perturbed.actual.imu.as_ref(), &spline, &times_s)?;
     let times_ns = times_s
         .iter()
         .map(|&t| nanoseconds(t))
