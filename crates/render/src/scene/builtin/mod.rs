@@ -3,6 +3,7 @@
 //! RNG): [`layouts`] places the furniture, [`textures`] paints the surfaces, [`lighting`] bakes a
 //! view-independent light (shadows, bounces) into the vertex colours and [`trajectory`] draws the default camera path.
 
+mod cache_root;
 mod exposure;
 mod furniture;
 mod layouts;
@@ -20,6 +21,7 @@ use glam::Vec2;
 use rslam_core::Trajectory;
 
 use crate::Scene;
+use cache_root::cache_root;
 use furniture::Style;
 use lighting::Lighting;
 use scene_builder::SceneBuilder;

@@ -10,7 +10,7 @@ use rslam_core::Trajectory;
 use super::lighting::Lighting;
 use super::mesh_builder::{Faces, Frame, Material, MeshBuilder, UvMap};
 use super::rng::Rng;
-use super::textures::{Pattern, Rgb, TextureSpec};
+use super::textures::{self, Pattern, Rgb, TextureSpec};
 use crate::scene::srgb::srgb_to_linear;
 use crate::{Scene, Texture};
 
@@ -83,7 +83,7 @@ impl SceneBuilder {
         textures.extend(
             self.specs
                 .par_iter()
-                .map(TextureSpec::generate)
+                .map(textures::cache::texture)
                 .collect::<Vec<_>>(),
         );
         let layer_albedo: Vec<Vec3> = textures.iter().map(mean_linear).collect();

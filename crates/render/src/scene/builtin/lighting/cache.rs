@@ -1,7 +1,7 @@
 //! The baked irradiance on disk, named by a BLAKE3 hash of everything the bake reads (geometry,
 //! normals, albedo, lights and the bake's version), so a scene is baked once per version and
-//! machine. The folder is `$RSLAM_CACHE_DIR`, else `$XDG_CACHE_HOME/rslam`, else
-//! `~/.cache/rslam`. The cache only saves time: a missing or unwritable folder means baking again.
+//! machine. The folder is `baked-lighting/` in [`super::super::cache_root`]. The cache only saves
+//! time: a missing or unwritable folder means baking again.
 
 use std::path::{Path, PathBuf};
 
@@ -9,15 +9,7 @@ use glam::Vec3;
 
 /// Where baked irradiance is kept, if the environment names a folder.
 pub fn folder() -> Option<PathBuf> {
-    let env = |k| {
-        std::env::var_os(k)
-            .filter(|v| !v.is_empty())
-            .map(PathBuf::from)
-    };
-    let root = env("RSLAM_CACHE_DIR")
-        .or_else(|| env("XDG_CACHE_HOME").map(|p| p.join("rslam")))
-        .or_else(|| env("HOME").map(|p| p.join(".cache").join("rslam")))?;
-    Some(root.join("baked-lighting"))
+    Some(super::super::cache_root()?.join("baked-lighting"))
 }
 
 fn path(folder: &Path, key: &blake3::Hash) -> PathBuf {

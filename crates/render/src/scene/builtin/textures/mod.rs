@@ -2,6 +2,7 @@
 //! Patterns mapped in metres tile seamlessly; "fit" patterns (pictures, screens, doors) cover one
 //! face. Colours are sRGB in [0, 1]; the scene's baked lighting multiplies them.
 
+pub mod cache;
 #[cfg(test)]
 mod families;
 mod noise;
