@@ -9,9 +9,9 @@ use std::time::Duration;
 
 use cap::Cap;
 use clap::{Parser, Subcommand};
-use rslam_fuzz::supervisor::{fuzz_target, RunOptions};
+use rslam_fuzz::supervisor::{fuzz_target, RunOptions, TargetReport};
 use rslam_fuzz::worker::{run_worker, WorkerOptions};
-use rslam_fuzz::{run_one, target, Outcome, Scratch, TARGETS};
+use rslam_fuzz::{run_one, target, Outcome, Scratch, Target, TARGETS};
 
 /// Every allocation goes through the cap; a worker sets it, so that an allocation sized from an
 /// unchecked header fails (the process aborts, the supervisor reports the input).
@@ -42,6 +42,9 @@ enum Commands {
         /// Bytes a worker may hold, in MiB.
         #[arg(long, default_value_t = 1024)]
         memory_mib: usize,
+        /// Targets fuzzed at once, each in a worker process of its own (default: one per core).
+        #[arg(long)]
+        jobs: Option<usize>,
         targets: Vec<String>,
     },
     /// Lists the targets.
@@ -128,6 +131,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             seed,
             input_limit_ms,
             memory_mib,
+            jobs,
             targets,
         } => {
             if !(seconds.is_finite() && seconds > 0.0) {
@@ -151,9 +155,12 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
                 input_limit: Duration::from_millis(input_limit_ms),
                 memory_mib,
             };
+            let jobs = jobs
+                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+                .max(1);
             let mut crashed = 0;
-            for target in chosen {
-                let report = fuzz_target(target, &options)?;
+            for report in fuzz_targets(&chosen, &options, jobs) {
+                let report = report?;
                 report.print();
                 crashed += report.crashes.len();
             }
@@ -168,4 +175,35 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             })
         }
     }
+}
+
+/// Each of `targets` fuzzed with `options`, `jobs` at once; the reports in the targets' order.
+fn fuzz_targets(
+    targets: &[&Target],
+    options: &RunOptions,
+    jobs: usize,
+) -> Vec<Result<TargetReport, String>> {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let mut reports: Vec<(usize, Result<TargetReport, String>)> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..jobs.min(targets.len()))
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some(target) = targets.get(i) else {
+                            return done;
+                        };
+                        done.push((i, fuzz_target(target, options)));
+                    }
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|w| w.join().expect("a fuzzing thread panicked"))
+            .collect()
+    });
+    reports.sort_by_key(|(i, _)| *i);
+    reports.into_iter().map(|(_, report)| report).collect()
 }
