@@ -27,13 +27,15 @@ fn main() {
     );
 }
 
+/// The `.rs` files at `path`, a file or a folder searched through; a path that is not there (a
+/// crate packaged without its workspace) adds nothing.
 fn collect(path: &Path, files: &mut Vec<PathBuf>) {
     if path.is_dir() {
         let entries = std::fs::read_dir(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         for entry in entries {
             collect(&entry.expect("a directory entry").path(), files);
         }
-    } else if path.extension().is_some_and(|e| e == "rs") {
+    } else if path.is_file() && path.extension().is_some_and(|e| e == "rs") {
         files.push(path.to_path_buf());
     }
 }
