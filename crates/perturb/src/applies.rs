@@ -40,7 +40,7 @@ impl Need {
             Need::Rig => "a rig",
             Need::Scene => "a scene",
             Need::Sequence => "a sequence",
-            Need::SpeedUp => "a sequence that can play faster",
+            Need::SpeedUp => "playback faster than capture",
             Need::NewStamps => "frames that can take new stamps",
             Need::Depth => "depth",
             Need::Lens => "a layout that states the lens",
