@@ -33,18 +33,16 @@ pub fn dataset_writing<'a, S: FrameSource + 'a>(
     target: DatasetOutput<'a>,
     what: &'a str,
 ) -> Writing<'a> {
-    Box::new(move |out, _found, manifest, progress| {
+    Box::new(move |out, found, manifest, progress| {
         let plan = target.plan;
         let writer = DatasetWriter::open(out, target.format, target.camera, manifest.depth_png)?
             .with_distortion(manifest.distortion);
         let mut sink = DatasetSink::new(writer, plan);
-        // A stateful item (auto_exposure) gives each frame what the frames before it left, so a
-        // resumed run redoes them all rather than start its state over at the first missing one.
-        let redo_all = pipeline.perturber().carries_state();
+        let keep = found.keeps_written_frames(pipeline.perturber().carries_state());
         let sources: Vec<usize> = plan
             .needed_sources()
             .into_iter()
-            .filter(|&s| redo_all || !sink.is_written(s))
+            .filter(|&s| !keep || !sink.is_written(s))
             .collect();
         progress.start(sources.len(), what);
         pipeline.run(ctx, &sources, progress, &mut sink)?;

@@ -25,6 +25,15 @@ pub enum FolderState {
     Complete,
 }
 
+impl FolderState {
+    /// Whether a run keeps the frames an unfinished run of the same job left: only when resuming,
+    /// and not when an item carries a state from frame to frame (auto_exposure), whose every
+    /// frame follows from the ones before it, so that the run makes them all again.
+    pub fn keeps_written_frames(self, carries_state: bool) -> bool {
+        self == FolderState::Resume && !carries_state
+    }
+}
+
 /// What a run of a job found in its output folder and did there.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Made {

@@ -167,12 +167,11 @@ impl Planned for ImagesPerturb<'_> {
     }
 
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
-        Ok(Box::new(move |out, _found, manifest, progress| {
+        Ok(Box::new(move |out, found, manifest, progress| {
             let names = &self.names;
-            // As in a dataset run: a stateful item's frames follow from the ones before them.
-            let redo_all = self.spec.stateful_item().is_some();
+            let keep = found.keeps_written_frames(self.spec.stateful_item().is_some());
             let missing: Vec<usize> = (0..names.len())
-                .filter(|&i| redo_all || !out.join(&names[i]).is_file())
+                .filter(|&i| !keep || !out.join(&names[i]).is_file())
                 .collect();
             let content = Arc::new(ContentWriter::new(out));
             let destination = Destination::Folder {

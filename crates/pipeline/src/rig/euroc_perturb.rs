@@ -42,11 +42,11 @@ use super::seeds::camera_seed;
 use super::tum_vi_files::TumViFiles;
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
-use crate::output_folder::{FolderState, Written};
+use crate::output_folder::Written;
 use crate::pipeline::Pipeline;
 use crate::plan::{FramePlan, SourceTiming};
 use crate::progress::Progress;
-use crate::sink::{finish_writer, EurocCameraSink};
+use crate::sink::{finish_writer, frames_kept, EurocCameraSink};
 use crate::source::RecordedSource;
 use crate::{settings, PipelineError};
 
@@ -350,24 +350,9 @@ impl Planned for EurocPerturb<'_> {
                 }
                 None => EurocWriter::open(out, cameras_written, imu_written)?,
             });
-            // A resumed run keeps each camera's frames up to the first one missing; an item that
-            // carries a state from frame to frame (auto_exposure) needs every frame made again.
-            let resume = found == FolderState::Resume && self.spec.stateful_item().is_none();
-            let kept = self
-                .stamps
-                .iter()
-                .enumerate()
-                .map(|(i, times_ns)| match resume {
-                    true => writer.keep_written_frames(i, times_ns),
-                    false => Ok(0),
-                })
-                .collect::<Result<Vec<_>, _>>()?;
-            let made = dataset
-                .cameras
-                .iter()
-                .zip(&kept)
-                .map(|(c, k)| c.frames.len() - k)
-                .sum();
+            // A resumed run keeps each camera's frames up to the first one missing.
+            let keep = found.keeps_written_frames(self.spec.stateful_item().is_some());
+            let (kept, made) = frames_kept(&writer, &self.stamps, keep)?;
             progress.start(made, "perturbing");
             let mut sinks = Vec::new();
             for (i, (((camera, &seed), times_ns), spec)) in dataset

@@ -25,11 +25,11 @@ use super::seeds::{camera_seed, imu_seed};
 use crate::agents::record_agent;
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
-use crate::output_folder::{FolderState, Written};
+use crate::output_folder::Written;
 use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
-use crate::sink::{finish_writer, EurocCameraSink};
+use crate::sink::{finish_writer, frames_kept, EurocCameraSink};
 use crate::source::SceneSource;
 use crate::{JobPart, PipelineError};
 
@@ -221,25 +221,18 @@ impl Planned for RigRender<'_> {
                 perturbed.written.cameras.clone(),
                 perturbed.written.imu.clone(),
             )?);
-            // A resumed run keeps each camera's frames up to the first one missing; an item that
-            // carries a state from frame to frame (auto_exposure) needs every frame made again.
-            let resume = found == FolderState::Resume && spec.stateful_item().is_none();
-            let mut stamps = Vec::new();
-            let mut kept = Vec::new();
-            for (i, (camera, run)) in rig.cameras.iter().zip(runs).enumerate() {
-                let times_ns = clock_stamps(rig, i, &run.times_s)?;
-                let times_ns = camera_stamps(spec, &camera.name, &times_ns)?;
-                kept.push(match resume {
-                    true => writer.keep_written_frames(i, &times_ns)?,
-                    false => 0,
-                });
-                stamps.push(times_ns);
-            }
-            let made: usize = runs
+            let stamps = rig
+                .cameras
                 .iter()
-                .zip(&kept)
-                .map(|(r, k)| r.times_s.len() - k)
-                .sum();
+                .zip(runs)
+                .enumerate()
+                .map(|(i, (camera, run))| {
+                    camera_stamps(spec, &camera.name, &clock_stamps(rig, i, &run.times_s)?)
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            // A resumed run keeps each camera's frames up to the first one missing.
+            let keep = found.keeps_written_frames(spec.stateful_item().is_some());
+            let (kept, made) = frames_kept(&writer, &stamps, keep)?;
             progress.start(made, "rendering");
             let mut sinks = Vec::new();
             for (i, ((camera, run), times_ns)) in

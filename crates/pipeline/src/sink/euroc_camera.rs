@@ -43,6 +43,25 @@ impl EurocCameraSink {
     }
 }
 
+/// Per camera of `writer`, the frames it keeps of an unfinished run of the same job (none unless
+/// `keep`), its frames to be stamped `stamps[camera]`; and how many frames are left to make.
+pub fn frames_kept(
+    writer: &EurocWriter,
+    stamps: &[Vec<u64>],
+    keep: bool,
+) -> Result<(Vec<usize>, usize), PipelineError> {
+    let kept = stamps
+        .iter()
+        .enumerate()
+        .map(|(camera, times_ns)| match keep {
+            true => writer.keep_written_frames(camera, times_ns),
+            false => Ok(0),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let left = stamps.iter().zip(&kept).map(|(s, k)| s.len() - k).sum();
+    Ok((kept, left))
+}
+
 /// The writer's checksums and manifest, once every camera's sink has finished with it.
 pub fn finish_writer(
     writer: Arc<EurocWriter>,

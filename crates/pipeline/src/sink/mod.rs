@@ -6,7 +6,7 @@ mod euroc_camera;
 mod memory;
 
 pub use dataset::DatasetSink;
-pub use euroc_camera::{finish_writer, EurocCameraSink};
+pub use euroc_camera::{finish_writer, frames_kept, EurocCameraSink};
 pub use memory::{MemorySink, RgbdFrame};
 
 use rslam_gpu::MappedFrame;

@@ -7,6 +7,7 @@
 //! folder is kept: the first texture stored under a new one removes the others. The cache only
 //! saves time: a missing, unwritable or damaged file means painting the texture again.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -108,9 +109,12 @@ fn store(textures: &Path, folder: &Path, path: &Path, texture: &Texture) {
     partial
         .as_mut_os_string()
         .push(format!(".{}.partial", std::process::id()));
-    let mut bytes = texture.rgba.clone();
-    bytes.extend_from_slice(blake3::hash(&texture.rgba).as_bytes());
-    if std::fs::write(&partial, &bytes).is_err() || std::fs::rename(&partial, path).is_err() {
+    let digest = blake3::hash(&texture.rgba);
+    let written = std::fs::File::create(&partial).and_then(|mut file| {
+        file.write_all(&texture.rgba)?;
+        file.write_all(digest.as_bytes())
+    });
+    if written.is_err() || std::fs::rename(&partial, path).is_err() {
         let _ = std::fs::remove_file(&partial);
     }
 }
