@@ -11,7 +11,8 @@
 # and libfreetype6 unpacked somewhere on LD_LIBRARY_PATH.
 # Prints, in order: GPU time per corruption at severity 3 and the readbacks; render only and
 # render + readback of room0; whole `rslam render` of room0's 2000 frames in the Replica and TUM
-# layouts (frames/s and bytes per frame, encoding on all cores); then, where this python has
+# layouts (frames/s and bytes per frame, encoding on all cores); shard 0 of 200 of the robust-slam
+# matrix (its frames/s times 1,966,000 frames is the whole matrix's time); then, where this python has
 # imagecorruptions and albumentations, scripts/bench_corruptions.py over 20 of those frames, 600
 # frames per rslam run (with 40, a GPU's few ms a frame drown in the start-up's noise).
 set -euo pipefail
@@ -40,6 +41,16 @@ for layout in replica tum; do
     echo "== rslam render --scene room0 --format $layout --camera $camera (2000 frames)"
     "$bin/rslam" render --scene room0 --format "$layout" --camera "$camera" --out "$out" 2>&1 | tail -1
 done
+
+echo "== the robust-slam matrix: shard 0 of 200 (two sequences), --jobs 4"
+rm -rf "$work/matrix"
+"$bin/rslam" suite init --out "$work/matrix" | tail -1
+start=$(date +%s.%N)
+"$bin/rslam" suite run "$work/matrix" --shard 0/200 --jobs 4 2>&1 | tail -3
+end=$(date +%s.%N)
+"$bin/rslam" suite status "$work/matrix" | tail -1
+echo "shard wall: $(python3 -c "print(round($end - $start, 1))") s"
+rm -rf "$work/matrix"
 
 if python3 -c 'import imagecorruptions, albumentations' 2>/dev/null; then
     frames=$work/frames
