@@ -157,3 +157,37 @@ fn stats_measure_every_kth_frame_of_a_dataset_and_reject_a_zero_step() {
     ws.rslam(&["scene", "stats", "d", "--every", "0"])
         .fails_with(2, &["--every", "at least 1"]);
 }
+
+#[test]
+fn stats_measure_every_photograph_of_a_folder_beside_the_real_photographs_band() {
+    let ws = Workspace::new();
+    std::fs::create_dir(ws.path("photos")).unwrap();
+    // A 40-grey square of side 20 on grey 10 at (10, 10): four corners of strength 30, under
+    // the strong-corner bar of 35; then the same square at grey 210: strength 200.
+    for (name, square) in [("a.png", 40u8), ("b.png", 210)] {
+        let image = image::GrayImage::from_fn(48, 40, |x, y| {
+            let inside = (10..30).contains(&x) && (10..30).contains(&y);
+            image::Luma([if inside { square } else { 10 }])
+        });
+        image.save(ws.path(&format!("photos/{name}"))).unwrap();
+    }
+    let out = ws
+        .rslam(&["scene", "stats", "photos", "--json", "stats.json"])
+        .success();
+    assert!(out.contains("2 frames of photos"), "{out}");
+    assert!(out.contains("real photographs"), "{out}");
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(ws.path("stats.json")).unwrap()).unwrap();
+    let stat = |i: usize, key: &str| doc["frames"][i]["stats"][key].as_f64().unwrap();
+    assert_eq!(
+        (stat(0, "corner_strength_p50"), stat(0, "strong_corners")),
+        (30.0, 0.0)
+    );
+    assert_eq!(
+        (stat(1, "corner_strength_p50"), stat(1, "strong_corners")),
+        (200.0, 1.0)
+    );
+    // 4 corners on 48 × 40 pixels.
+    let density = 4.0 * 1e4 / (48.0 * 40.0);
+    assert!((stat(1, "weak_corner_density") - density).abs() < 1e-3);
+}

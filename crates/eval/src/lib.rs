@@ -17,7 +17,8 @@
 //! pairs, and the joint ATE and SSE.
 //!
 //! For frames, [`image_stats`] gives the statistics behind `rslam scene stats` (FAST corners,
-//! gradients, saturation, low-texture cells) to set rendered frames beside real ones.
+//! their strength, local contrast, gradients, saturation, low-texture cells) to set rendered
+//! frames beside real ones, and the band real indoor photographs give.
 //!
 //! For maps, [`recon`] measures a reconstructed mesh or point cloud against the ground-truth mesh
 //! (accuracy, completion, completion ratio; CO-SLAM's protocol, distances to surfaces).

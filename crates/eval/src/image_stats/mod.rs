@@ -1,13 +1,21 @@
 //! Image statistics a person can set beside real data to judge how realistic rendered frames
-//! are: FAST corners at ORB-SLAM's threshold, the distribution of gradient magnitudes, colour
-//! saturation and the share of low-texture cells.
+//! are: FAST corners at ORB-SLAM's threshold and how strong they are, local contrast, the
+//! distribution of gradient magnitudes, colour saturation and the share of low-texture cells.
 
+mod contrast;
 mod fast;
+mod target;
 
 use rslam_core::RgbImage;
 use serde::Serialize;
 
-pub use fast::{fast9_count, ORB_SLAM_THRESHOLD};
+pub use contrast::{block_contrasts, BLOCK};
+pub use fast::{corners, fast9_count, Corner, ORB_SLAM_MIN_THRESHOLD, ORB_SLAM_THRESHOLD};
+pub use target::{Band, RealPhotographs, REAL_PHOTOGRAPHS};
+
+/// A corner at least this strong stays a corner at [`ORB_SLAM_MIN_THRESHOLD`] when the image's
+/// contrast is cut to a fifth (contrast at severity 3 scales deviations from the mean by 0.2).
+pub const STRONG_CORNER: u8 = 5 * ORB_SLAM_MIN_THRESHOLD;
 
 /// Side of the square image cells, pixels (ORB-SLAM's extractor grid is 30 px).
 pub const CELL: usize = 32;
@@ -19,6 +27,17 @@ pub const LOW_TEXTURE_GRADIENT: f32 = 2.0;
 pub struct FrameStats {
     /// FAST-9 corners at [`ORB_SLAM_THRESHOLD`] after non-maximum suppression.
     pub fast_corners: usize,
+    /// FAST-9 corners at [`ORB_SLAM_MIN_THRESHOLD`], per 10,000 pixels (resolutions compare).
+    pub weak_corner_density: f32,
+    /// Strength of those corners (grey levels): median and 90th percentile; 0 without corners.
+    pub corner_strength_p50: f32,
+    pub corner_strength_p90: f32,
+    /// Share of those corners at least [`STRONG_CORNER`] strong.
+    pub strong_corners: f32,
+    /// Local contrast ([`block_contrasts`], grey levels): 10th, 50th and 90th percentiles.
+    pub contrast_p10: f32,
+    pub contrast_p50: f32,
+    pub contrast_p90: f32,
     /// Gradient magnitude (grey levels per pixel): median and 90th percentile over the pixels.
     pub gradient_p50: f32,
     pub gradient_p90: f32,
@@ -51,6 +70,14 @@ fn gradient_magnitude(g: &[u8], w: usize, h: usize) -> Vec<f32> {
         }
     }
     out
+}
+
+/// The share of `values` that `keep` holds for; 0 when there are none.
+fn share(values: &[f32], keep: impl Fn(f32) -> bool) -> f32 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.iter().filter(|&&v| keep(v)).count() as f32 / values.len() as f32
 }
 
 fn percentile(sorted: &[f32], q: f32) -> f32 {
@@ -95,8 +122,20 @@ pub fn frame_stats(image: &RgbImage) -> FrameStats {
             }
         }
     }
+    let weak = corners(&g, w, h, ORB_SLAM_MIN_THRESHOLD);
+    let mut strengths: Vec<f32> = weak.iter().map(|c| c.strength as f32).collect();
+    strengths.sort_by(f32::total_cmp);
+    let mut contrasts = block_contrasts(&g, w, h);
+    contrasts.sort_by(f32::total_cmp);
     FrameStats {
         fast_corners: fast9_count(&g, w, h, ORB_SLAM_THRESHOLD),
+        weak_corner_density: weak.len() as f32 * 1e4 / (w * h).max(1) as f32,
+        corner_strength_p50: percentile(&strengths, 0.5),
+        corner_strength_p90: percentile(&strengths, 0.9),
+        strong_corners: share(&strengths, |s| s >= STRONG_CORNER as f32),
+        contrast_p10: percentile(&contrasts, 0.1),
+        contrast_p50: percentile(&contrasts, 0.5),
+        contrast_p90: percentile(&contrasts, 0.9),
         gradient_p50: percentile(&sorted, 0.5),
         gradient_p90: percentile(&sorted, 0.9),
         saturation,
@@ -133,6 +172,12 @@ impl Spread {
 pub struct SequenceStats {
     pub frames: usize,
     pub fast_corners: Spread,
+    pub weak_corner_density: Spread,
+    pub corner_strength_p50: Spread,
+    pub strong_corners: Spread,
+    pub contrast_p10: Spread,
+    pub contrast_p50: Spread,
+    pub contrast_p90: Spread,
     pub gradient_p50: Spread,
     pub gradient_p90: Spread,
     pub saturation: Spread,
@@ -144,6 +189,12 @@ impl SequenceStats {
         Self {
             frames: frames.len(),
             fast_corners: Spread::of(frames.iter().map(|f| f.fast_corners as f32)),
+            weak_corner_density: Spread::of(frames.iter().map(|f| f.weak_corner_density)),
+            corner_strength_p50: Spread::of(frames.iter().map(|f| f.corner_strength_p50)),
+            strong_corners: Spread::of(frames.iter().map(|f| f.strong_corners)),
+            contrast_p10: Spread::of(frames.iter().map(|f| f.contrast_p10)),
+            contrast_p50: Spread::of(frames.iter().map(|f| f.contrast_p50)),
+            contrast_p90: Spread::of(frames.iter().map(|f| f.contrast_p90)),
             gradient_p50: Spread::of(frames.iter().map(|f| f.gradient_p50)),
             gradient_p90: Spread::of(frames.iter().map(|f| f.gradient_p90)),
             saturation: Spread::of(frames.iter().map(|f| f.saturation)),
@@ -171,6 +222,8 @@ mod tests {
     fn a_flat_grey_image_is_all_low_texture_with_no_corners_or_saturation() {
         let s = frame_stats(&image(128, 96, |_, _| [120, 120, 120]));
         assert_eq!(s.fast_corners, 0);
+        assert_eq!((s.weak_corner_density, s.corner_strength_p90), (0.0, 0.0));
+        assert_eq!((s.contrast_p10, s.contrast_p90), (0.0, 0.0));
         assert_eq!(s.gradient_p90, 0.0);
         assert_eq!(s.saturation, 0.0);
         assert_eq!(s.low_texture_cells, 1.0);
@@ -187,6 +240,11 @@ mod tests {
         // 64 squares, less the corners of the first row and column in the 3-pixel border FAST
         // leaves out: 49 whole squares, 14 with two corners, one with one.
         assert_eq!(s.fast_corners, 49 * 4 + 14 * 2 + 1);
+        let weak = s.weak_corner_density * 128.0 * 128.0 / 1e4;
+        assert!((weak - s.fast_corners as f32).abs() < 1e-3, "{weak}");
+        assert_eq!((s.corner_strength_p50, s.strong_corners), (200.0, 1.0));
+        // The squares fill whole 8 × 8 blocks: no block holds two grey levels.
+        assert_eq!(s.contrast_p90, 0.0);
         assert_eq!(s.low_texture_cells, 0.0);
         assert_eq!(
             s.gradient_p50, 0.0,
@@ -200,6 +258,13 @@ mod tests {
         let frames: Vec<FrameStats> = (0..=10)
             .map(|i| FrameStats {
                 fast_corners: 10 * i,
+                weak_corner_density: i as f32,
+                corner_strength_p50: i as f32,
+                corner_strength_p90: i as f32,
+                strong_corners: 0.1 * i as f32,
+                contrast_p10: i as f32,
+                contrast_p50: i as f32,
+                contrast_p90: i as f32,
                 gradient_p50: i as f32,
                 gradient_p90: 2.0 * i as f32,
                 saturation: 0.05 * i as f32,
