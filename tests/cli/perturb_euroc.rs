@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use crate::dataset_check::assert_same_files;
-use crate::harness::Workspace;
+use crate::harness::{sorted_names, Workspace};
 
 /// MH_01_easy's first two cam0 stamps (multiples of 256 ns, as published) and one of any
 /// nanosecond (TUM-VI's stamps are), which f64 seconds could not hold.
@@ -122,15 +122,6 @@ fn psnr_db(a: &[u8], b: &[u8]) -> f64 {
         .sum::<f64>()
         / a.len() as f64;
     10.0 * (255.0f64 * 255.0 / mse).log10()
-}
-
-fn sorted_names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 #[test]

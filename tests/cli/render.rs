@@ -8,7 +8,7 @@ use rslam_render::raster::depth_agreement;
 use rslam_render::raycast::RayCaster;
 
 use crate::dataset_check::*;
-use crate::harness::Workspace;
+use crate::harness::{sorted_names, Workspace};
 
 /// A small camera keeps the tests fast; the field of view is the Replica camera's.
 pub const SMALL_CAMERA: &str = "120,68,60,60,59.5,33.5";
@@ -134,6 +134,52 @@ fn tum_layout_reads_back() {
         assert!(yaml.contains(key), "orbslam3.yaml lacks {key}");
     }
     assert!(ws.path("ds/rslam.json").exists());
+}
+
+#[test]
+fn a_ros2_bag_is_sealed_like_a_dataset_and_rigs_and_bag_input_are_refused() {
+    let ws = Workspace::new();
+    let render = |out: &str, extra: &[&str]| {
+        let mut args = vec![
+            "render",
+            "--scene",
+            "room0",
+            "--frames",
+            "3",
+            "--camera",
+            SMALL_CAMERA,
+            "--format",
+            "ros2",
+            "--out",
+            out,
+        ];
+        args.extend_from_slice(extra);
+        ws.rslam(&args)
+    };
+    render("bag", &[]).success();
+    assert_eq!(
+        sorted_names(&ws.path("bag")),
+        ["bag_0.mcap", "metadata.yaml", "rslam.b3sum", "rslam.json"]
+    );
+    ws.rslam(&["verify", "bag"]).success();
+    let again = render("bag", &[]);
+    again.success();
+    assert!(
+        again.stderr().contains("already complete"),
+        "{}",
+        again.stderr()
+    );
+    render("rig", &["--rig", "rgbd-imu"]).fails_with(2, &["--rig rgbd-imu", "--format tum"]);
+    ws.rslam(&[
+        "perturb",
+        "--input",
+        "bag",
+        "--perturb",
+        "fog:3",
+        "--out",
+        "p",
+    ])
+    .fails_with(2, &["bag", "metadata.yaml", "not built yet"]);
 }
 
 #[test]

@@ -27,7 +27,7 @@ fn rig_in_layout(rig: &str, layout: Layout) -> String {
     match (rig, layout) {
         (_, Layout::Euroc) => "--format euroc: needs --rig stereo|stereo-imu|FILE.toml (the EuRoC layout is for those rigs)".into(),
         ("rgbd-imu", _) => {
-            "--rig rgbd-imu: needs --format tum (the TUM layout with imu0/ beside it)".into()
+            "--rig rgbd-imu: needs --format tum (the TUM layout with imu0/ beside it; ROS 2 bags of rigs are not built yet)".into()
         }
         _ => format!("--rig {rig}: needs --format euroc (the stereo rigs and rig files are written in the EuRoC layout)"),
     }

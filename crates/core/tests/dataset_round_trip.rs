@@ -135,9 +135,10 @@ fn both_layouts_read_back_what_was_written() {
         let written = frames();
         for (j, frame) in back.frames.iter().enumerate() {
             // Replica frames carry no timestamps: frame j is j / rate from 0.
-            let expected_rgb = match format {
-                DatasetFormat::Replica => j as f64 / RATE_HZ,
-                DatasetFormat::Tum => written[j].rgb_time,
+            let expected_rgb = if format == DatasetFormat::Replica {
+                j as f64 / RATE_HZ
+            } else {
+                written[j].rgb_time
             };
             assert!(
                 (frame.rgb_time - expected_rgb).abs() < 1e-6,

@@ -1,7 +1,9 @@
-//! Writing a dataset of one camera (Replica or TUM layout) from a pipeline, resumably: only
-//! source frames with a missing file are drawn, and the manifest comes last.
+//! Writing a dataset of one camera from a pipeline: a Replica or TUM layout resumably (only
+//! source frames with a missing file are drawn), a ROS 2 bag from its start; the manifest comes
+//! last.
 
-use rslam_core::dataset::{DatasetFormat, DatasetWriter};
+use rslam_core::dataset::ros2::CameraBag;
+use rslam_core::dataset::{ContentWriter, DatasetFormat, DatasetWriter};
 use rslam_core::{Intrinsics, Trajectory};
 use rslam_gpu::GpuContext;
 
@@ -9,7 +11,7 @@ use crate::job::Writing;
 use crate::output_folder::Written;
 use crate::pipeline::Pipeline;
 use crate::plan::FramePlan;
-use crate::sink::DatasetSink;
+use crate::sink::{CameraBagSink, DatasetSink};
 use crate::source::FrameSource;
 
 /// One camera's dataset to write: in which layout, and what it holds besides the frames.
@@ -33,6 +35,9 @@ pub fn dataset_writing<'a, S: FrameSource + 'a>(
     target: DatasetOutput<'a>,
     what: &'a str,
 ) -> Writing<'a> {
+    if target.format == DatasetFormat::Ros2 {
+        return bag_writing(ctx, pipeline, target, what);
+    }
     Box::new(move |out, found, manifest, progress| {
         let plan = target.plan;
         let writer = DatasetWriter::open(out, target.format, target.camera, manifest.depth_png)?
@@ -48,6 +53,29 @@ pub fn dataset_writing<'a, S: FrameSource + 'a>(
         pipeline.run(ctx, &sources, progress, &mut sink)?;
         progress.finish();
         let manifest = sink.finish(target.ground_truth, target.sensor_files, manifest)?;
+        Ok(Written {
+            made: sources.len(),
+            manifest,
+        })
+    })
+}
+
+/// A ROS 2 bag is one file: a resumed run writes it again from the first frame.
+fn bag_writing<'a, S: FrameSource + 'a>(
+    ctx: &'a GpuContext,
+    mut pipeline: Pipeline<S>,
+    target: DatasetOutput<'a>,
+    what: &'a str,
+) -> Writing<'a> {
+    Box::new(move |out, _found, manifest, progress| {
+        let plan = target.plan;
+        let bag = CameraBag::create(out, target.camera, manifest.distortion)?;
+        let mut sink = CameraBagSink::new(bag, ContentWriter::new(out), plan, target.ground_truth);
+        let sources = plan.needed_sources();
+        progress.start(sources.len(), what);
+        pipeline.run(ctx, &sources, progress, &mut sink)?;
+        progress.finish();
+        let manifest = sink.finish(manifest)?;
         Ok(Written {
             made: sources.len(),
             manifest,

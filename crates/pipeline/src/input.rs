@@ -37,6 +37,12 @@ impl PerturbInput {
         if path.join("rgb.txt").is_file() || path.join("results").is_dir() {
             return Ok(Self::Dataset(path.to_path_buf()));
         }
+        if path.join("metadata.yaml").is_file() {
+            return Err(PipelineError::input(
+                path,
+                "a ROS 2 bag (metadata.yaml): reading bags is not built yet; rslam writes them (--format ros2)",
+            ));
+        }
         Ok(Self::ImageFolder(path.to_path_buf()))
     }
 }

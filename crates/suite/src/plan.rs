@@ -170,12 +170,14 @@ const EUROC_GREY_BYTES_PER_PIXEL: (f64, f64) = (0.38, 1.00);
 /// and under gaussian_noise:5 (the worst case, taken for every noise corruption): Replica layout
 /// (JPEG + 16-bit PNG) 1.10 and 2.66 MB per 1200x680 frame; TUM layout (PNG + PNG) 737 kB and
 /// 1.18 MB per 640x480 frame. Small depth PNGs: 2000 clean frames take 1.31 GB (Replica) and
-/// 1.10 GB (TUM); noisy colour does not shrink, so the noise figure stays.
+/// 1.10 GB (TUM); noisy colour does not shrink, so the noise figure stays. A bag stores raw
+/// `rgb8` and `16UC1` images, 5 bytes a pixel whatever they show.
 fn measured_bytes_per_pixel(format: DatasetFormat, depth_png: DepthPng) -> (f64, f64) {
     match (format, depth_png) {
         (DatasetFormat::Replica, DepthPng::Fast) => (1.35, 3.26),
         (DatasetFormat::Replica, DepthPng::Small) => (0.80, 3.26),
         (DatasetFormat::Tum, DepthPng::Fast) => (2.40, 3.84),
         (DatasetFormat::Tum, DepthPng::Small) => (1.79, 3.84),
+        (DatasetFormat::Ros2, _) => (5.0, 5.0),
     }
 }

@@ -146,10 +146,11 @@ pub fn init_suite(options: &InitOptions) -> SuiteFile {
     }
 }
 
-/// The camera a layout's consumers expect: Replica's for the Replica layout, TUM's for TUM.
+/// The camera a layout's consumers expect: Replica's for the Replica layout, TUM's for TUM; a
+/// bag carries the camera it was rendered with, Replica's by default.
 fn camera_of(format: DatasetFormat) -> &'static str {
     match format {
-        DatasetFormat::Replica => "replica",
+        DatasetFormat::Replica | DatasetFormat::Ros2 => "replica",
         DatasetFormat::Tum => "tum",
     }
 }

@@ -39,7 +39,8 @@ pub struct RenderArgs {
     #[arg(long)]
     rate: Option<f64>,
     /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM), tum (ORB-SLAM3; with
-    /// --rig rgbd-imu plus imu0/) or euroc (the stereo rigs; needs --rig).
+    /// --rig rgbd-imu plus imu0/), ros2 (a rosbag2 in MCAP storage for `ros2 bag play`; one
+    /// camera) or euroc (the stereo rigs; needs --rig).
     #[arg(long, value_enum, default_value = "replica")]
     format: OutputFormat,
     /// Depth PNG compression: `fast`, or `small` (about a third of the size for 2–3× the
@@ -67,11 +68,13 @@ pub struct RenderArgs {
     adapter: Option<String>,
 }
 
-/// `--format`: the core layouts of one RGB-D camera, or EuRoC for a rig.
+/// `--format`: the layouts of one RGB-D camera (folders, or a ROS 2 bag), or EuRoC for a rig.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum OutputFormat {
     Replica,
     Tum,
+    /// A rosbag2 folder (MCAP storage) of one RGB-D camera, for `ros2 bag play`.
+    Ros2,
     Euroc,
 }
 
@@ -80,6 +83,7 @@ impl OutputFormat {
         match self {
             Self::Replica => Layout::Camera(DatasetFormat::Replica),
             Self::Tum => Layout::Camera(DatasetFormat::Tum),
+            Self::Ros2 => Layout::Camera(DatasetFormat::Ros2),
             Self::Euroc => Layout::Euroc,
         }
     }

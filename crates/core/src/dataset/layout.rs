@@ -11,14 +11,17 @@ pub enum DatasetFormat {
     Replica,
     /// `rgb/<t>.png`, `depth/<t>.png`, `rgb.txt`, `depth.txt`, `groundtruth.txt`, `associations.txt`.
     Tum,
+    /// A rosbag2 folder: `<name>_0.mcap` and `metadata.yaml` ([`super::ros2`]).
+    Ros2,
 }
 
 impl DatasetFormat {
-    /// 16-bit depth PNG units per metre.
+    /// 16-bit depth units per metre (PNG files, or the bag's `16UC1` images).
     pub fn depth_scale(self) -> f64 {
         match self {
             Self::Replica => 6553.5,
             Self::Tum => 5000.0,
+            Self::Ros2 => super::ros2::DEPTH_UNITS_PER_METRE,
         }
     }
 
@@ -26,6 +29,7 @@ impl DatasetFormat {
         match self {
             Self::Replica => "replica",
             Self::Tum => "tum",
+            Self::Ros2 => "ros2",
         }
     }
 }
@@ -43,8 +47,9 @@ impl FromStr for DatasetFormat {
         match s {
             "replica" => Ok(Self::Replica),
             "tum" => Ok(Self::Tum),
+            "ros2" => Ok(Self::Ros2),
             _ => Err(format!(
-                "unknown dataset format '{s}': expected replica or tum"
+                "unknown dataset format '{s}': expected replica, tum or ros2"
             )),
         }
     }
@@ -75,6 +80,7 @@ impl Layout {
         match self {
             Self::Camera(DatasetFormat::Replica) => "cam_params.json",
             Self::Camera(DatasetFormat::Tum) => "orbslam3.yaml",
+            Self::Camera(DatasetFormat::Ros2) => "metadata.yaml",
             Self::Euroc => super::euroc::ORBSLAM3_STEREO_FILE,
         }
     }
@@ -93,7 +99,7 @@ impl FromStr for Layout {
         match s {
             "euroc" => Ok(Self::Euroc),
             _ => s.parse().map(Self::Camera).map_err(|_| {
-                format!("unknown dataset layout '{s}': expected replica, tum or euroc")
+                format!("unknown dataset layout '{s}': expected replica, tum, ros2 or euroc")
             }),
         }
     }
@@ -108,6 +114,7 @@ mod tests {
         for layout in [
             Layout::Camera(DatasetFormat::Replica),
             Layout::Camera(DatasetFormat::Tum),
+            Layout::Camera(DatasetFormat::Ros2),
             Layout::Euroc,
         ] {
             assert_eq!(layout.name().parse::<Layout>(), Ok(layout));
@@ -115,7 +122,7 @@ mod tests {
         assert_eq!(Layout::Euroc.camera_file(), "orbslam3_stereo.yaml");
         assert_eq!(
             "kitti".parse::<Layout>(),
-            Err("unknown dataset layout 'kitti': expected replica, tum or euroc".into())
+            Err("unknown dataset layout 'kitti': expected replica, tum, ros2 or euroc".into())
         );
     }
 }

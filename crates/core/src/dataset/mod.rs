@@ -13,6 +13,7 @@ mod manifest;
 mod no_symlinks;
 mod orbslam3;
 mod reader;
+pub mod ros2;
 mod verify;
 mod writer;
 

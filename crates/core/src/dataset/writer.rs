@@ -31,11 +31,27 @@ pub struct FrameFiles {
 /// manifest, last.
 pub struct DatasetWriter {
     content: ContentWriter,
-    format: DatasetFormat,
+    files: FileLayout,
     intrinsics: Intrinsics,
     /// The lens the frames were taken through, written beside the intrinsics.
     distortion: Option<Distortion>,
     depth_png: DepthPng,
+}
+
+/// The layouts written a file per frame; a bag is one file ([`super::ros2::CameraBag`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum FileLayout {
+    Replica,
+    Tum,
+}
+
+impl FileLayout {
+    fn format(self) -> DatasetFormat {
+        match self {
+            Self::Replica => DatasetFormat::Replica,
+            Self::Tum => DatasetFormat::Tum,
+        }
+    }
 }
 
 fn tum_name(dir: &str, time: f64) -> String {
@@ -51,9 +67,15 @@ impl DatasetWriter {
         intrinsics: Intrinsics,
         depth_png: DepthPng,
     ) -> Result<Self, CoreError> {
-        let dirs: &[&str] = match format {
-            DatasetFormat::Replica => &["results"],
-            DatasetFormat::Tum => &["rgb", "depth"],
+        let (files, dirs): (FileLayout, &[&str]) = match format {
+            DatasetFormat::Replica => (FileLayout::Replica, &["results"]),
+            DatasetFormat::Tum => (FileLayout::Tum, &["rgb", "depth"]),
+            DatasetFormat::Ros2 => {
+                return Err(CoreError::bad_file(
+                    root,
+                    "a ROS 2 bag is one file, written by ros2::CameraBag, not frame by frame",
+                ))
+            }
         };
         for dir in dirs {
             let path = root.join(dir);
@@ -61,7 +83,7 @@ impl DatasetWriter {
         }
         Ok(Self {
             content: ContentWriter::new(root),
-            format,
+            files,
             intrinsics,
             distortion: None,
             depth_png,
@@ -76,12 +98,12 @@ impl DatasetWriter {
 
     /// The files output frame `index` is written to.
     pub fn frame_files(&self, index: usize, frame: &OutputFrame) -> FrameFiles {
-        match self.format {
-            DatasetFormat::Replica => FrameFiles {
+        match self.files {
+            FileLayout::Replica => FrameFiles {
                 rgb: format!("results/frame{index:06}.jpg"),
                 depth: format!("results/depth{index:06}.png"),
             },
-            DatasetFormat::Tum => FrameFiles {
+            FileLayout::Tum => FrameFiles {
                 rgb: tum_name("rgb", frame.rgb_time),
                 depth: tum_name("depth", frame.depth_time),
             },
@@ -97,7 +119,7 @@ impl DatasetWriter {
     }
 
     pub fn format(&self) -> DatasetFormat {
-        self.format
+        self.files.format()
     }
 
     /// Colour of output frame `index`, captured at `frame.rgb_time`.
@@ -107,9 +129,9 @@ impl DatasetWriter {
         frame: &OutputFrame,
         image: &RgbImage,
     ) -> Result<(), CoreError> {
-        let bytes = match self.format {
-            DatasetFormat::Replica => encode_jpeg(image, JPEG_QUALITY)?,
-            DatasetFormat::Tum => encode_png(image)?,
+        let bytes = match self.files {
+            FileLayout::Replica => encode_jpeg(image, JPEG_QUALITY)?,
+            FileLayout::Tum => encode_png(image)?,
         };
         self.content
             .write(&self.frame_files(index, frame).rgb, &bytes)
@@ -123,7 +145,7 @@ impl DatasetWriter {
         outputs: &[(usize, OutputFrame)],
         depth: &DepthImage,
     ) -> Result<(), CoreError> {
-        let bytes = encode_depth_png(depth, self.format.depth_scale(), self.depth_png)?;
+        let bytes = encode_depth_png(depth, self.files.format().depth_scale(), self.depth_png)?;
         let mut names: Vec<String> = outputs
             .iter()
             .map(|(index, frame)| self.frame_files(*index, frame).depth)
@@ -144,12 +166,12 @@ impl DatasetWriter {
         ground_truth: &Trajectory,
         manifest: Manifest,
     ) -> Result<Manifest, CoreError> {
-        match self.format {
-            DatasetFormat::Replica => {
+        match self.files {
+            FileLayout::Replica => {
                 write_replica(&self.root().join("traj.txt"), ground_truth)?;
                 self.write_text("cam_params.json", &self.cam_params_json())?;
             }
-            DatasetFormat::Tum => {
+            FileLayout::Tum => {
                 write_tum(&self.root().join("groundtruth.txt"), ground_truth)?;
                 self.write_text(
                     "rgb.txt",
@@ -200,7 +222,7 @@ impl DatasetWriter {
             "camera": {
                 "w": k.width, "h": k.height,
                 "fx": k.fx, "fy": k.fy, "cx": k.cx, "cy": k.cy,
-                "scale": self.format.depth_scale(),
+                "scale": self.files.format().depth_scale(),
             }
         });
         if let Some(lens) = &self.distortion {

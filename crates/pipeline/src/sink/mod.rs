@@ -1,10 +1,13 @@
-//! Where read-back source frames go: into a dataset on disk (a Replica or TUM dataset, or one
-//! camera of a EuRoC one), or assembled into output frames handed to a callback in memory.
+//! Where read-back source frames go: into a dataset on disk (a Replica or TUM dataset, one
+//! camera of a EuRoC one, or a ROS 2 bag), or assembled into output frames handed to a callback
+//! in memory.
 
+mod bag;
 mod dataset;
 mod euroc_camera;
 mod memory;
 
+pub use bag::CameraBagSink;
 pub use dataset::DatasetSink;
 pub use euroc_camera::{finish_writer, frames_kept, EurocCameraSink};
 pub use memory::{MemorySink, RgbdFrame};

@@ -308,7 +308,7 @@ mod tests {
             (
                 "name = \"a\"\nreads = \"kitti\"\ncommand = [\"x\"]\ntimeout_s = 1\n",
                 ":2",
-                "reads: unknown dataset layout 'kitti': expected replica, tum or euroc",
+                "reads: unknown dataset layout 'kitti': expected replica, tum, ros2 or euroc",
             ),
             (
                 "name = \"a\"\nreads = \"tum\"\ncommand = []\ntimeout_s = 1\n",

@@ -18,7 +18,8 @@ pub struct InitArgs {
     /// Frames per sequence (the first N poses of each path); default: the preset's.
     #[arg(long)]
     frames: Option<usize>,
-    /// Dataset layout of every sequence, with its camera: replica (1200x680) or tum (640x480).
+    /// Dataset layout of every sequence, with its camera: replica (1200x680), tum (640x480) or
+    /// ros2 (a ROS 2 bag of the replica camera).
     #[arg(long, default_value = "replica")]
     format: DatasetFormat,
     /// Depth PNG compression: fast, or small (lossless, about 40 % smaller datasets on clean

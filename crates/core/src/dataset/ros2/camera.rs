@@ -1,0 +1,242 @@
+//! One RGB-D camera as a ROS 2 bag, with the topics and frame ids of the RealSense ROS 2 driver:
+//! colour (`rgb8`) and depth registered to it (`16UC1`, millimetres, 0 = no measurement; REP 118)
+//! each with its `CameraInfo`, the optical frame's pose in `camera_link` on `/tf_static` (REP 103
+//! axes: z forward, x right, y down), and the ground-truth pose of the optical frame in `world`,
+//! the pose a TUM `groundtruth.txt` of the same job holds.
+
+use std::path::Path;
+
+use super::bag::{BagWriter, Topic};
+use super::messages::{
+    Bytes, CameraInfo, Header, Image, Pose, PoseStamped, Quaternion, RegionOfInterest, TfMessage,
+    Time, Transform, TransformStamped, Vector3,
+};
+use super::schemas::MessageType;
+use crate::{CoreError, DepthImage, Distortion, Intrinsics, RgbImage};
+
+pub const COLOR_TOPIC: &str = "/camera/color/image_raw";
+pub const COLOR_INFO_TOPIC: &str = "/camera/color/camera_info";
+pub const DEPTH_TOPIC: &str = "/camera/depth/image_raw";
+pub const DEPTH_INFO_TOPIC: &str = "/camera/depth/camera_info";
+pub const GROUND_TRUTH_TOPIC: &str = "/ground_truth/pose";
+pub const TF_STATIC_TOPIC: &str = "/tf_static";
+pub const OPTICAL_FRAME: &str = "camera_color_optical_frame";
+pub const BODY_FRAME: &str = "camera_link";
+pub const WORLD_FRAME: &str = "world";
+/// 16UC1 depth units per metre.
+pub const DEPTH_UNITS_PER_METRE: f64 = 1000.0;
+
+// Topic indices, in the order `CameraBag::create` lists them.
+const COLOR: usize = 0;
+const COLOR_INFO: usize = 1;
+const DEPTH: usize = 2;
+const DEPTH_INFO: usize = 3;
+const GROUND_TRUTH: usize = 4;
+const TF_STATIC: usize = 5;
+
+pub struct CameraBag {
+    bag: BagWriter,
+    intrinsics: Intrinsics,
+    distortion: Option<Distortion>,
+    tf_written: bool,
+}
+
+impl CameraBag {
+    pub fn create(
+        folder: &Path,
+        intrinsics: Intrinsics,
+        distortion: Option<Distortion>,
+    ) -> Result<Self, CoreError> {
+        let name = folder
+            .file_name()
+            .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
+        let topics = [
+            Topic::new(COLOR_TOPIC, MessageType::Image),
+            Topic::new(COLOR_INFO_TOPIC, MessageType::CameraInfo),
+            Topic::new(DEPTH_TOPIC, MessageType::Image),
+            Topic::new(DEPTH_INFO_TOPIC, MessageType::CameraInfo),
+            Topic::new(GROUND_TRUTH_TOPIC, MessageType::PoseStamped),
+            Topic::latched(TF_STATIC_TOPIC, MessageType::TfMessage),
+        ];
+        Ok(Self {
+            bag: BagWriter::create(folder, &name, &topics)?,
+            intrinsics,
+            distortion,
+            tf_written: false,
+        })
+    }
+
+    /// Colour captured at `time` and its camera info.
+    pub fn write_rgb(&mut self, time: f64, image: &RgbImage) -> Result<(), CoreError> {
+        let stamp = self.stamp_at(time)?;
+        let message = Image {
+            header: header(stamp),
+            height: image.height,
+            width: image.width,
+            encoding: "rgb8".into(),
+            is_bigendian: 0,
+            step: 3 * image.width,
+            data: Bytes(&image.data),
+        };
+        self.bag.write(COLOR, stamp, &message)?;
+        self.bag.write(COLOR_INFO, stamp, &self.camera_info(stamp))
+    }
+
+    /// Depth captured at `time` and its camera info: millimetres, 0 where there is no depth.
+    pub fn write_depth(&mut self, time: f64, depth: &DepthImage) -> Result<(), CoreError> {
+        let stamp = self.stamp_at(time)?;
+        let data: Vec<u8> = depth
+            .data
+            .iter()
+            .flat_map(|&z| millimetres(z).to_le_bytes())
+            .collect();
+        let message = Image {
+            header: header(stamp),
+            height: depth.height,
+            width: depth.width,
+            encoding: "16UC1".into(),
+            is_bigendian: 0,
+            step: 2 * depth.width,
+            data: Bytes(&data),
+        };
+        self.bag.write(DEPTH, stamp, &message)?;
+        self.bag.write(DEPTH_INFO, stamp, &self.camera_info(stamp))
+    }
+
+    /// The optical frame's ground-truth pose in the world at `time`.
+    pub fn write_ground_truth(&mut self, time: f64, pose: &crate::Pose) -> Result<(), CoreError> {
+        let stamp = self.stamp_at(time)?;
+        let (t, q) = (pose.translation, pose.rotation);
+        let message = PoseStamped {
+            header: Header {
+                stamp,
+                frame_id: WORLD_FRAME.into(),
+            },
+            pose: Pose {
+                position: Vector3 {
+                    x: t.x,
+                    y: t.y,
+                    z: t.z,
+                },
+                orientation: Quaternion {
+                    x: q.x,
+                    y: q.y,
+                    z: q.z,
+                    w: q.w,
+                },
+            },
+        };
+        self.bag.write(GROUND_TRUTH, stamp, &message)
+    }
+
+    /// Closes the bag: its storage file's name and the `metadata.yaml` text.
+    pub fn finish(self) -> Result<(String, String), CoreError> {
+        self.bag.finish()
+    }
+
+    /// The stamp of `time`; the first one also stamps `/tf_static`, written before it.
+    fn stamp_at(&mut self, time: f64) -> Result<Time, CoreError> {
+        let stamp = Time::from_seconds(time);
+        if !self.tf_written {
+            self.tf_written = true;
+            self.bag.write(TF_STATIC, stamp, &optical_in_body(stamp))?;
+        }
+        Ok(stamp)
+    }
+
+    fn camera_info(&self, stamp: Time) -> CameraInfo {
+        let k = &self.intrinsics;
+        let (model, d) = match self.distortion {
+            Some(Distortion::Radtan { k1, k2, p1, p2 }) => ("plumb_bob", vec![k1, k2, p1, p2, 0.0]),
+            Some(Distortion::Equidistant { k1, k2, k3, k4 }) => {
+                ("equidistant", vec![k1, k2, k3, k4])
+            }
+            None => ("plumb_bob", vec![0.0; 5]),
+        };
+        CameraInfo {
+            header: header(stamp),
+            height: k.height,
+            width: k.width,
+            distortion_model: model.into(),
+            d,
+            k: [k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0],
+            r: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+            p: [
+                k.fx, 0.0, k.cx, 0.0, 0.0, k.fy, k.cy, 0.0, 0.0, 0.0, 1.0, 0.0,
+            ],
+            binning_x: 0,
+            binning_y: 0,
+            roi: RegionOfInterest::default(),
+        }
+    }
+}
+
+fn header(stamp: Time) -> Header {
+    Header {
+        stamp,
+        frame_id: OPTICAL_FRAME.into(),
+    }
+}
+
+/// Depth in metres as 16UC1 millimetres: 0 for no measurement and beyond 65.535 m.
+fn millimetres(z: f32) -> u16 {
+    let mm = (z as f64 * DEPTH_UNITS_PER_METRE).round();
+    if mm.is_finite() && mm >= 1.0 && mm <= u16::MAX as f64 {
+        mm as u16
+    } else {
+        0
+    }
+}
+
+/// `camera_link` (x forward, y left, z up) to the optical frame (z forward, x right, y down):
+/// the rotation the RealSense driver publishes, roll −90°, yaw −90°.
+fn optical_in_body(stamp: Time) -> TfMessage {
+    TfMessage {
+        transforms: vec![TransformStamped {
+            header: Header {
+                stamp,
+                frame_id: BODY_FRAME.into(),
+            },
+            child_frame_id: OPTICAL_FRAME.into(),
+            transform: Transform {
+                translation: Vector3 {
+                    x: 0.0,
+                    y: 0.0,
+                    z: 0.0,
+                },
+                rotation: Quaternion {
+                    x: -0.5,
+                    y: 0.5,
+                    z: -0.5,
+                    w: 0.5,
+                },
+            },
+        }],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DQuat, DVec3};
+
+    use super::*;
+
+    #[test]
+    fn depth_becomes_whole_millimetres_and_no_measurement_zero() {
+        assert_eq!(millimetres(1.2344), 1234);
+        assert_eq!(millimetres(0.0), 0);
+        assert_eq!(millimetres(f32::NAN), 0);
+        assert_eq!(millimetres(70.0), 0);
+    }
+
+    #[test]
+    fn the_optical_frame_looks_along_the_bodys_x_with_its_y_down() {
+        let q = optical_in_body(Time::from_seconds(0.0)).transforms[0]
+            .transform
+            .rotation;
+        let r = DQuat::from_xyzw(q.x, q.y, q.z, q.w);
+        assert!((r * DVec3::Z - DVec3::X).length() < 1e-12);
+        assert!((r * DVec3::Y - DVec3::NEG_Z).length() < 1e-12);
+        assert!((r * DVec3::X - DVec3::NEG_Y).length() < 1e-12);
+    }
+}

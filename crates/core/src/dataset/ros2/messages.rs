@@ -1,0 +1,192 @@
+//! The ROS 2 messages a bag carries, as serde structs in the field order of their `.msg`
+//! definitions ([`super::schemas`]), which is the order CDR writes them in.
+
+use serde::{Serialize, Serializer};
+
+/// `builtin_interfaces/msg/Time`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+pub struct Time {
+    pub sec: i32,
+    pub nanosec: u32,
+}
+
+impl Time {
+    /// The stamp of a capture time in seconds, rounded to the nanosecond.
+    pub fn from_seconds(seconds: f64) -> Self {
+        let nanoseconds = (seconds * 1e9).round() as i64;
+        Self {
+            sec: nanoseconds.div_euclid(1_000_000_000) as i32,
+            nanosec: nanoseconds.rem_euclid(1_000_000_000) as u32,
+        }
+    }
+
+    /// Nanoseconds since the epoch: an MCAP message's log and publish time.
+    pub fn nanoseconds(self) -> u64 {
+        (self.sec as i64 * 1_000_000_000 + self.nanosec as i64).max(0) as u64
+    }
+}
+
+/// `std_msgs/msg/Header`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Header {
+    pub stamp: Time,
+    pub frame_id: String,
+}
+
+/// A `uint8[]` field, written as one length and its bytes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bytes<'a>(pub &'a [u8]);
+
+impl Serialize for Bytes<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_bytes(self.0)
+    }
+}
+
+/// `sensor_msgs/msg/Image`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Image<'a> {
+    pub header: Header,
+    pub height: u32,
+    pub width: u32,
+    pub encoding: String,
+    pub is_bigendian: u8,
+    pub step: u32,
+    pub data: Bytes<'a>,
+}
+
+/// `sensor_msgs/msg/RegionOfInterest`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct RegionOfInterest {
+    pub x_offset: u32,
+    pub y_offset: u32,
+    pub height: u32,
+    pub width: u32,
+    pub do_rectify: bool,
+}
+
+/// `sensor_msgs/msg/CameraInfo`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CameraInfo {
+    pub header: Header,
+    pub height: u32,
+    pub width: u32,
+    pub distortion_model: String,
+    pub d: Vec<f64>,
+    pub k: [f64; 9],
+    pub r: [f64; 9],
+    pub p: [f64; 12],
+    pub binning_x: u32,
+    pub binning_y: u32,
+    pub roi: RegionOfInterest,
+}
+
+/// `geometry_msgs/msg/Point` (and `Vector3`, which has the same fields).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Vector3 {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+}
+
+/// `geometry_msgs/msg/Quaternion`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Quaternion {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+    pub w: f64,
+}
+
+/// `geometry_msgs/msg/Pose`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Pose {
+    pub position: Vector3,
+    pub orientation: Quaternion,
+}
+
+/// `geometry_msgs/msg/PoseStamped`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PoseStamped {
+    pub header: Header,
+    pub pose: Pose,
+}
+
+/// `geometry_msgs/msg/Transform`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Transform {
+    pub translation: Vector3,
+    pub rotation: Quaternion,
+}
+
+/// `geometry_msgs/msg/TransformStamped`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TransformStamped {
+    pub header: Header,
+    pub child_frame_id: String,
+    pub transform: Transform,
+}
+
+/// `tf2_msgs/msg/TFMessage`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TfMessage {
+    pub transforms: Vec<TransformStamped>,
+}
+
+/// Little-endian CDR with its 4-byte encapsulation header, as rosbag2 stores messages.
+pub fn cdr_bytes<M: Serialize>(message: &M) -> Result<Vec<u8>, String> {
+    cdr::serialize::<_, _, cdr::CdrLe>(message, cdr::Infinite).map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_header_is_its_stamp_then_a_null_terminated_string_after_the_encapsulation() {
+        let header = Header {
+            stamp: Time::from_seconds(2.5),
+            frame_id: "cam".into(),
+        };
+        let bytes = cdr_bytes(&header).unwrap();
+        let expected: Vec<u8> = [
+            &[0, 1, 0, 0][..],             // CDR_LE encapsulation, options 0
+            &2i32.to_le_bytes(),           // sec
+            &500_000_000u32.to_le_bytes(), // nanosec
+            &4u32.to_le_bytes(),           // string length with its terminating null
+            b"cam\0",
+        ]
+        .concat();
+        assert_eq!(bytes, expected);
+    }
+
+    #[test]
+    fn an_image_aligns_its_fields_and_writes_its_data_as_one_sequence() {
+        let image = Image {
+            header: Header {
+                stamp: Time::from_seconds(0.0),
+                frame_id: "a".into(),
+            },
+            height: 1,
+            width: 2,
+            encoding: "mono8".into(),
+            is_bigendian: 0,
+            step: 2,
+            data: Bytes(&[7, 9]),
+        };
+        let bytes = cdr_bytes(&image).unwrap();
+        let body = &bytes[4..];
+        // stamp (8), "a" (4 + 2), pad to 4 (2), height, width (8), "mono8" (4 + 6), is_bigendian
+        // (1), pad to 4 (1), step (4), data length (4) and bytes (2).
+        assert_eq!(body.len(), 8 + 6 + 2 + 8 + 10 + 1 + 1 + 4 + 4 + 2);
+        assert_eq!(&body[body.len() - 6..], &[2, 0, 0, 0, 7, 9]);
+    }
+
+    #[test]
+    fn stamps_round_to_the_nanosecond_and_order_like_times() {
+        let t = Time::from_seconds(1.000_000_000_4);
+        assert_eq!((t.sec, t.nanosec), (1, 0));
+        assert_eq!(Time::from_seconds(0.05).nanoseconds(), 50_000_000);
+        assert!(Time::from_seconds(0.9) < Time::from_seconds(1.1));
+    }
+}
