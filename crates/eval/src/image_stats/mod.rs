@@ -10,7 +10,7 @@ use rslam_core::RgbImage;
 use serde::Serialize;
 
 pub use contrast::{block_contrasts, BLOCK};
-pub use fast::{corners, fast9_count, Corner, ORB_SLAM_MIN_THRESHOLD, ORB_SLAM_THRESHOLD};
+pub use fast::{corners, Corner, ORB_SLAM_MIN_THRESHOLD, ORB_SLAM_THRESHOLD};
 pub use target::{Band, RealPhotographs, REAL_PHOTOGRAPHS};
 
 /// A corner at least this strong stays a corner at [`ORB_SLAM_MIN_THRESHOLD`] when the image's
@@ -122,13 +122,18 @@ pub fn frame_stats(image: &RgbImage) -> FrameStats {
             }
         }
     }
+    // A corner beaten in suppression is beaten by a stronger neighbour, so the corners at the
+    // higher threshold are exactly those at the lower one that are stronger than it.
     let weak = corners(&g, w, h, ORB_SLAM_MIN_THRESHOLD);
     let mut strengths: Vec<f32> = weak.iter().map(|c| c.strength as f32).collect();
     strengths.sort_by(f32::total_cmp);
     let mut contrasts = block_contrasts(&g, w, h);
     contrasts.sort_by(f32::total_cmp);
     FrameStats {
-        fast_corners: fast9_count(&g, w, h, ORB_SLAM_THRESHOLD),
+        fast_corners: weak
+            .iter()
+            .filter(|c| c.strength > ORB_SLAM_THRESHOLD)
+            .count(),
         weak_corner_density: weak.len() as f32 * 1e4 / (w * h).max(1) as f32,
         corner_strength_p50: percentile(&strengths, 0.5),
         corner_strength_p90: percentile(&strengths, 0.9),
