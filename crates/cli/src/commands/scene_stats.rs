@@ -64,7 +64,65 @@ pub fn run(args: StatsArgs) -> anyhow::Result<()> {
     }
     let all: Vec<FrameStats> = frames.iter().map(|(_, s)| s.clone()).collect();
     let summary = SequenceStats::of(&all);
-    let line = |name: &str, s: Spread, scale: f32, target: Option<Band>| {
+    let real = REAL_PHOTOGRAPHS;
+    let rows: [(&str, Spread, f32, Option<Band>); 11] = [
+        (
+            "FAST corners (threshold 20)",
+            summary.fast_corners,
+            1.0,
+            None,
+        ),
+        (
+            "FAST corners at 7 per 10,000 pixels",
+            summary.weak_corner_density,
+            1.0,
+            Some(real.weak_corner_density),
+        ),
+        (
+            "their median strength (grey levels)",
+            summary.corner_strength_p50,
+            1.0,
+            Some(real.corner_strength_p50),
+        ),
+        (
+            "strong corners, at least 35 (%)",
+            summary.strong_corners,
+            100.0,
+            Some(real.strong_corners),
+        ),
+        (
+            "local contrast p10 (grey levels)",
+            summary.contrast_p10,
+            1.0,
+            Some(real.contrast_p10),
+        ),
+        (
+            "local contrast p50 (grey levels)",
+            summary.contrast_p50,
+            1.0,
+            Some(real.contrast_p50),
+        ),
+        (
+            "local contrast p90 (grey levels)",
+            summary.contrast_p90,
+            1.0,
+            Some(real.contrast_p90),
+        ),
+        ("gradient median (grey/px)", summary.gradient_p50, 1.0, None),
+        ("gradient p90 (grey/px)", summary.gradient_p90, 1.0, None),
+        ("saturation", summary.saturation, 1.0, None),
+        (
+            "low-texture cells (%)",
+            summary.low_texture_cells,
+            100.0,
+            None,
+        ),
+    ];
+    println!(
+        "\n{} frames of {:<20}              p10       p50       p90  real photographs (docs/src/scenes.md)",
+        summary.frames, args.input
+    );
+    for (name, s, scale, target) in rows {
         let target = target.map_or(String::new(), |b| {
             let verdict = if b.holds(s.p50) { "" } else { "  (outside)" };
             format!("{:9.2}–{:.2}{verdict}", b.low * scale, b.high * scale)
@@ -74,64 +132,8 @@ pub fn run(args: StatsArgs) -> anyhow::Result<()> {
             s.p10 * scale,
             s.p50 * scale,
             s.p90 * scale
-        )
-    };
-    let real = REAL_PHOTOGRAPHS;
-    println!(
-        "\n{} frames of {:<20}              p10       p50       p90  real photographs (docs/src/scenes.md)",
-        summary.frames, args.input
-    );
-    line(
-        "FAST corners (threshold 20)",
-        summary.fast_corners,
-        1.0,
-        None,
-    );
-    line(
-        "FAST corners at 7 per 10,000 pixels",
-        summary.weak_corner_density,
-        1.0,
-        Some(real.weak_corner_density),
-    );
-    line(
-        "their median strength (grey levels)",
-        summary.corner_strength_p50,
-        1.0,
-        Some(real.corner_strength_p50),
-    );
-    line(
-        "strong corners, at least 35 (%)",
-        summary.strong_corners,
-        100.0,
-        Some(real.strong_corners),
-    );
-    line(
-        "local contrast p10 (grey levels)",
-        summary.contrast_p10,
-        1.0,
-        Some(real.contrast_p10),
-    );
-    line(
-        "local contrast p50 (grey levels)",
-        summary.contrast_p50,
-        1.0,
-        Some(real.contrast_p50),
-    );
-    line(
-        "local contrast p90 (grey levels)",
-        summary.contrast_p90,
-        1.0,
-        Some(real.contrast_p90),
-    );
-    line("gradient median (grey/px)", summary.gradient_p50, 1.0, None);
-    line("gradient p90 (grey/px)", summary.gradient_p90, 1.0, None);
-    line("saturation", summary.saturation, 1.0, None);
-    line(
-        "low-texture cells (%)",
-        summary.low_texture_cells,
-        100.0,
-        None,
-    );
+        );
+    }
     if let Some(path) = &args.json {
         let per_frame: Vec<serde_json::Value> = frames
             .iter()
