@@ -40,7 +40,7 @@ impl PerturbInput {
         if path.join("metadata.yaml").is_file() {
             return Err(PipelineError::input(
                 path,
-                "a ROS 2 bag (metadata.yaml): reading bags is not built yet; rslam writes them (--format ros2)",
+                "a ROS 2 bag (metadata.yaml): reading bags is not built yet; rslam writes them in the ros2 layout",
             ));
         }
         Ok(Self::ImageFolder(path.to_path_buf()))

@@ -188,12 +188,17 @@ impl ContentWriter {
     /// Writes `bytes` to `root/relative` (relative with `/`).
     pub fn write(&self, relative: &str, bytes: &[u8]) -> Result<(), CoreError> {
         write_atomically(&self.root.join(relative), bytes)?;
-        let hex = blake3_hex(bytes);
+        self.record(relative, blake3_hex(bytes));
+        Ok(())
+    }
+
+    /// Records the checksum of a content file written whole by someone else, hashed as it was
+    /// written.
+    pub fn record(&self, relative: &str, blake3_hex: String) {
         self.written
             .lock()
             .unwrap_or_else(|p| p.into_inner())
-            .insert(relative.to_string(), hex);
-        Ok(())
+            .insert(relative.to_string(), blake3_hex);
     }
 
     /// The checksum list of every content file (those an earlier, interrupted run wrote are

@@ -1,11 +1,11 @@
 //! One rosbag2 in MCAP storage: messages go, in the order given, into `<name>_0.mcap.partial`
 //! inside the bag folder; [`BagWriter::finish`] closes the MCAP (summary, indexes), renames it
-//! to `<name>_0.mcap` and returns the `metadata.yaml` text. A bag cut short leaves only the
-//! `.partial` file, which no reader takes for a bag.
+//! to `<name>_0.mcap` and returns its checksum and the `metadata.yaml` text. A bag cut short
+//! leaves only the `.partial` file, which no reader takes for a bag.
 
 use std::collections::BTreeMap;
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{self, BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
@@ -39,18 +39,68 @@ impl Topic {
             ..Self::new(name, message_type)
         }
     }
+
+    /// rosbag2's `offered_qos_profiles` for the topic: empty for the subscriber's default.
+    fn qos(&self) -> &'static str {
+        if self.latched {
+            LATCHED_QOS
+        } else {
+            ""
+        }
+    }
+}
+
+/// The storage file, hashed as it is written: MCAP's non-seeking mode writes it front to back,
+/// asking only where it is, so its checksum needs no second read of the bag.
+struct HashedFile {
+    out: BufWriter<File>,
+    hasher: blake3::Hasher,
+    position: u64,
+}
+
+impl Write for HashedFile {
+    fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+        let written = self.out.write(bytes)?;
+        self.hasher.update(&bytes[..written]);
+        self.position += written as u64;
+        Ok(written)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.out.flush()
+    }
+}
+
+impl Seek for HashedFile {
+    fn seek(&mut self, to: SeekFrom) -> io::Result<u64> {
+        match to {
+            SeekFrom::Current(0) => Ok(self.position),
+            _ => Err(io::Error::new(
+                io::ErrorKind::Unsupported,
+                "the bag is written front to back",
+            )),
+        }
+    }
+}
+
+/// A bag closed: its storage file's name and BLAKE3 checksum, and the `metadata.yaml` text.
+pub struct ClosedBag {
+    pub file: String,
+    pub blake3: String,
+    pub metadata: String,
 }
 
 pub struct BagWriter {
     folder: PathBuf,
     file: String,
-    mcap: mcap::Writer<BufWriter<File>>,
+    mcap: mcap::Writer<HashedFile>,
     topics: Vec<(Topic, u16, u64)>,
     last_stamp: Option<Time>,
     first_stamp: Option<Time>,
 }
 
-/// Messages are written in chunks of this size, uncompressed: a few raw 1200 × 680 frames.
+/// Messages are written in chunks of this size, uncompressed, each assembled in memory: a few raw
+/// 1200 × 680 frames.
 const CHUNK_BYTES: u64 = 8 << 20;
 
 impl BagWriter {
@@ -58,14 +108,19 @@ impl BagWriter {
     pub fn create(folder: &Path, name: &str, topics: &[Topic]) -> Result<Self, CoreError> {
         let file = format!("{name}_0.mcap");
         let partial = folder.join(format!("{file}{PARTIAL_SUFFIX}"));
-        let out = File::create(&partial).map_err(|e| CoreError::io(&partial, e))?;
+        let out = HashedFile {
+            out: BufWriter::new(File::create(&partial).map_err(|e| CoreError::io(&partial, e))?),
+            hasher: blake3::Hasher::new(),
+            position: 0,
+        };
         let mcap_error = |e: mcap::McapError| CoreError::bad_file(&partial, e.to_string());
         let mut mcap = mcap::WriteOptions::new()
             .profile("ros2")
             .library(concat!("rslam ", env!("CARGO_PKG_VERSION")))
             .compression(None)
             .chunk_size(Some(CHUNK_BYTES))
-            .create(BufWriter::new(out))
+            .disable_seeking(true)
+            .create(out)
             .map_err(mcap_error)?;
         let mut channels = Vec::new();
         for topic in topics {
@@ -73,8 +128,7 @@ impl BagWriter {
             let schema = mcap
                 .add_schema(&kind.name(), "ros2msg", kind.schema().as_bytes())
                 .map_err(mcap_error)?;
-            let qos = if topic.latched { LATCHED_QOS } else { "" };
-            let metadata = BTreeMap::from([("offered_qos_profiles".into(), qos.into())]);
+            let metadata = BTreeMap::from([("offered_qos_profiles".into(), topic.qos().into())]);
             let id = mcap
                 .add_channel(schema, &topic.name, "cdr", &metadata)
                 .map_err(mcap_error)?;
@@ -98,17 +152,16 @@ impl BagWriter {
         stamp: Time,
         message: &M,
     ) -> Result<(), CoreError> {
-        let partial = self.partial();
         if self.last_stamp.is_some_and(|last| stamp < last) {
             return Err(CoreError::bad_file(
-                &partial,
+                self.partial(),
                 format!(
                     "a message on {} is stamped {}.{:09} s, before the one written last",
                     self.topics[topic].0.name, stamp.sec, stamp.nanosec
                 ),
             ));
         }
-        let data = cdr_bytes(message).map_err(|e| CoreError::bad_file(&partial, e))?;
+        let data = cdr_bytes(message).map_err(|e| CoreError::bad_file(self.partial(), e))?;
         let (_, channel_id, count) = &mut self.topics[topic];
         let header = mcap::records::MessageHeader {
             channel_id: *channel_id,
@@ -119,21 +172,21 @@ impl BagWriter {
         *count += 1;
         self.mcap
             .write_to_known_channel(&header, &data)
-            .map_err(|e| CoreError::bad_file(&partial, e.to_string()))?;
+            .map_err(|e| CoreError::bad_file(self.partial(), e.to_string()))?;
         self.first_stamp.get_or_insert(stamp);
         self.last_stamp = Some(stamp);
         Ok(())
     }
 
-    /// Closes the MCAP, gives it its final name, and returns that name and the text of
-    /// `metadata.yaml` for the caller to write beside it.
-    pub fn finish(mut self) -> Result<(String, String), CoreError> {
+    /// Closes the MCAP and gives it its final name; the caller writes `metadata.yaml` beside it.
+    pub fn finish(mut self) -> Result<ClosedBag, CoreError> {
         let partial = self.partial();
         self.mcap
             .finish()
             .map_err(|e| CoreError::bad_file(&partial, e.to_string()))?;
         let mut out = self.mcap.into_inner();
-        std::io::Write::flush(&mut out).map_err(|e| CoreError::io(&partial, e))?;
+        out.flush().map_err(|e| CoreError::io(&partial, e))?;
+        let blake3 = out.hasher.finalize().to_hex().to_string();
         drop(out);
         let done = self.folder.join(&self.file);
         std::fs::rename(&partial, &done).map_err(|e| CoreError::io(&done, e))?;
@@ -143,18 +196,22 @@ impl BagWriter {
             .map(|(topic, _, messages)| TopicCount {
                 name: topic.name.clone(),
                 message_type: topic.message_type.name(),
-                qos: if topic.latched { LATCHED_QOS } else { "" }.to_string(),
+                qos: topic.qos().to_string(),
                 messages: *messages,
             })
             .collect();
         let ns = |t: Option<Time>| t.map_or(0, Time::nanoseconds);
-        let yaml = metadata_yaml(
+        let metadata = metadata_yaml(
             &self.file,
             ns(self.first_stamp),
             ns(self.last_stamp),
             &topics,
         );
-        Ok((self.file, yaml))
+        Ok(ClosedBag {
+            file: self.file,
+            blake3,
+            metadata,
+        })
     }
 
     fn partial(&self) -> PathBuf {
@@ -191,6 +248,11 @@ mod tests {
         (stamp, pose)
     }
 
+    /// A bag of one pose topic in `dir`.
+    fn pose_bag(dir: &Path) -> BagWriter {
+        BagWriter::create(dir, "b", &[Topic::new("/pose", MessageType::PoseStamped)]).unwrap()
+    }
+
     fn names(dir: &Path) -> Vec<String> {
         let mut names: Vec<String> = std::fs::read_dir(dir)
             .unwrap()
@@ -203,8 +265,7 @@ mod tests {
     #[test]
     fn a_bag_cut_short_leaves_only_its_partial_file() {
         let dir = tempfile::tempdir().unwrap();
-        let topics = [Topic::new("/pose", MessageType::PoseStamped)];
-        let mut bag = BagWriter::create(dir.path(), "b", &topics).unwrap();
+        let mut bag = pose_bag(dir.path());
         let (stamp, pose) = pose_at(1.0);
         bag.write(0, stamp, &pose).unwrap();
         drop(bag);
@@ -214,15 +275,17 @@ mod tests {
     #[test]
     fn a_finished_bag_has_its_final_name_and_counts_its_messages_and_time_span() {
         let dir = tempfile::tempdir().unwrap();
-        let topics = [Topic::new("/pose", MessageType::PoseStamped)];
-        let mut bag = BagWriter::create(dir.path(), "b", &topics).unwrap();
+        let mut bag = pose_bag(dir.path());
         for t in [1.0, 1.5, 2.25] {
             let (stamp, pose) = pose_at(t);
             bag.write(0, stamp, &pose).unwrap();
         }
-        let (file, yaml) = bag.finish().unwrap();
-        assert_eq!(file, "b_0.mcap");
+        let closed = bag.finish().unwrap();
+        assert_eq!(closed.file, "b_0.mcap");
         assert_eq!(names(dir.path()), ["b_0.mcap"]);
+        let written = std::fs::read(dir.path().join("b_0.mcap")).unwrap();
+        assert_eq!(closed.blake3, blake3::hash(&written).to_hex().to_string());
+        let yaml = closed.metadata;
         assert!(yaml.contains("message_count: 3\n"), "{yaml}");
         assert!(yaml.contains("nanoseconds: 1250000000\n"), "{yaml}");
         assert!(
@@ -234,8 +297,7 @@ mod tests {
     #[test]
     fn a_message_stamped_before_the_last_is_refused_naming_its_topic() {
         let dir = tempfile::tempdir().unwrap();
-        let topics = [Topic::new("/pose", MessageType::PoseStamped)];
-        let mut bag = BagWriter::create(dir.path(), "b", &topics).unwrap();
+        let mut bag = pose_bag(dir.path());
         let (late, pose) = pose_at(2.0);
         bag.write(0, late, &pose).unwrap();
         let (early, pose) = pose_at(1.0);

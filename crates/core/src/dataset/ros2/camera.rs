@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use super::bag::{BagWriter, Topic};
+use super::bag::{BagWriter, ClosedBag, Topic};
 use super::messages::{
     Bytes, CameraInfo, Header, Image, Pose, PoseStamped, Quaternion, RegionOfInterest, TfMessage,
     Time, Transform, TransformStamped, Vector3,
@@ -129,8 +129,8 @@ impl CameraBag {
         self.bag.write(GROUND_TRUTH, stamp, &message)
     }
 
-    /// Closes the bag: its storage file's name and the `metadata.yaml` text.
-    pub fn finish(self) -> Result<(String, String), CoreError> {
+    /// Closes the bag: its storage file's name and checksum, and the `metadata.yaml` text.
+    pub fn finish(self) -> Result<ClosedBag, CoreError> {
         self.bag.finish()
     }
 

@@ -8,7 +8,7 @@ mod messages;
 mod metadata;
 mod schemas;
 
-pub use bag::{BagWriter, Topic};
+pub use bag::{BagWriter, ClosedBag, Topic};
 pub use camera::{CameraBag, DEPTH_UNITS_PER_METRE};
 pub use messages::{
     cdr_bytes, Bytes, CameraInfo, Header, Image, Pose, PoseStamped, Quaternion, RegionOfInterest,
