@@ -24,8 +24,9 @@ venv=$PWD/target/methods-venv
 [ -x "$venv/bin/python3" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet -r examples/methods/requirements.txt
 export PATH=$venv/bin:$PATH
-# the example methods' own helpers (no ORB-SLAM3 needed)
-python3 -m unittest discover -s examples/methods -p 'test_*.py'
+# the example methods' own helpers (no ORB-SLAM3 needed); the ROS 2 bag reader also reads a bag
+# this rslam renders
+RSLAM_BIN=$rslam python3 -m unittest discover -s examples/methods -p 'test_*.py'
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

@@ -12,11 +12,13 @@ def fail(msg, code=2):
     os._exit(code)
 
 
-def argument_parser(doc, layout):
-    """--dataset, --settings, --out and --vocabulary (default $ORBSLAM3_VOCABULARY)."""
+def argument_parser(doc, layout, settings=True):
+    """--dataset, --settings (unless `settings` is False: a script that writes its own), --out and
+    --vocabulary (default $ORBSLAM3_VOCABULARY)."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--dataset", required=True, help=f"dataset folder ({layout} layout)")
-    ap.add_argument("--settings", required=True, help="ORB-SLAM3 settings (the dataset's orbslam3*.yaml)")
+    if settings:
+        ap.add_argument("--settings", required=True, help="ORB-SLAM3 settings (the dataset's orbslam3*.yaml)")
     ap.add_argument("--out", required=True, help="estimate to write (TUM trajectory)")
     ap.add_argument("--vocabulary", default=os.environ.get("ORBSLAM3_VOCABULARY"),
                     help="ORBvoc.txt (default: $ORBSLAM3_VOCABULARY)")
@@ -24,11 +26,11 @@ def argument_parser(doc, layout):
 
 
 def parse_arguments(ap):
-    """Parses (exits 2 on bad arguments) and checks that the vocabulary and settings exist."""
+    """Parses (exits 2 on bad arguments) and checks that the vocabulary and any settings exist."""
     a = ap.parse_args()
     if not a.vocabulary or not os.path.isfile(a.vocabulary):
         fail(f"no ORB vocabulary at {a.vocabulary!r}: set ORBSLAM3_VOCABULARY or --vocabulary to ORBvoc.txt")
-    if not os.path.isfile(a.settings):
+    if "settings" in vars(a) and not os.path.isfile(a.settings):
         fail(f"no settings file {a.settings}")
     return a
 

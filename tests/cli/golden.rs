@@ -173,6 +173,15 @@ fn table() -> Vec<Case> {
             .concat(),
         ),
         render(
+            "ros2",
+            &[
+                &small[..],
+                &["5", "--format", "ros2", "--perturb", "motion_blur:2"],
+            ]
+            .concat(),
+        ),
+        perturb("ros2_perturbed", "ros2", "gaussian_noise:2,depth_missing:2"),
+        render(
             "replica_sensor",
             &[&small[..], &["3", "--perturb", "exposure:20,rolling_shutter:10"]].concat(),
         ),

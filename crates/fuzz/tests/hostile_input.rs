@@ -96,6 +96,7 @@ hostile_input_properties!(
     euroc_groundtruth,
     tum_vi_camchain,
     tum_vi_imu_config,
+    ros2_bag,
     suite,
     method,
 );

@@ -1,4 +1,4 @@
-//! What a perturb job's input is: a dataset, a folder of images, or one image.
+//! What a perturb job's input is: a dataset, a ROS 2 bag, a folder of images, or one image.
 
 use std::path::{Path, PathBuf};
 
@@ -11,13 +11,15 @@ pub enum PerturbInput {
     Dataset(PathBuf),
     /// A EuRoC (ASL) dataset: the folder holding `mav0/`, or `mav0/` itself.
     Euroc(PathBuf),
+    /// A ROS 2 bag: a rosbag2 folder (`metadata.yaml` and its storage file).
+    Bag(PathBuf),
     ImageFolder(PathBuf),
     Image(PathBuf),
 }
 
 impl PerturbInput {
-    /// A dataset (Replica `results/`, TUM `rgb.txt` or EuRoC `mav0/`), a folder of PNG/JPEG
-    /// images, or one image.
+    /// A dataset (Replica `results/`, TUM `rgb.txt` or EuRoC `mav0/`), a ROS 2 bag
+    /// (`metadata.yaml`), a folder of PNG/JPEG images, or one image.
     pub fn detect(path: &Path) -> Result<Self, PipelineError> {
         if path.is_file() {
             if !is_image(path) {
@@ -38,10 +40,7 @@ impl PerturbInput {
             return Ok(Self::Dataset(path.to_path_buf()));
         }
         if path.join("metadata.yaml").is_file() {
-            return Err(PipelineError::input(
-                path,
-                "a ROS 2 bag (metadata.yaml): reading bags is not built yet; rslam writes them in the ros2 layout",
-            ));
+            return Ok(Self::Bag(path.to_path_buf()));
         }
         Ok(Self::ImageFolder(path.to_path_buf()))
     }

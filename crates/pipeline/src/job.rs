@@ -21,7 +21,7 @@ use crate::progress::Progress;
 use crate::rig::{CameraFrames, Rig, RigPreset};
 use crate::scene_job::{SceneCache, SceneJob};
 use crate::settings;
-use crate::{perturb_dataset, perturb_images, render, rig, PipelineError};
+use crate::{perturb_bag, perturb_dataset, perturb_images, render, rig, PipelineError};
 
 /// What to make, and where.
 #[derive(Clone, Debug)]
@@ -57,6 +57,13 @@ pub enum Source {
     /// A recorded EuRoC dataset (the folder holding `mav0/`, or `mav0/`; also TUM-VI's
     /// EuRoC-style export), copied with its frames and IMU perturbed.
     Euroc {
+        input: PathBuf,
+        spec: PerturbSpec,
+        seed: u64,
+    },
+    /// A recorded ROS 2 bag (a rosbag2 folder), copied into a bag with its camera's images
+    /// perturbed.
+    Bag {
         input: PathBuf,
         spec: PerturbSpec,
         seed: u64,
@@ -252,6 +259,9 @@ impl Job {
             Source::Euroc { input, spec, seed } => {
                 Box::new(rig::euroc_perturb::plan(input, spec, *seed, command)?)
             }
+            Source::Bag { input, spec, seed } => {
+                Box::new(perturb_bag::plan(input, spec, *seed, command)?)
+            }
             Source::Images { files, spec, seed } => {
                 Box::new(perturb_images::plan(files, spec, *seed, command)?)
             }
@@ -287,7 +297,9 @@ impl Job {
     /// The input folder a perturbing job reads, which its output may not be.
     fn input(&self) -> Option<&Path> {
         match &self.source {
-            Source::Dataset { input, .. } | Source::Euroc { input, .. } => Some(input),
+            Source::Dataset { input, .. }
+            | Source::Euroc { input, .. }
+            | Source::Bag { input, .. } => Some(input),
             Source::Images { files, .. } => files.first().and_then(|f| f.parent()),
             Source::Scene { .. } | Source::Image { .. } => None,
         }

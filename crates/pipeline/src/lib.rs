@@ -29,6 +29,7 @@ mod job;
 mod lens_render;
 mod manifest;
 pub mod output_folder;
+mod perturb_bag;
 mod perturb_dataset;
 mod perturb_images;
 mod pipeline;

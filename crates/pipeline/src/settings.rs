@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use rslam_core::dataset::euroc::{EurocDataset, IMU_DIR};
+use rslam_core::dataset::ros2::RecordedBagCamera;
 use rslam_core::dataset::SourceDataset;
 use rslam_perturb::{Lenses, Need, PerturbSpec, Setting};
 
@@ -62,6 +63,25 @@ pub fn recorded_dataset(dataset: &SourceDataset, root: &Path, imu: bool) -> Sett
     match dataset.frames.iter().find(|f| f.depth.is_none()) {
         Some(frame) => setting.lacking(Need::Depth, format!("{} has none", frame.rgb.display())),
         None => setting,
+    }
+}
+
+/// A recorded ROS 2 bag's camera: its other topics (an IMU, odometry, `/tf`) are copied as
+/// recorded, so the frames keep their times and the `CameraInfo` its lens.
+pub fn recorded_bag(camera: &RecordedBagCamera) -> Setting {
+    let input = format!("the bag {}", camera.bag.folder.display());
+    let copied = format!("{input}'s other topics are copied with their times");
+    let setting = Setting::one_camera(input)
+        .lacking_all(&[Need::Scene])
+        .lacking(Need::SpeedUp, copied)
+        .lacking(Need::Imu, "perturbing a bag's IMU topics is not built yet")
+        .with_lenses(Lenses::None);
+    match &camera.depth {
+        Some(_) => setting,
+        None => setting.lacking(
+            Need::Depth,
+            format!("{} has no depth topic", camera.bag.folder.display()),
+        ),
     }
 }
 

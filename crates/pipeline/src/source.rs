@@ -4,8 +4,10 @@
 //! they are. A rig of several sensors is several sources, one per camera, each with its own plan
 //! and sink.
 
+mod bag;
 mod recorded;
 
+pub use bag::BagSource;
 pub use recorded::{ColourReader, RecordedFrame, RecordedSource};
 
 use std::collections::HashMap;

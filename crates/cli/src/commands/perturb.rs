@@ -12,10 +12,11 @@ use super::make::make;
 #[derive(clap::Args)]
 pub struct PerturbArgs {
     /// A dataset (Replica, TUM or EuRoC layout: a folder holding mav0/, also TUM-VI's
-    /// EuRoC-style export with dso/), a folder of PNG/JPEG images, or one image.
+    /// EuRoC-style export with dso/), a ROS 2 bag (a rosbag2 folder, MCAP storage), a folder of
+    /// PNG/JPEG images, or one image.
     #[arg(long)]
     input: PathBuf,
-    /// Output: a folder for datasets and image folders, a file for one image (same format).
+    /// Output: a folder for datasets, bags and image folders, a file for one image (same format).
     #[arg(long)]
     out: PathBuf,
     /// Perturbations, e.g. `gaussian_noise:3,depth_missing:5,misalign:10` (see `rslam list`);
@@ -53,17 +54,27 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
         None => None,
     };
     let input = PerturbInput::detect(&args.input).context("--input")?;
+    let given = [
+        ("--camera", args.camera.is_some()),
+        ("--rate", args.rate.is_some()),
+        ("--depth-png", args.depth_png.is_some()),
+    ];
+    let given = given.iter().find(|(_, given)| *given).map(|(flag, _)| flag);
     let what = match input {
         PerturbInput::Dataset(_) => None,
         PerturbInput::Euroc(_) => {
-            let given = [
-                ("--camera", args.camera.is_some()),
-                ("--rate", args.rate.is_some()),
-                ("--depth-png", args.depth_png.is_some()),
-            ];
-            if let Some((flag, _)) = given.iter().find(|(_, given)| *given) {
+            if let Some(flag) = given {
                 anyhow::bail!(
                     "{flag}: {} is a EuRoC dataset; its cameras and rates come from its calibration files and it has no depth",
+                    args.input.display()
+                );
+            }
+            None
+        }
+        PerturbInput::Bag(_) => {
+            if let Some(flag) = given {
+                anyhow::bail!(
+                    "{flag}: {} is a ROS 2 bag; its camera comes from its CameraInfo, its rate from its stamps, and its depth keeps its encoding",
                     args.input.display()
                 );
             }
@@ -91,6 +102,7 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
             seed,
         },
         PerturbInput::Euroc(input) => Source::Euroc { input, spec, seed },
+        PerturbInput::Bag(input) => Source::Bag { input, spec, seed },
         PerturbInput::ImageFolder(dir) => Source::Images {
             files: image_files(&dir)?,
             spec,

@@ -98,7 +98,7 @@ pub fn encode_png(image: &RgbImage) -> Result<Vec<u8>, CoreError> {
 
 /// `image`'s luma, `round(0.299 R + 0.587 G + 0.114 B)` (ITU-R BT.601, as OpenCV's
 /// `COLOR_RGB2GRAY`).
-fn luma8(image: &RgbImage) -> impl Iterator<Item = u8> + '_ {
+pub(crate) fn luma8(image: &RgbImage) -> impl Iterator<Item = u8> + '_ {
     image
         .data
         .chunks_exact(3)
@@ -210,6 +210,13 @@ fn limited_reader(bytes: &[u8]) -> Result<image::ImageReader<Cursor<&[u8]>>, Str
 fn decode(bytes: &[u8]) -> Result<image::DynamicImage, String> {
     limited_reader(bytes)?
         .decode()
+        .map_err(|e| format!("not a readable image: {}", printable(e.to_string().trim())))
+}
+
+/// The width and height of an encoded image, from its header.
+pub(crate) fn encoded_image_size(bytes: &[u8]) -> Result<(u32, u32), String> {
+    limited_reader(bytes)?
+        .into_dimensions()
         .map_err(|e| format!("not a readable image: {}", printable(e.to_string().trim())))
 }
 

@@ -1,6 +1,6 @@
 //! Every fuzz target, in the order `rslam-fuzz` runs them.
 
-use super::{dataset, euroc, mesh, suite, text, trajectory, tum_vi};
+use super::{dataset, euroc, mesh, ros2_bag, suite, text, trajectory, tum_vi};
 use crate::target::{nothing, Target};
 
 pub static TARGETS: &[Target] = &[
@@ -141,6 +141,12 @@ pub static TARGETS: &[Target] = &[
         file: Some(tum_vi::IMU_CONFIG),
         prepare: tum_vi::prepare,
         check: tum_vi::imu_config,
+    },
+    Target {
+        name: "ros2_bag",
+        file: Some(ros2_bag::STORAGE),
+        prepare: ros2_bag::prepare,
+        check: ros2_bag::storage,
     },
     Target {
         name: "suite",

@@ -4,6 +4,7 @@ mod all;
 mod dataset;
 mod euroc;
 mod mesh;
+mod ros2_bag;
 mod suite;
 mod text;
 mod trajectory;

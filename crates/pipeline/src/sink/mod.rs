@@ -1,16 +1,18 @@
 //! Where read-back source frames go: into a dataset on disk (a Replica or TUM dataset, one
-//! camera of a EuRoC one, or a ROS 2 bag), or assembled into output frames handed to a callback
+//! camera of a EuRoC one, a ROS 2 bag, or a recorded bag's camera perturbed), or assembled into output frames handed to a callback
 //! in memory.
 
 mod bag;
 mod dataset;
 mod euroc_camera;
 mod memory;
+mod perturbed_bag;
 
 pub use bag::CameraBagSink;
 pub use dataset::DatasetSink;
 pub use euroc_camera::{finish_writer, frames_kept, EurocCameraSink};
 pub use memory::{MemorySink, RgbdFrame};
+pub use perturbed_bag::PerturbedBagSink;
 
 use rslam_gpu::MappedFrame;
 

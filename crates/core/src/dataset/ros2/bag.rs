@@ -16,38 +16,60 @@ use super::schemas::MessageType;
 use crate::dataset::PARTIAL_SUFFIX;
 use crate::CoreError;
 
-/// A topic to write: its name, message type and whether it is latched (`/tf_static`).
+/// A topic to write: its name, its message type's name and MCAP schema (`ros2msg` text), and
+/// rosbag2's `offered_qos_profiles` for it (YAML; empty for the subscriber's default).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Topic {
     pub name: String,
-    pub message_type: MessageType,
-    pub latched: bool,
+    pub type_name: String,
+    pub schema_encoding: String,
+    pub schema: Vec<u8>,
+    pub qos: String,
 }
 
 impl Topic {
+    /// A topic of one of the message types rslam writes.
     pub fn new(name: &str, message_type: MessageType) -> Self {
         Self {
             name: name.to_string(),
-            message_type,
-            latched: false,
+            type_name: message_type.name(),
+            schema_encoding: "ros2msg".into(),
+            schema: message_type.schema().into_bytes(),
+            qos: String::new(),
         }
     }
 
+    /// A latched topic (`/tf_static`): late subscribers get its messages.
     pub fn latched(name: &str, message_type: MessageType) -> Self {
         Self {
-            latched: true,
+            qos: LATCHED_QOS.into(),
             ..Self::new(name, message_type)
         }
     }
 
-    /// rosbag2's `offered_qos_profiles` for the topic: empty for the subscriber's default.
-    fn qos(&self) -> &'static str {
-        if self.latched {
-            LATCHED_QOS
-        } else {
-            ""
+    /// A recorded bag's topic as it was: its schema and QoS copied.
+    pub fn recorded(channel: &mcap::Channel) -> Self {
+        let schema = channel.schema.as_deref();
+        Self {
+            name: channel.topic.clone(),
+            type_name: schema.map_or(String::new(), |s| s.name.clone()),
+            schema_encoding: schema.map_or(String::new(), |s| s.encoding.clone()),
+            schema: schema.map_or(Vec::new(), |s| s.data.to_vec()),
+            qos: channel
+                .metadata
+                .get("offered_qos_profiles")
+                .cloned()
+                .unwrap_or_default(),
         }
     }
+}
+
+/// When a message was logged and published, and its number on its topic.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LogTimes {
+    pub log_time: u64,
+    pub publish_time: u64,
+    pub sequence: u32,
 }
 
 /// The storage file, hashed as it is written: MCAP's non-seeking mode writes it front to back,
@@ -96,7 +118,8 @@ pub struct BagWriter {
     mcap: mcap::Writer<HashedFile>,
     topics: Vec<(Topic, u16, u64)>,
     last_stamp: Option<Time>,
-    first_stamp: Option<Time>,
+    /// The earliest and latest log time written, in nanoseconds.
+    log_span: Option<(u64, u64)>,
 }
 
 /// Messages are written in chunks of this size, uncompressed, each assembled in memory: a few raw
@@ -124,11 +147,10 @@ impl BagWriter {
             .map_err(mcap_error)?;
         let mut channels = Vec::new();
         for topic in topics {
-            let kind = topic.message_type;
             let schema = mcap
-                .add_schema(&kind.name(), "ros2msg", kind.schema().as_bytes())
+                .add_schema(&topic.type_name, &topic.schema_encoding, &topic.schema)
                 .map_err(mcap_error)?;
-            let metadata = BTreeMap::from([("offered_qos_profiles".into(), topic.qos().into())]);
+            let metadata = BTreeMap::from([("offered_qos_profiles".into(), topic.qos.clone())]);
             let id = mcap
                 .add_channel(schema, &topic.name, "cdr", &metadata)
                 .map_err(mcap_error)?;
@@ -140,7 +162,7 @@ impl BagWriter {
             mcap,
             topics: channels,
             last_stamp: None,
-            first_stamp: None,
+            log_span: None,
         })
     }
 
@@ -162,19 +184,38 @@ impl BagWriter {
             ));
         }
         let data = cdr_bytes(message).map_err(|e| CoreError::bad_file(self.partial(), e))?;
+        let sequence = self.topics[topic].2 as u32;
+        let times = LogTimes {
+            log_time: stamp.nanoseconds(),
+            publish_time: stamp.nanoseconds(),
+            sequence,
+        };
+        self.write_bytes(topic, times, &data)?;
+        self.last_stamp = Some(stamp);
+        Ok(())
+    }
+
+    /// Writes a message already serialised (`data`: CDR with its header) on topic `topic`, at
+    /// `times`, in any order.
+    pub fn write_bytes(
+        &mut self,
+        topic: usize,
+        times: LogTimes,
+        data: &[u8],
+    ) -> Result<(), CoreError> {
         let (_, channel_id, count) = &mut self.topics[topic];
         let header = mcap::records::MessageHeader {
             channel_id: *channel_id,
-            sequence: *count as u32,
-            log_time: stamp.nanoseconds(),
-            publish_time: stamp.nanoseconds(),
+            sequence: times.sequence,
+            log_time: times.log_time,
+            publish_time: times.publish_time,
         };
         *count += 1;
         self.mcap
-            .write_to_known_channel(&header, &data)
+            .write_to_known_channel(&header, data)
             .map_err(|e| CoreError::bad_file(self.partial(), e.to_string()))?;
-        self.first_stamp.get_or_insert(stamp);
-        self.last_stamp = Some(stamp);
+        let t = times.log_time;
+        self.log_span = Some(self.log_span.map_or((t, t), |(a, b)| (a.min(t), b.max(t))));
         Ok(())
     }
 
@@ -195,18 +236,13 @@ impl BagWriter {
             .iter()
             .map(|(topic, _, messages)| TopicCount {
                 name: topic.name.clone(),
-                message_type: topic.message_type.name(),
-                qos: topic.qos().to_string(),
+                message_type: topic.type_name.clone(),
+                qos: topic.qos.clone(),
                 messages: *messages,
             })
             .collect();
-        let ns = |t: Option<Time>| t.map_or(0, Time::nanoseconds);
-        let metadata = metadata_yaml(
-            &self.file,
-            ns(self.first_stamp),
-            ns(self.last_stamp),
-            &topics,
-        );
+        let (start, end) = self.log_span.unwrap_or_default();
+        let metadata = metadata_yaml(&self.file, start, end, &topics);
         Ok(ClosedBag {
             file: self.file,
             blake3,

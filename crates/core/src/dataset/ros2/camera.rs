@@ -179,7 +179,7 @@ fn header(stamp: Time) -> Header {
 }
 
 /// Depth in metres as 16UC1 millimetres: 0 for no measurement and beyond 65.535 m.
-fn millimetres(z: f32) -> u16 {
+pub(super) fn millimetres(z: f32) -> u16 {
     let mm = (z as f64 * DEPTH_UNITS_PER_METRE).round();
     if mm.is_finite() && mm >= 1.0 && mm <= u16::MAX as f64 {
         mm as u16

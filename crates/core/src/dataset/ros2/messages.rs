@@ -1,10 +1,15 @@
 //! The ROS 2 messages a bag carries, as serde structs in the field order of their `.msg`
-//! definitions ([`super::schemas`]), which is the order CDR writes them in.
+//! definitions ([`super::schemas`]), which is the order CDR writes them in; the ones rslam reads
+//! from recorded bags deserialise too, their byte arrays borrowed from the message.
 
+use std::fmt;
+
+use byteorder::{BigEndian, LittleEndian};
+use serde::de::{Deserialize, Deserializer, Visitor};
 use serde::{Serialize, Serializer};
 
 /// `builtin_interfaces/msg/Time`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, serde::Deserialize)]
 pub struct Time {
     pub sec: i32,
     pub nanosec: u32,
@@ -13,21 +18,33 @@ pub struct Time {
 impl Time {
     /// The stamp of a capture time in seconds, rounded to the nanosecond.
     pub fn from_seconds(seconds: f64) -> Self {
-        let nanoseconds = (seconds * 1e9).round() as i64;
+        Self::from_nanoseconds((seconds * 1e9).round() as i64)
+    }
+
+    pub fn from_nanoseconds(nanoseconds: i64) -> Self {
         Self {
             sec: nanoseconds.div_euclid(1_000_000_000) as i32,
             nanosec: nanoseconds.rem_euclid(1_000_000_000) as u32,
         }
     }
 
+    /// Nanoseconds since the epoch, negative before it.
+    pub fn signed_nanoseconds(self) -> i64 {
+        self.sec as i64 * 1_000_000_000 + self.nanosec as i64
+    }
+
     /// Nanoseconds since the epoch: an MCAP message's log and publish time.
     pub fn nanoseconds(self) -> u64 {
-        (self.sec as i64 * 1_000_000_000 + self.nanosec as i64).max(0) as u64
+        self.signed_nanoseconds().max(0) as u64
+    }
+
+    pub fn seconds(self) -> f64 {
+        self.sec as f64 + self.nanosec as f64 * 1e-9
     }
 }
 
 /// `std_msgs/msg/Header`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Header {
     pub stamp: Time,
     pub frame_id: String,
@@ -43,8 +60,24 @@ impl Serialize for Bytes<'_> {
     }
 }
 
+impl<'de: 'a, 'a> Deserialize<'de> for Bytes<'a> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Borrowed;
+        impl<'de> Visitor<'de> for Borrowed {
+            type Value = Bytes<'de>;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a byte array")
+            }
+            fn visit_borrowed_bytes<E>(self, bytes: &'de [u8]) -> Result<Self::Value, E> {
+                Ok(Bytes(bytes))
+            }
+        }
+        deserializer.deserialize_bytes(Borrowed)
+    }
+}
+
 /// `sensor_msgs/msg/Image`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Image<'a> {
     pub header: Header,
     pub height: u32,
@@ -52,11 +85,22 @@ pub struct Image<'a> {
     pub encoding: String,
     pub is_bigendian: u8,
     pub step: u32,
+    #[serde(borrow)]
+    pub data: Bytes<'a>,
+}
+
+/// `sensor_msgs/msg/CompressedImage`: `format` is image_transport's, e.g. `rgb8; jpeg compressed
+/// bgr8`, or a bare `jpeg` or `png`.
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct CompressedImage<'a> {
+    pub header: Header,
+    pub format: String,
+    #[serde(borrow)]
     pub data: Bytes<'a>,
 }
 
 /// `sensor_msgs/msg/RegionOfInterest`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, serde::Deserialize)]
 pub struct RegionOfInterest {
     pub x_offset: u32,
     pub y_offset: u32,
@@ -66,7 +110,7 @@ pub struct RegionOfInterest {
 }
 
 /// `sensor_msgs/msg/CameraInfo`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct CameraInfo {
     pub header: Header,
     pub height: u32,
@@ -133,9 +177,30 @@ pub struct TfMessage {
     pub transforms: Vec<TransformStamped>,
 }
 
+/// CDR's encapsulation header: plain CDR, little-endian, no options.
+const CDR_LE: [u8; 4] = [0, 1, 0, 0];
+
 /// Little-endian CDR with its 4-byte encapsulation header, as rosbag2 stores messages.
 pub fn cdr_bytes<M: Serialize>(message: &M) -> Result<Vec<u8>, String> {
-    cdr::serialize::<_, _, cdr::CdrLe>(message, cdr::Infinite).map_err(|e| e.to_string())
+    let mut bytes = CDR_LE.to_vec();
+    cdr_encoding::to_writer::<_, LittleEndian, _>(&mut bytes, message)
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
+}
+
+/// A message from its CDR bytes (either byte order, after the encapsulation header); its byte
+/// arrays borrow from `bytes`.
+pub fn from_cdr<'de, M: Deserialize<'de>>(bytes: &'de [u8]) -> Result<M, String> {
+    let body = bytes.get(4..).ok_or("shorter than CDR's 4-byte header")?;
+    let message = match bytes[..2] {
+        [0, 1] => cdr_encoding::from_bytes::<M, LittleEndian>(body),
+        [0, 0] => cdr_encoding::from_bytes::<M, BigEndian>(body),
+        [a, b] => return Err(format!("encapsulation {a:#04x}{b:02x} is not plain CDR")),
+        _ => unreachable!("two bytes"),
+    };
+    message
+        .map(|(message, _)| message)
+        .map_err(|e| format!("not a CDR message of its type: {e}"))
 }
 
 #[cfg(test)]
@@ -180,6 +245,44 @@ mod tests {
         // (1), pad to 4 (1), step (4), data length (4) and bytes (2).
         assert_eq!(body.len(), 8 + 6 + 2 + 8 + 10 + 1 + 1 + 4 + 4 + 2);
         assert_eq!(&body[body.len() - 6..], &[2, 0, 0, 0, 7, 9]);
+    }
+
+    #[test]
+    fn a_message_reads_back_as_written_its_bytes_borrowed() {
+        let image = Image {
+            header: Header {
+                stamp: Time::from_seconds(3.25),
+                frame_id: "camera_color_optical_frame".into(),
+            },
+            height: 1,
+            width: 3,
+            encoding: "rgb8".into(),
+            is_bigendian: 0,
+            step: 9,
+            data: Bytes(&[1, 2, 3, 4, 5, 6, 7, 8, 9]),
+        };
+        let bytes = cdr_bytes(&image).unwrap();
+        let read: Image = from_cdr(&bytes).unwrap();
+        assert_eq!(read, image);
+        assert!(bytes.as_ptr_range().contains(&read.data.0.as_ptr()));
+    }
+
+    #[test]
+    fn a_claimed_length_beyond_the_message_is_an_error_not_an_allocation() {
+        let mut bytes = cdr_bytes(&CompressedImage {
+            header: Header {
+                stamp: Time::from_seconds(0.0),
+                frame_id: String::new(),
+            },
+            format: "png".into(),
+            data: Bytes(&[1, 2]),
+        })
+        .unwrap();
+        let length_at = bytes.len() - 6;
+        bytes[length_at..length_at + 4].copy_from_slice(&u32::MAX.to_le_bytes());
+        let error = from_cdr::<CompressedImage>(&bytes).unwrap_err();
+        assert!(error.contains("not a CDR message"), "{error}");
+        assert!(from_cdr::<Header>(&[0, 1]).is_err());
     }
 
     #[test]

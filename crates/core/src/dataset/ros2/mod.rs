@@ -1,17 +1,27 @@
 //! The ROS 2 bag layout (`--format ros2`): one rosbag2 folder holding an MCAP file (profile
 //! `ros2`, `ros2msg` schemas, CDR messages) and the `metadata.yaml` that `ros2 bag` reads
-//! (docs/src/formats.md, "ROS 2 bag layout").
+//! (docs/src/formats.md, "ROS 2 bag layout"); and a recorded bag read, its camera's images
+//! perturbed and every other message copied ([`RecordedBagCamera`], [`PerturbedBag`]).
 
 mod bag;
 mod camera;
+mod image_codec;
 mod messages;
 mod metadata;
+mod perturbed_bag;
+mod record_lengths;
+mod recorded;
+mod recorded_camera;
 mod schemas;
 
-pub use bag::{BagWriter, ClosedBag, Topic};
+pub use bag::{BagWriter, ClosedBag, LogTimes, Topic};
 pub use camera::{CameraBag, DEPTH_UNITS_PER_METRE};
+pub use image_codec::{decode_colour, decode_depth, Codec, ImageEncoding};
 pub use messages::{
-    cdr_bytes, Bytes, CameraInfo, Header, Image, Pose, PoseStamped, Quaternion, RegionOfInterest,
-    TfMessage, Time, Transform, TransformStamped, Vector3,
+    cdr_bytes, from_cdr, Bytes, CameraInfo, CompressedImage, Header, Image, Pose, PoseStamped,
+    Quaternion, RegionOfInterest, TfMessage, Time, Transform, TransformStamped, Vector3,
 };
+pub use perturbed_bag::PerturbedBag;
+pub use recorded::{BagMessage, BagMessages, RecordedBag};
+pub use recorded_camera::{ImageMessage, ImageTopic, RecordedBagCamera};
 pub use schemas::MessageType;

@@ -1,0 +1,29 @@
+//! A recorded ROS 2 bag as `rslam perturb --input BAG` reads it: the MCAP storage file of a
+//! rosbag2 folder, every message read and the camera found
+//! (`rslam_core::dataset::ros2::RecordedBagCamera`).
+
+use std::path::Path;
+
+use rslam_core::dataset::ros2::{RecordedBag, RecordedBagCamera};
+
+use crate::Scratch;
+
+pub const STORAGE: &str = "bag_0.mcap";
+
+/// The folder's `metadata.yaml` (its content is not read).
+pub fn prepare(dir: &Path) -> std::io::Result<()> {
+    std::fs::write(dir.join("metadata.yaml"), "rosbag2_bagfile_information:\n")
+}
+
+pub fn storage(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
+    scratch.write(STORAGE, input)?;
+    let bag = RecordedBag::open(&scratch.dir).map_err(|e| e.to_string())?;
+    let camera = RecordedBagCamera::read(bag).map_err(|e| e.to_string())?;
+    let frames = camera.colour.messages.len();
+    assert!(frames >= 2 && camera.rate_hz.is_finite() && camera.rate_hz > 0.0);
+    if let Some(depth) = &camera.depth {
+        assert_eq!(depth.messages.len(), frames);
+    }
+    assert!(camera.is_perturbed(camera.colour.index));
+    Ok(())
+}

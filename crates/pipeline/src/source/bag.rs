@@ -1,0 +1,144 @@
+//! The camera of a recorded ROS 2 bag: its colour (and depth) messages, read from the bag in
+//! file order on the decoding threads and decoded there into upload buffers ahead of the GPU.
+
+use std::collections::{HashMap, HashSet};
+use std::sync::{Arc, Mutex};
+
+use rslam_core::dataset::ros2::{decode_colour, decode_depth, BagMessages, RecordedBagCamera};
+use rslam_core::{CoreError, Intrinsics};
+use rslam_gpu::{wgpu, FrameTextures, GpuContext};
+
+use crate::source::{check_in_range, FrameSource};
+use crate::upload_ahead::UploadAhead;
+use crate::PipelineError;
+
+/// Source frame `i` is the camera's colour message `i` and depth message `i`.
+pub struct BagSource {
+    camera: Arc<RecordedBagCamera>,
+    frames_ahead: UploadAhead,
+}
+
+impl BagSource {
+    pub fn new(camera: Arc<RecordedBagCamera>) -> Self {
+        let (width, height) = camera.colour.size;
+        let with_depth = camera.depth.is_some();
+        Self {
+            camera,
+            frames_ahead: UploadAhead::new(width, height, with_depth),
+        }
+    }
+}
+
+impl FrameSource for BagSource {
+    fn size(&self) -> (u32, u32) {
+        self.camera.colour.size
+    }
+
+    fn has_depth(&self) -> bool {
+        self.camera.depth.is_some()
+    }
+
+    fn camera(&self) -> Option<Intrinsics> {
+        Some(self.camera.intrinsics)
+    }
+
+    fn prepare(&mut self, ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
+        let camera = &self.camera;
+        check_in_range(sources, camera.colour.messages.len(), &camera.colour.name)?;
+        let messages = Mutex::new(CameraMessages {
+            messages: camera.bag.messages()?,
+            colour_channel: camera.colour.channel,
+            depth_channel: camera.depth.as_ref().map(|d| d.channel),
+            read: (0, 0),
+            wanted: sources.iter().copied().collect(),
+            waiting: HashMap::new(),
+        });
+        let messages = Arc::new(messages);
+        let camera = camera.clone();
+        let items = sources.iter().map(|&s| (s, s)).collect();
+        self.frames_ahead.start(ctx, items, move |&index, filler| {
+            // The decoding threads take frames in order, a few at a time: each reads on in the
+            // bag to its own messages, setting aside those of the frames after it.
+            let (colour, depth) = messages
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .take(index)?;
+            let bad = |topic: &str, e: String| {
+                PipelineError::from(CoreError::bad_file(
+                    &camera.bag.folder,
+                    format!("topic {topic}: {e}"),
+                ))
+            };
+            let colour_topic = &camera.colour;
+            let colour = decode_colour(&colour, &colour_topic.encoding)
+                .map_err(|e| bad(&colour_topic.name, e))?;
+            let depth = match (&camera.depth, depth) {
+                (Some(topic), Some(data)) => {
+                    Some(decode_depth(&data, &topic.encoding).map_err(|e| bad(&topic.name, e))?)
+                }
+                _ => None,
+            };
+            Ok(filler.fill(&colour, depth.as_ref())?)
+        });
+        Ok(())
+    }
+
+    fn record(
+        &mut self,
+        _ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        index: usize,
+    ) -> Result<(), PipelineError> {
+        self.frames_ahead.record(encoder, frame, index)
+    }
+}
+
+/// The camera's messages read from the bag in file order.
+struct CameraMessages {
+    messages: BagMessages,
+    colour_channel: u16,
+    depth_channel: Option<u16>,
+    /// How many colour and depth messages were read.
+    read: (usize, usize),
+    /// The source frames the run records.
+    wanted: HashSet<usize>,
+    /// Messages read ahead of their frame: (frame, is depth) → CDR bytes.
+    waiting: HashMap<(usize, bool), Vec<u8>>,
+}
+
+type FrameMessages = (Vec<u8>, Option<Vec<u8>>);
+
+impl CameraMessages {
+    /// Source frame `index`'s colour and depth messages.
+    fn take(&mut self, index: usize) -> Result<FrameMessages, PipelineError> {
+        let with_depth = self.depth_channel.is_some();
+        loop {
+            let have_colour = self.waiting.contains_key(&(index, false));
+            let have_depth = !with_depth || self.waiting.contains_key(&(index, true));
+            if have_colour && have_depth {
+                let colour = self.waiting.remove(&(index, false)).unwrap_or_default();
+                return Ok((colour, self.waiting.remove(&(index, true))));
+            }
+            let Some(message) = self.messages.next() else {
+                return Err(PipelineError::Worker(format!(
+                    "the bag ended before the messages of frame {index}"
+                )));
+            };
+            let message = message?;
+            let channel = message.channel.id;
+            let (count, depth) = if channel == self.colour_channel {
+                (&mut self.read.0, false)
+            } else if Some(channel) == self.depth_channel {
+                (&mut self.read.1, true)
+            } else {
+                continue;
+            };
+            let frame = *count;
+            *count += 1;
+            if self.wanted.contains(&frame) {
+                self.waiting.insert((frame, depth), message.data);
+            }
+        }
+    }
+}
