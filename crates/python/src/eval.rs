@@ -72,7 +72,7 @@ fn trajectory(
 #[pyfunction]
 #[pyo3(signature = (est, gt, align = "se3", max_diff = rslam_eval::DEFAULT_MAX_DIFF, t_offset = 0.0,
     format = None, rate = ReadOptions::DEFAULT_REPLICA_RATE_HZ, delta = 1.0, delta_unit = "f",
-    all_pairs = false))]
+    all_pairs = false, est_topic = None, gt_topic = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn evaluate_json(
     py: Python<'_>,
@@ -86,11 +86,18 @@ pub fn evaluate_json(
     delta: f64,
     delta_unit: &str,
     all_pairs: bool,
+    est_topic: Option<String>,
+    gt_topic: Option<String>,
 ) -> PyResult<String> {
     let read = ReadOptions {
         format: format.map(|f| parse("format", f)).transpose()?,
         replica_rate_hz: rate,
         kitti_times: None,
+        topic: None,
+    };
+    let with_topic = |topic: Option<String>| ReadOptions {
+        topic,
+        ..read.clone()
     };
     let options = EvalOptions {
         matching: Matching::Time { max_diff, t_offset },
@@ -101,8 +108,8 @@ pub fn evaluate_json(
             all_pairs,
         },
     };
-    let est = trajectory(py, est, "est", &read)?;
-    let gt = trajectory(py, gt, "gt", &read)?;
+    let est = trajectory(py, est, "est", &with_topic(est_topic))?;
+    let gt = trajectory(py, gt, "gt", &with_topic(gt_topic))?;
     let evaluation = py
         .detach(|| evaluate_files(&est, &gt, &options))
         .map_err(crate::errors::eval)?;

@@ -2,14 +2,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
-use rslam_core::trajectory_io::{ReadOptions, TrajectoryFormat};
+use rslam_core::trajectory_io::{read_trajectory_with, ReadOptions, TrajectoryFormat};
 use rslam_eval::multi_agent::{
     agents_from_pairs, agents_in_folder, multi_agent_report, read_and_evaluate_agents, AgentFiles,
 };
 use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
 use rslam_eval::{
-    plot_evaluation, read_and_evaluate, text_report, AlignMode, DeltaUnit, EvalOptions, Matching,
-    RpeOptions, DEFAULT_MAX_DIFF,
+    evaluate_files, plot_evaluation, text_report, AlignMode, DeltaUnit, EvalError, EvalOptions,
+    Matching, RpeOptions, DEFAULT_MAX_DIFF,
 };
 
 const DETAILS: &str = "\
@@ -18,7 +18,9 @@ takes the ground truth first.
 
 Files: TUM (t tx ty tz qx qy qz qw), Replica traj.txt (16 numbers, row-major 4x4 camera-to-world;
 frame i at i / --rate), KITTI (12 numbers, row-major 3x4; matched by index unless --kitti-times) or
-EuRoC ground truth (t[ns],px,py,pz,qw,qx,qy,qz,...), detected from the content.
+EuRoC ground truth (t[ns],px,py,pz,qw,qx,qy,qz,...), detected from the content; or a ROS 2 bag
+folder: the header-stamped poses of a PoseStamped, PoseWithCovarianceStamped or Odometry topic, or
+of the transforms to one frame on a TF topic (--est-topic / --gt-topic TOPIC or TOPIC:CHILD).
 
 Association (as evo): every pose of the trajectory with fewer poses (the estimate on a tie) takes the
 pose of the other with the nearest timestamp; kept if |dt| <= --max-diff (not one-to-one).
@@ -42,7 +44,8 @@ No reference tool computes these; they are rslam's definitions (the book's Evalu
 
 --runs DIR --datasets DIR: evaluates DIR/<method>/<sequence>.txt (or DIR/<method>/<sequence>/<repeat>.txt)
 against the ground truth in DATASETS/<sequence>/traj.txt, groundtruth.txt, (EuRoC)
-mav0/state_groundtruth_estimate0/data.csv or (TUM-VI) mav0/mocap0/data.csv. A sequence named
+mav0/state_groundtruth_estimate0/data.csv, (TUM-VI) mav0/mocap0/data.csv or, in a ROS 2 bag
+(metadata.yaml), its one pose topic. A sequence named
 <scene>__<setting> belongs to that setting (room0__fog-3), a bare <scene> is clean. A run is a
 failure when a runner left <repeat>.failed (or <sequence>.failed) for it, a text file whose first
 line is the reason (an empty one: 'failed (no reason given)'); a .failed beside a .txt of the same
@@ -104,9 +107,19 @@ pub struct EvalArgs {
     /// mav0/state_groundtruth_estimate0/data.csv or mav0/mocap0/data.csv.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["runs", "plot"])]
     agents: Option<PathBuf>,
-    /// Force the file format instead of detecting it: tum, replica, kitti or euroc.
+    /// Force the file format instead of detecting it: tum, replica, kitti or euroc (a ROS 2 bag
+    /// folder is read as ros2).
     #[arg(long)]
     format: Option<TrajectoryFormat>,
+    /// When EST is a ROS 2 bag: its topic of PoseStamped, PoseWithCovarianceStamped or Odometry
+    /// messages, or TOPIC:CHILD for the transforms to frame CHILD on a TF topic (default: the
+    /// bag's one pose topic).
+    #[arg(long, value_name = "TOPIC")]
+    est_topic: Option<String>,
+    /// When GT is a ROS 2 bag: its pose topic, as --est-topic (rslam's bags hold
+    /// /ground_truth/pose).
+    #[arg(long, value_name = "TOPIC")]
+    gt_topic: Option<String>,
     /// Frame rate of Replica traj.txt files (frame i gets timestamp i / rate), Hz.
     #[arg(long, default_value_t = ReadOptions::DEFAULT_REPLICA_RATE_HZ)]
     rate: f64,
@@ -172,6 +185,7 @@ pub fn run(args: EvalArgs) -> anyhow::Result<ExitCode> {
         format: args.format,
         replica_rate_hz: args.rate,
         kitti_times: args.kitti_times.clone(),
+        topic: None,
     };
     let options = EvalOptions {
         matching: Matching::Time {
@@ -207,7 +221,14 @@ fn run_one(
     read: &ReadOptions,
     options: &EvalOptions,
 ) -> anyhow::Result<ExitCode> {
-    let evaluation = read_and_evaluate(est, gt, read, options)
+    let with_topic = |topic: &Option<String>| ReadOptions {
+        topic: topic.clone(),
+        ..read.clone()
+    };
+    let evaluation = read_trajectory_with(est, &with_topic(&args.est_topic))
+        .and_then(|est| Ok((est, read_trajectory_with(gt, &with_topic(&args.gt_topic))?)))
+        .map_err(EvalError::from)
+        .and_then(|(est, gt)| evaluate_files(&est, &gt, options))
         .with_context(|| format!("evaluating {} against {}", est.display(), gt.display()))?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&evaluation)?);

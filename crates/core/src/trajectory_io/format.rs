@@ -15,10 +15,18 @@ pub enum TrajectoryFormat {
     Kitti,
     /// EuRoC ground truth `data.csv`: `t[ns],px,py,pz,qw,qx,qy,qz,…`, `#` header.
     Euroc,
+    /// A pose or TF topic of a ROS 2 bag (a rosbag2 folder, [`ReadOptions::topic`]).
+    Ros2,
 }
 
 impl TrajectoryFormat {
-    pub const ALL: [TrajectoryFormat; 4] = [Self::Tum, Self::Replica, Self::Kitti, Self::Euroc];
+    pub const ALL: [TrajectoryFormat; 5] = [
+        Self::Tum,
+        Self::Replica,
+        Self::Kitti,
+        Self::Euroc,
+        Self::Ros2,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -26,6 +34,7 @@ impl TrajectoryFormat {
             Self::Replica => "replica",
             Self::Kitti => "kitti",
             Self::Euroc => "euroc",
+            Self::Ros2 => "ros2",
         }
     }
 
@@ -36,6 +45,7 @@ impl TrajectoryFormat {
             Self::Replica => "16 numbers (row-major 4x4 camera-to-world)",
             Self::Kitti => "12 numbers (row-major 3x4 camera-to-world)",
             Self::Euroc => "at least 8 comma-separated numbers 't[ns],px,py,pz,qw,qx,qy,qz'",
+            Self::Ros2 => "a message of a pose topic",
         }
     }
 }
@@ -48,7 +58,7 @@ impl fmt::Display for TrajectoryFormat {
 
 /// The text is not one of the format names.
 #[derive(Debug, thiserror::Error)]
-#[error("unknown trajectory format '{text}': expected tum, replica, kitti or euroc")]
+#[error("unknown trajectory format '{text}': expected tum, replica, kitti, euroc or ros2")]
 pub struct UnknownFormat {
     pub text: String,
 }
@@ -88,6 +98,9 @@ pub struct ReadOptions {
     pub replica_rate_hz: f64,
     /// KITTI times file (one timestamp in seconds per line, as `times.txt` of KITTI odometry).
     pub kitti_times: Option<PathBuf>,
+    /// The topic of a ROS 2 bag to read: `TOPIC`, or `TOPIC:CHILD` for a TF topic's transforms
+    /// to frame `CHILD`; `None` for the bag's one pose topic.
+    pub topic: Option<String>,
 }
 
 impl ReadOptions {
@@ -100,6 +113,7 @@ impl Default for ReadOptions {
             format: None,
             replica_rate_hz: Self::DEFAULT_REPLICA_RATE_HZ,
             kitti_times: None,
+            topic: None,
         }
     }
 }
@@ -128,7 +142,7 @@ mod tests {
         let err = "csv".parse::<TrajectoryFormat>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "unknown trajectory format 'csv': expected tum, replica, kitti or euroc"
+            "unknown trajectory format 'csv': expected tum, replica, kitti, euroc or ros2"
         );
     }
 }

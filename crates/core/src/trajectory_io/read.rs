@@ -4,6 +4,7 @@ use super::detect::detect;
 use super::lines::check_line_count;
 use super::{euroc, kitti, replica, tum};
 use super::{ReadOptions, TimeSource, TrajectoryFile, TrajectoryFormat};
+use crate::dataset::ros2::read_pose_topic;
 use crate::{read_text_file, CoreError, Trajectory};
 
 /// Reads a trajectory file, detecting its format from the content unless `format` forces one.
@@ -22,8 +23,9 @@ pub fn read_trajectory(
     )
 }
 
-/// Reads a trajectory file with explicit options (forced format, Replica rate, KITTI times file).
-/// Every pose is a unit-quaternion rigid transform; a file without poses is an error.
+/// Reads a trajectory file with explicit options (forced format, Replica rate, KITTI times file),
+/// or a pose topic of a ROS 2 bag folder ([`ReadOptions::topic`]). Every pose is a
+/// unit-quaternion rigid transform; a file without poses is an error.
 pub fn read_trajectory_with(
     path: &Path,
     options: &ReadOptions,
@@ -31,6 +33,20 @@ pub fn read_trajectory_with(
     let rate = options.replica_rate_hz;
     if !(rate.is_finite() && rate > 0.0) {
         return Err(CoreError::BadRate { hz: rate });
+    }
+    let is_bag = path.join("metadata.yaml").is_file();
+    if is_bag || options.format == Some(TrajectoryFormat::Ros2) {
+        return Ok(TrajectoryFile {
+            format: TrajectoryFormat::Ros2,
+            time_source: TimeSource::File,
+            trajectory: read_pose_topic(path, options.topic.as_deref())?,
+        });
+    }
+    if options.topic.is_some() {
+        return Err(CoreError::bad_file(
+            path,
+            "a topic was named, but this is no ROS 2 bag (a folder with metadata.yaml)",
+        ));
     }
     let text = read_text_file(path, "a trajectory in text form")?;
     check_line_count(path, &text)?;
@@ -46,6 +62,12 @@ pub fn read_trajectory_with(
             TimeSource::Rate { hz: rate },
         ),
         TrajectoryFormat::Kitti => read_kitti(path, &text, options.kitti_times.as_deref())?,
+        TrajectoryFormat::Ros2 => {
+            return Err(CoreError::bad_file(
+                path,
+                "a file, but a ros2 trajectory is a pose topic of a rosbag2 folder",
+            ))
+        }
     };
     if trajectory.is_empty() {
         return Err(CoreError::bad_file(

@@ -1,7 +1,7 @@
 //! Finding the runs: `<runs>/<method>/<sequence>.txt` (or `<runs>/<method>/<sequence>/<repeat>.txt`)
 //! and each sequence's ground truth in `<datasets>/<sequence>/`: `traj.txt`, `groundtruth.txt`,
-//! EuRoC's `mav0/state_groundtruth_estimate0/data.csv` (the body's) or TUM-VI's
-//! `mav0/mocap0/data.csv` (the IMU's, which is its body).
+//! EuRoC's `mav0/state_groundtruth_estimate0/data.csv` (the body's), TUM-VI's
+//! `mav0/mocap0/data.csv` (the IMU's, which is its body), or a ROS 2 bag's pose topic.
 //!
 //! A runner records a run that failed as `<repeat>.failed` (or `<sequence>.failed`) beside where
 //! the estimate would be: a text file whose first line is the reason. It wins over an estimate of
@@ -22,6 +22,9 @@ pub(crate) const GROUND_TRUTH_FILES: [&str; 4] = [
     "mav0/state_groundtruth_estimate0/data.csv",
     "mav0/mocap0/data.csv",
 ];
+/// A ROS 2 bag's folder holds this; its ground truth is its one pose topic
+/// (`/ground_truth/pose` in the bags rslam writes).
+const BAG_METADATA: &str = "metadata.yaml";
 const ESTIMATE_EXTENSION: &str = "txt";
 const FAILED_EXTENSION: &str = "failed";
 /// The reason of a failed run whose `.failed` file gives none.
@@ -52,11 +55,12 @@ pub struct Estimate {
 pub fn find_sequences(datasets: &Path) -> Result<Vec<Sequence>, EvalError> {
     let mut sequences = Vec::new();
     for (name, dir) in subdirectories(datasets)? {
-        let Some(ground_truth) = GROUND_TRUTH_FILES
+        let file = GROUND_TRUTH_FILES
             .iter()
             .map(|f| dir.join(f))
-            .find(|p| p.is_file())
-        else {
+            .find(|p| p.is_file());
+        let bag = dir.join(BAG_METADATA).is_file().then(|| dir.clone());
+        let Some(ground_truth) = file.or(bag) else {
             continue;
         };
         let (scene, setting) = scene_and_setting(&name);
@@ -72,8 +76,8 @@ pub fn find_sequences(datasets: &Path) -> Result<Vec<Sequence>, EvalError> {
             path: datasets.to_path_buf(),
             message: "no dataset folder holding a ground truth; expected \
                       <datasets>/<sequence>/traj.txt (Replica), .../groundtruth.txt (TUM), \
-                      .../mav0/state_groundtruth_estimate0/data.csv (EuRoC) or \
-                      .../mav0/mocap0/data.csv (TUM-VI)"
+                      .../mav0/state_groundtruth_estimate0/data.csv (EuRoC), \
+                      .../mav0/mocap0/data.csv (TUM-VI) or .../metadata.yaml (a ROS 2 bag)"
                 .to_string(),
         });
     }
@@ -215,6 +219,7 @@ mod tests {
         write(&dir.path().join("room0__tum/groundtruth.txt"), "x");
         write(&dir.path().join("room0__euroc").join(euroc_truth), "x");
         write(&dir.path().join("room0__none/mav0/imu0/data.csv"), "x");
+        write(&dir.path().join("room0__ros2/metadata.yaml"), "x");
         let found: Vec<(String, PathBuf)> = find_sequences(dir.path())
             .unwrap()
             .into_iter()
@@ -226,6 +231,7 @@ mod tests {
             [
                 at("room0__euroc", euroc_truth),
                 at("room0__replica", "traj.txt"),
+                at("room0__ros2", ""),
                 at("room0__tum", "groundtruth.txt"),
                 at("room1__both", euroc_truth),
                 at("room1__tum_vi", tum_vi_truth),

@@ -78,6 +78,8 @@ def evaluate_json(
     delta: float = 1.0,
     delta_unit: str = "f",
     all_pairs: bool = False,
+    est_topic: Optional[str] = None,
+    gt_topic: Optional[str] = None,
 ) -> str:
     """The ``rslam eval --json`` object as text; use ``rslam.eval``."""
 

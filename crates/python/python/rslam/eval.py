@@ -1,7 +1,7 @@
 """Trajectory evaluation with the numbers of ``rslam eval`` (evo 1.38.1's, see docs/src/metrics.md).
 
 ``est`` and ``gt`` are each a trajectory file (TUM, Replica traj.txt, KITTI, EuRoC; detected
-from the content), an Nx8 array of TUM rows ``t tx ty tz qx qy qz qw``, or an Nx4x4 array of
+from the content), a ROS 2 bag folder (a pose topic of it: ``est_topic``, ``gt_topic``), an Nx8 array of TUM rows ``t tx ty tz qx qy qz qw``, or an Nx4x4 array of
 camera-to-world matrices (no timestamps: matched by index). Note the order: estimate first, as
 ``rslam eval EST GT`` (evo takes the ground truth first).
 """
@@ -14,7 +14,7 @@ __all__ = ["ate", "evaluate"]
 
 
 def evaluate(est, gt, *, align="se3", max_diff=0.01, t_offset=0.0, format=None, rate=20.0,
-             delta=1.0, delta_unit="f", all_pairs=False):
+             delta=1.0, delta_unit="f", all_pairs=False, est_topic=None, gt_topic=None):
     """Everything ``rslam eval EST GT --json`` prints, as a dict.
 
     Keys: ``ate``, ``rpe_trans``, ``rpe_rot_deg`` (each rmse, mean, median, std, min, max, sse,
@@ -29,13 +29,15 @@ def evaluate(est, gt, *, align="se3", max_diff=0.01, t_offset=0.0, format=None, 
         format: force the file format ('tum', 'replica', 'kitti', 'euroc').
         rate: frame rate of Replica traj.txt files, Hz.
         delta, delta_unit, all_pairs: the RPE pairs ('f' frames, 'm' metres, 'deg' degrees).
+        est_topic, gt_topic: the pose topic of a bag ('/odom'; '/tf:base_link' for a TF
+            topic's transforms to a frame); None reads the bag's one pose topic.
 
     Raises:
         ValueError: no association, a degenerate alignment, a malformed file or option.
         OSError: a file that cannot be read.
     """
     return json.loads(evaluate_json(est, gt, align, max_diff, t_offset, format, rate, delta,
-                                    delta_unit, all_pairs))
+                                    delta_unit, all_pairs, est_topic, gt_topic))
 
 
 def ate(est, gt, *, align="se3", max_diff=0.01, t_offset=0.0, format=None, rate=20.0):

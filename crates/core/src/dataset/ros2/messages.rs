@@ -126,7 +126,7 @@ pub struct CameraInfo {
 }
 
 /// `geometry_msgs/msg/Point` (and `Vector3`, which has the same fields).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Vector3 {
     pub x: f64,
     pub y: f64,
@@ -134,7 +134,7 @@ pub struct Vector3 {
 }
 
 /// `geometry_msgs/msg/Quaternion`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Quaternion {
     pub x: f64,
     pub y: f64,
@@ -143,36 +143,53 @@ pub struct Quaternion {
 }
 
 /// `geometry_msgs/msg/Pose`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Pose {
     pub position: Vector3,
     pub orientation: Quaternion,
 }
 
 /// `geometry_msgs/msg/PoseStamped`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct PoseStamped {
     pub header: Header,
     pub pose: Pose,
 }
 
 /// `geometry_msgs/msg/Transform`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Transform {
     pub translation: Vector3,
     pub rotation: Quaternion,
 }
 
 /// `geometry_msgs/msg/TransformStamped`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct TransformStamped {
     pub header: Header,
     pub child_frame_id: String,
     pub transform: Transform,
 }
 
+/// The start of `nav_msgs/msg/Odometry`: its header, child frame and pose (the first field of
+/// its `PoseWithCovariance`); the covariance and twist after it are not read.
+#[derive(Clone, Debug, PartialEq, serde::Deserialize)]
+pub struct OdometryPose {
+    pub header: Header,
+    pub child_frame_id: String,
+    pub pose: Pose,
+}
+
+/// The start of `geometry_msgs/msg/PoseWithCovarianceStamped`: its header and pose; the
+/// covariance after it is not read.
+#[derive(Clone, Debug, PartialEq, serde::Deserialize)]
+pub struct PoseWithCovarianceStamped {
+    pub header: Header,
+    pub pose: Pose,
+}
+
 /// `tf2_msgs/msg/TFMessage`.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct TfMessage {
     pub transforms: Vec<TransformStamped>,
 }

@@ -9,6 +9,7 @@ mod image_codec;
 mod messages;
 mod metadata;
 mod perturbed_bag;
+mod pose_topic;
 mod record_lengths;
 mod recorded;
 mod recorded_camera;
@@ -22,6 +23,7 @@ pub use messages::{
     Quaternion, RegionOfInterest, TfMessage, Time, Transform, TransformStamped, Vector3,
 };
 pub use perturbed_bag::PerturbedBag;
+pub use pose_topic::read_pose_topic;
 pub use recorded::{BagMessage, BagMessages, RecordedBag};
 pub use recorded_camera::{ImageMessage, ImageTopic, RecordedBagCamera};
 pub use schemas::MessageType;
