@@ -2,7 +2,7 @@
 //! source frames with a missing file are drawn), a ROS 2 bag from its start; the manifest comes
 //! last.
 
-use rslam_core::dataset::ros2::CameraBag;
+use rslam_core::dataset::ros2::{BagImu, CameraBag};
 use rslam_core::dataset::{ContentWriter, DatasetFormat, DatasetWriter};
 use rslam_core::{Intrinsics, Trajectory};
 use rslam_gpu::GpuContext;
@@ -21,8 +21,10 @@ pub struct DatasetOutput<'a> {
     pub plan: &'a FramePlan,
     pub ground_truth: &'a Trajectory,
     /// Files of other sensors beside the frames (relative path, text), written before the
-    /// checksums: the `rgbd-imu` rig's IMU.
+    /// checksums: the `rgbd-imu` rig's IMU in the TUM layout.
     pub sensor_files: &'a [(String, String)],
+    /// The `rgbd-imu` rig's IMU in a ROS 2 bag.
+    pub bag_imu: Option<&'a BagImu>,
 }
 
 /// The writer of a one-camera dataset: the frames `pipeline` makes, into the prepared folder
@@ -69,7 +71,8 @@ fn bag_writing<'a, S: FrameSource + 'a>(
 ) -> Writing<'a> {
     Box::new(move |out, _found, manifest, progress| {
         let plan = target.plan;
-        let bag = CameraBag::create(out, target.camera, manifest.distortion)?;
+        let imu = target.bag_imu.cloned();
+        let bag = CameraBag::create(out, target.camera, manifest.distortion, imu)?;
         let mut sink = CameraBagSink::new(bag, ContentWriter::new(out), plan, target.ground_truth);
         let sources = plan.needed_sources();
         progress.start(sources.len(), what);

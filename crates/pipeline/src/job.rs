@@ -91,8 +91,11 @@ pub enum Sensors {
         depth_png: DepthPng,
     },
     /// `rgbd-imu`: that camera on a RealSense D435i-like body with its IMU, in the TUM layout
-    /// with `imu0/` and the body's ground truth beside it.
-    CameraImu { depth_png: DepthPng },
+    /// with `imu0/` and the body's ground truth beside it, or in a ROS 2 bag with `/imu0`.
+    CameraImu {
+        format: DatasetFormat,
+        depth_png: DepthPng,
+    },
     /// A rig of cameras and an IMU, in the EuRoC layout.
     Rig(Rig),
 }
@@ -109,9 +112,10 @@ impl Sensors {
             (RigPreset::Rgbd, Layout::Camera(format)) => {
                 return Ok(Self::Camera { format, depth_png })
             }
-            (RigPreset::RgbdImu, Layout::Camera(DatasetFormat::Tum)) => {
-                return Ok(Self::CameraImu { depth_png })
-            }
+            (
+                RigPreset::RgbdImu,
+                Layout::Camera(format @ (DatasetFormat::Tum | DatasetFormat::Ros2)),
+            ) => return Ok(Self::CameraImu { format, depth_png }),
             (RigPreset::Euroc(rig), Layout::Euroc) => return Ok(Self::Rig(rig)),
             (RigPreset::Rgbd, _) => "rgbd".to_string(),
             (RigPreset::RgbdImu, _) => "rgbd-imu".to_string(),
@@ -137,7 +141,7 @@ impl Sensors {
     pub fn layout(&self) -> Layout {
         match self {
             Self::Camera { format, .. } => Layout::Camera(*format),
-            Self::CameraImu { .. } => Layout::Camera(DatasetFormat::Tum),
+            Self::CameraImu { format, .. } => Layout::Camera(*format),
             Self::Rig(_) => Layout::Euroc,
         }
     }
@@ -232,9 +236,9 @@ impl Job {
                     Sensors::Camera { format, depth_png } => {
                         Box::new(render::plan(scene, *format, *depth_png, command, scenes)?)
                     }
-                    Sensors::CameraImu { depth_png } => Box::new(rig::rgbd_imu_render::plan(
-                        scene, *depth_png, command, scenes,
-                    )?),
+                    Sensors::CameraImu { format, depth_png } => Box::new(
+                        rig::rgbd_imu_render::plan(scene, *format, *depth_png, command, scenes)?,
+                    ),
                     Sensors::Rig(rig) => {
                         Box::new(rig::euroc_render::plan(scene, rig, command, scenes)?)
                     }

@@ -122,6 +122,7 @@ impl Planned for DatasetPerturb<'_> {
             plan: &self.plan,
             ground_truth: &self.ground_truth,
             sensor_files: &self.sensor_files,
+            bag_imu: None,
         };
         Ok(dataset_writing(ctx, pipeline, output, "perturbing"))
     }

@@ -79,6 +79,7 @@ impl Planned for CameraRender<'_> {
             plan: &resolved.plan,
             ground_truth: &self.ground_truth,
             sensor_files: &[],
+            bag_imu: None,
         };
         Ok(dataset_writing(ctx, pipeline, output, "rendering"))
     }

@@ -152,9 +152,7 @@ fn estimated_bytes_per_frame(sequence: &Sequence) -> f64 {
         .any(|item| item.name.ends_with("_noise"));
     let (clean, noise) = match &sequence.sensors {
         Sensors::Camera { format, depth_png } => measured_bytes_per_pixel(*format, *depth_png),
-        Sensors::CameraImu { depth_png } => {
-            measured_bytes_per_pixel(DatasetFormat::Tum, *depth_png)
-        }
+        Sensors::CameraImu { format, depth_png } => measured_bytes_per_pixel(*format, *depth_png),
         Sensors::Rig(_) => EUROC_GREY_BYTES_PER_PIXEL,
     };
     let pixels = sequence.camera.width as f64 * sequence.camera.height as f64;

@@ -98,7 +98,7 @@ impl Sequence {
             push("--frames", frames.to_string());
         }
         match &self.sensors {
-            Sensors::Camera { depth_png, .. } | Sensors::CameraImu { depth_png } => {
+            Sensors::Camera { depth_png, .. } | Sensors::CameraImu { depth_png, .. } => {
                 if let Sensors::CameraImu { .. } = self.sensors {
                     push("--rig", "rgbd-imu".into());
                 }

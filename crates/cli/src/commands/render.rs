@@ -40,7 +40,7 @@ pub struct RenderArgs {
     rate: Option<f64>,
     /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM), tum (ORB-SLAM3; with
     /// --rig rgbd-imu plus imu0/), ros2 (a rosbag2 in MCAP storage for `ros2 bag play`; one
-    /// camera) or euroc (the stereo rigs; needs --rig).
+    /// camera, with --rig rgbd-imu and its IMU on /imu0) or euroc (the stereo rigs; needs --rig).
     #[arg(long, value_enum, default_value = "replica")]
     format: OutputFormat,
     /// Depth PNG compression: `fast`, or `small` (about a third of the size for 2–3× the
@@ -73,7 +73,8 @@ pub struct RenderArgs {
 enum OutputFormat {
     Replica,
     Tum,
-    /// A rosbag2 folder (MCAP storage) of one RGB-D camera, for `ros2 bag play`.
+    /// A rosbag2 folder (MCAP storage) of one RGB-D camera (and the rgbd-imu rig's IMU), for
+    /// `ros2 bag play`.
     Ros2,
     Euroc,
 }

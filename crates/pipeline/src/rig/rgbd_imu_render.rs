@@ -2,7 +2,8 @@
 //! rate) on a RealSense D435i-like body with its IMU, written in the TUM layout as a one-camera
 //! render writes it, plus the IMU and the body's ground truth as the EuRoC layout has them
 //! (`imu0/data.csv`, `imu0/sensor.yaml`, `state_groundtruth_estimate0/data.csv`) and ORB-SLAM3's
-//! RGB-D-inertial settings (`orbslam3_rgbd_inertial.yaml`).
+//! RGB-D-inertial settings (`orbslam3_rgbd_inertial.yaml`); or in a ROS 2 bag, the IMU's
+//! readings on `/imu0` between the frames and its pose on `/tf_static`.
 //!
 //! The motion is the EuRoC rig render's: the path (the scene's or a trajectory file) is the camera's, the
 //! body follows it at `body_from_camera⁻¹` along a cubic B-spline, the camera samples it at its
@@ -11,7 +12,8 @@
 //! pose at each frame's capture time; under `cam_imu_offset` the frames' stamps move and it does
 //! not (its clock is the IMU's, as the body's ground truth).
 
-use rslam_core::dataset::euroc::{inertial_files, EurocCamera};
+use rslam_core::dataset::euroc::{inertial_files, EurocCamera, EurocImu};
+use rslam_core::dataset::ros2::BagImu;
 use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat, DepthPng, Manifest};
 use rslam_core::{Pose, SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
@@ -80,16 +82,20 @@ pub(crate) struct RgbdImuRender<'a> {
     plan: FramePlan,
     poses: Vec<Pose>,
     ground_truth: Trajectory,
+    format: DatasetFormat,
     sensor_files: Vec<(String, String)>,
+    bag_imu: Option<BagImu>,
     manifest: Manifest,
 }
 
-/// Plans `scene` seen by [`Rig::rgbd_imu`] of its camera and rate, in the TUM layout. Items
+/// Plans `scene` seen by [`Rig::rgbd_imu`] of its camera and rate, in the TUM layout or a ROS 2
+/// bag (`format`). Items
 /// are those [`crate::settings::rgbd_imu_render`] takes (checked by the job): IMU items,
 /// `cam_imu_offset` and the calibration items of `cam0` and `imu0` apply. An unfinished output of the same job is resumed frame by
 /// frame, as a one-camera render is.
 pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
+    format: DatasetFormat,
     depth_png: DepthPng,
     command: &[String],
     scenes: &SceneCache,
@@ -145,7 +151,7 @@ pub(crate) fn plan<'a>(
         command,
         source: resolved.scene.name.clone(),
         source_hash: resolved.source_hash().to_string(),
-        format: Some(DatasetFormat::Tum),
+        format: Some(format),
         camera: Some(camera.intrinsics),
         distortion: None,
         depth_png,
@@ -160,6 +166,22 @@ pub(crate) fn plan<'a>(
 
     let written_camera = &perturbed.written.cameras[0];
     let written_imu = perturbed.written.imu.as_ref();
+    if format == DatasetFormat::Ros2 {
+        let bag_imu = written_imu.map(|imu| bag_imu(imu, written_camera, streams.imu));
+        return Ok(RgbdImuRender {
+            scene,
+            resolved,
+            camera,
+            frame_spec,
+            plan: frame_plan,
+            poses,
+            ground_truth,
+            format,
+            sensor_files: Vec::new(),
+            bag_imu,
+            manifest,
+        });
+    }
     let mut sensor_files = inertial_files(written_imu, &streams.imu, &streams.ground_truth);
     if let Some(csv) = perturbed.per_frame_csv(&stamps_ns) {
         sensor_files.push((PER_FRAME_FILE.into(), csv));
@@ -183,9 +205,30 @@ pub(crate) fn plan<'a>(
         plan: frame_plan,
         poses,
         ground_truth,
+        format,
         sensor_files,
+        bag_imu: None,
         manifest,
     })
+}
+
+/// The IMU as a bag carries it: its readings, its pose in `camera`'s optical frame, and the
+/// variance of one reading at its rate (a noise density `σ` in units/√Hz at `f` Hz is a
+/// discrete standard deviation `σ √f`, Kalibr's convention).
+fn bag_imu(
+    imu: &EurocImu,
+    camera: &EurocCamera,
+    samples: Vec<rslam_core::dataset::euroc::ImuSample>,
+) -> BagImu {
+    BagImu {
+        samples,
+        camera_from_imu: camera
+            .body_from_camera
+            .inverse()
+            .compose(&imu.body_from_imu),
+        gyro_variance: imu.gyroscope_noise_density.powi(2) * imu.rate_hz,
+        accel_variance: imu.accelerometer_noise_density.powi(2) * imu.rate_hz,
+    }
 }
 
 impl Planned for RgbdImuRender<'_> {
@@ -208,11 +251,12 @@ impl Planned for RgbdImuRender<'_> {
         source.set_sensor(ctx, &self.frame_spec, camera.rate_hz)?;
         let pipeline = Pipeline::new(ctx, source, &self.frame_spec, self.scene.seed)?;
         let output = DatasetOutput {
-            format: DatasetFormat::Tum,
+            format: self.format,
             camera: camera.intrinsics,
             plan: &self.plan,
             ground_truth: &self.ground_truth,
             sensor_files: &self.sensor_files,
+            bag_imu: self.bag_imu.as_ref(),
         };
         Ok(dataset_writing(ctx, pipeline, output, "rendering"))
     }

@@ -2,16 +2,19 @@
 //! colour (`rgb8`) and depth registered to it (`16UC1`, millimetres, 0 = no measurement; REP 118)
 //! each with its `CameraInfo`, the optical frame's pose in `camera_link` on `/tf_static` (REP 103
 //! axes: z forward, x right, y down), and the ground-truth pose of the optical frame in `world`,
-//! the pose a TUM `groundtruth.txt` of the same job holds.
+//! the pose a TUM `groundtruth.txt` of the same job holds. With an IMU (the `rgbd-imu` rig), its
+//! readings on `/imu0` in its own frame `imu0`, whose pose in `camera_link` joins `/tf_static`,
+//! each logged before the frames stamped after it.
 
 use std::path::Path;
 
 use super::bag::{BagWriter, ClosedBag, Topic};
 use super::messages::{
-    Bytes, CameraInfo, Header, Image, Pose, PoseStamped, Quaternion, RegionOfInterest, TfMessage,
-    Time, Transform, TransformStamped, Vector3,
+    Bytes, CameraInfo, Header, Image, Imu as ImuMessage, Pose, PoseStamped, Quaternion,
+    RegionOfInterest, TfMessage, Time, Transform, TransformStamped, Vector3,
 };
 use super::schemas::MessageType;
+use crate::dataset::euroc::ImuSample;
 use crate::{CoreError, DepthImage, Distortion, Intrinsics, RgbImage};
 
 pub const COLOR_TOPIC: &str = "/camera/color/image_raw";
@@ -23,6 +26,8 @@ pub const TF_STATIC_TOPIC: &str = "/tf_static";
 pub const OPTICAL_FRAME: &str = "camera_color_optical_frame";
 pub const BODY_FRAME: &str = "camera_link";
 pub const WORLD_FRAME: &str = "world";
+pub const IMU_TOPIC: &str = "/imu0";
+pub const IMU_FRAME: &str = "imu0";
 /// 16UC1 depth units per metre.
 pub const DEPTH_UNITS_PER_METRE: f64 = 1000.0;
 
@@ -33,11 +38,28 @@ const DEPTH: usize = 2;
 const DEPTH_INFO: usize = 3;
 const GROUND_TRUTH: usize = 4;
 const TF_STATIC: usize = 5;
+const IMU: usize = 6;
+
+/// The IMU beside the camera: its readings (in its own frame), where it sits, and the variance
+/// of one reading's noise per axis, for the messages' covariances.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BagImu {
+    pub samples: Vec<ImuSample>,
+    /// The IMU frame in the camera's optical frame.
+    pub camera_from_imu: crate::Pose,
+    /// (rad/s)²
+    pub gyro_variance: f64,
+    /// (m/s²)²
+    pub accel_variance: f64,
+}
 
 pub struct CameraBag {
     bag: BagWriter,
     intrinsics: Intrinsics,
     distortion: Option<Distortion>,
+    imu: Option<BagImu>,
+    /// The IMU samples written so far.
+    imu_written: usize,
     tf_written: bool,
 }
 
@@ -46,11 +68,12 @@ impl CameraBag {
         folder: &Path,
         intrinsics: Intrinsics,
         distortion: Option<Distortion>,
+        imu: Option<BagImu>,
     ) -> Result<Self, CoreError> {
         let name = folder
             .file_name()
             .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
-        let topics = [
+        let mut topics = vec![
             Topic::new(COLOR_TOPIC, MessageType::Image),
             Topic::new(COLOR_INFO_TOPIC, MessageType::CameraInfo),
             Topic::new(DEPTH_TOPIC, MessageType::Image),
@@ -58,10 +81,15 @@ impl CameraBag {
             Topic::new(GROUND_TRUTH_TOPIC, MessageType::PoseStamped),
             Topic::latched(TF_STATIC_TOPIC, MessageType::TfMessage),
         ];
+        if imu.is_some() {
+            topics.push(Topic::new(IMU_TOPIC, MessageType::Imu));
+        }
         Ok(Self {
             bag: BagWriter::create(folder, &name, &topics)?,
             intrinsics,
             distortion,
+            imu,
+            imu_written: 0,
             tf_written: false,
         })
     }
@@ -129,19 +157,56 @@ impl CameraBag {
         self.bag.write(GROUND_TRUTH, stamp, &message)
     }
 
-    /// Closes the bag: its storage file's name and checksum, and the `metadata.yaml` text.
-    pub fn finish(self) -> Result<ClosedBag, CoreError> {
+    /// Writes the IMU readings left, then closes the bag: its storage file's name and
+    /// checksum, and the `metadata.yaml` text.
+    pub fn finish(mut self) -> Result<ClosedBag, CoreError> {
+        self.advance_to(None)?;
         self.bag.finish()
     }
 
-    /// The stamp of `time`; the first one also stamps `/tf_static`, written before it.
+    /// The stamp of `time`, after what comes before it: `/tf_static` first, then the IMU
+    /// readings up to it.
     fn stamp_at(&mut self, time: f64) -> Result<Time, CoreError> {
         let stamp = Time::from_seconds(time);
-        if !self.tf_written {
-            self.tf_written = true;
-            self.bag.write(TF_STATIC, stamp, &optical_in_body(stamp))?;
-        }
+        self.advance_to(Some(stamp))?;
         Ok(stamp)
+    }
+
+    /// Writes what comes before `stamp` (`None`: before the end).
+    fn advance_to(&mut self, stamp: Option<Time>) -> Result<(), CoreError> {
+        let samples = self.imu.as_ref().map_or(&[][..], |imu| &imu.samples[..]);
+        let imu_stamp = |sample: &ImuSample| Time::from_nanoseconds(sample.t_ns as i64);
+        let first_imu = samples.first().map(imu_stamp);
+        if !self.tf_written {
+            if let Some(first) = first_imu.into_iter().chain(stamp).min() {
+                self.tf_written = true;
+                let tf = self.frames_in_body(first);
+                self.bag.write(TF_STATIC, first, &tf)?;
+            }
+        }
+        let Some(imu) = &self.imu else {
+            return Ok(());
+        };
+        while let Some(sample) = imu.samples.get(self.imu_written) {
+            let at = imu_stamp(sample);
+            if stamp.is_some_and(|stamp| at > stamp) {
+                break;
+            }
+            self.bag.write(IMU, at, &imu_message(imu, sample, at))?;
+            self.imu_written += 1;
+        }
+        Ok(())
+    }
+
+    /// `/tf_static`: the optical frame, and the IMU's, in `camera_link`.
+    fn frames_in_body(&self, stamp: Time) -> TfMessage {
+        let optical = optical_in_body();
+        let mut transforms = vec![transform_stamped(stamp, OPTICAL_FRAME, &optical)];
+        if let Some(imu) = &self.imu {
+            let imu_in_body = optical.compose(&imu.camera_from_imu);
+            transforms.push(transform_stamped(stamp, IMU_FRAME, &imu_in_body));
+        }
+        TfMessage { transforms }
     }
 
     fn camera_info(&self, stamp: Time) -> CameraInfo {
@@ -190,28 +255,65 @@ pub(super) fn millimetres(z: f32) -> u16 {
 
 /// `camera_link` (x forward, y left, z up) to the optical frame (z forward, x right, y down):
 /// the rotation the RealSense driver publishes, roll −90°, yaw −90°.
-fn optical_in_body(stamp: Time) -> TfMessage {
-    TfMessage {
-        transforms: vec![TransformStamped {
-            header: Header {
-                stamp,
-                frame_id: BODY_FRAME.into(),
+fn optical_in_body() -> crate::Pose {
+    crate::Pose::new(
+        glam::DQuat::from_xyzw(-0.5, 0.5, -0.5, 0.5),
+        glam::DVec3::ZERO,
+    )
+}
+
+/// `child`'s pose in `camera_link` as a transform stamped `stamp`.
+fn transform_stamped(stamp: Time, child: &str, pose: &crate::Pose) -> TransformStamped {
+    let (t, q) = (pose.translation, pose.rotation);
+    TransformStamped {
+        header: Header {
+            stamp,
+            frame_id: BODY_FRAME.into(),
+        },
+        child_frame_id: child.into(),
+        transform: Transform {
+            translation: Vector3 {
+                x: t.x,
+                y: t.y,
+                z: t.z,
             },
-            child_frame_id: OPTICAL_FRAME.into(),
-            transform: Transform {
-                translation: Vector3 {
-                    x: 0.0,
-                    y: 0.0,
-                    z: 0.0,
-                },
-                rotation: Quaternion {
-                    x: -0.5,
-                    y: 0.5,
-                    z: -0.5,
-                    w: 0.5,
-                },
+            rotation: Quaternion {
+                x: q.x,
+                y: q.y,
+                z: q.z,
+                w: q.w,
             },
-        }],
+        },
+    }
+}
+
+/// One IMU reading: no orientation (REP 145: its covariance's first element −1), the rates and
+/// specific force with the reading's noise variance on the diagonal.
+fn imu_message(imu: &BagImu, sample: &ImuSample, stamp: Time) -> ImuMessage {
+    let diagonal = |v: f64| [v, 0.0, 0.0, 0.0, v, 0.0, 0.0, 0.0, v];
+    let vector = |v: glam::DVec3| Vector3 {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
+    let mut no_orientation = [0.0; 9];
+    no_orientation[0] = -1.0;
+    ImuMessage {
+        header: Header {
+            stamp,
+            frame_id: IMU_FRAME.into(),
+        },
+        orientation: Quaternion {
+            x: 0.0,
+            y: 0.0,
+            z: 0.0,
+            w: 0.0,
+        },
+        orientation_covariance: no_orientation,
+        angular_velocity: vector(sample.gyro),
+        angular_velocity_covariance: diagonal(imu.gyro_variance),
+        linear_acceleration: vector(sample.accel),
+        linear_acceleration_covariance: diagonal(imu.accel_variance),
     }
 }
 
@@ -231,10 +333,7 @@ mod tests {
 
     #[test]
     fn the_optical_frame_looks_along_the_bodys_x_with_its_y_down() {
-        let q = optical_in_body(Time::from_seconds(0.0)).transforms[0]
-            .transform
-            .rotation;
-        let r = DQuat::from_xyzw(q.x, q.y, q.z, q.w);
+        let r: DQuat = optical_in_body().rotation;
         assert!((r * DVec3::Z - DVec3::X).length() < 1e-12);
         assert!((r * DVec3::Y - DVec3::NEG_Z).length() < 1e-12);
         assert!((r * DVec3::X - DVec3::NEG_Y).length() < 1e-12);

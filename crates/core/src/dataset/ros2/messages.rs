@@ -188,6 +188,18 @@ pub struct PoseWithCovarianceStamped {
     pub pose: Pose,
 }
 
+/// `sensor_msgs/msg/Imu`.
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct Imu {
+    pub header: Header,
+    pub orientation: Quaternion,
+    pub orientation_covariance: [f64; 9],
+    pub angular_velocity: Vector3,
+    pub angular_velocity_covariance: [f64; 9],
+    pub linear_acceleration: Vector3,
+    pub linear_acceleration_covariance: [f64; 9],
+}
+
 /// `tf2_msgs/msg/TFMessage`.
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct TfMessage {

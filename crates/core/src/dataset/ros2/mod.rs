@@ -16,7 +16,7 @@ mod recorded_camera;
 mod schemas;
 
 pub use bag::{BagWriter, ClosedBag, LogTimes, Topic};
-pub use camera::{CameraBag, DEPTH_UNITS_PER_METRE};
+pub use camera::{BagImu, CameraBag, DEPTH_UNITS_PER_METRE, IMU_FRAME, IMU_TOPIC};
 pub use image_codec::{decode_colour, decode_depth, Codec, ImageEncoding};
 pub use messages::{
     cdr_bytes, from_cdr, Bytes, CameraInfo, CompressedImage, Header, Image, Pose, PoseStamped,

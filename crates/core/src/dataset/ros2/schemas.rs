@@ -74,6 +74,14 @@ const TRANSFORM_STAMPED: Definition = Definition {
     text: "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n",
     uses: &[&HEADER, &TRANSFORM],
 };
+const IMU: Definition = Definition {
+    name: "sensor_msgs/Imu",
+    text: "std_msgs/Header header\ngeometry_msgs/Quaternion orientation\n\
+           float64[9] orientation_covariance\ngeometry_msgs/Vector3 angular_velocity\n\
+           float64[9] angular_velocity_covariance\ngeometry_msgs/Vector3 linear_acceleration\n\
+           float64[9] linear_acceleration_covariance\n",
+    uses: &[&HEADER, &QUATERNION, &VECTOR3],
+};
 const TF_MESSAGE: Definition = Definition {
     name: "tf2_msgs/TFMessage",
     text: "geometry_msgs/TransformStamped[] transforms\n",
@@ -87,6 +95,7 @@ pub enum MessageType {
     CameraInfo,
     PoseStamped,
     TfMessage,
+    Imu,
 }
 
 impl MessageType {
@@ -96,6 +105,7 @@ impl MessageType {
             Self::CameraInfo => &CAMERA_INFO,
             Self::PoseStamped => &POSE_STAMPED,
             Self::TfMessage => &TF_MESSAGE,
+            Self::Imu => &IMU,
         }
     }
 
