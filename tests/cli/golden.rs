@@ -182,6 +182,23 @@ fn table() -> Vec<Case> {
         ),
         perturb("ros2_perturbed", "ros2", "gaussian_noise:2,depth_missing:2"),
         render(
+            "ros2_rgbd_imu",
+            &[&small[..], &["6", "--rig", "rgbd-imu", "--format", "ros2"]].concat(),
+        ),
+        render(
+            "ros2_stereo_imu",
+            &[
+                "--frames",
+                "6",
+                "--rig",
+                "stereo-imu",
+                "--format",
+                "ros2",
+                "--perturb",
+                "cam1:fog:3,imu_noise:2",
+            ],
+        ),
+        render(
             "replica_sensor",
             &[&small[..], &["3", "--perturb", "exposure:20,rolling_shutter:10"]].concat(),
         ),

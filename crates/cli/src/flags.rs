@@ -27,9 +27,9 @@ fn rig_in_layout(rig: &str, layout: Layout) -> String {
     match (rig, layout) {
         (_, Layout::Euroc) => "--format euroc: needs --rig stereo|stereo-imu|FILE.toml (the EuRoC layout is for those rigs)".into(),
         ("rgbd-imu", _) => {
-            "--rig rgbd-imu: needs --format tum (the TUM layout with imu0/ beside it; ROS 2 bags of rigs are not built yet)".into()
+            "--rig rgbd-imu: needs --format tum (the TUM layout with imu0/ beside it) or ros2 (a bag with /imu0)".into()
         }
-        _ => format!("--rig {rig}: needs --format euroc (the stereo rigs and rig files are written in the EuRoC layout)"),
+        _ => format!("--rig {rig}: needs --format euroc or ros2 (the stereo rigs and rig files are written in the EuRoC layout or as a ROS 2 bag)"),
     }
 }
 

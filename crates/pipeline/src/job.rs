@@ -97,7 +97,8 @@ pub enum Sensors {
         depth_png: DepthPng,
     },
     /// A rig of cameras and an IMU, in the EuRoC layout.
-    Rig(Rig),
+    /// A rig of cameras and an IMU, in the EuRoC layout or a ROS 2 bag (`Layout::Camera(Ros2)`).
+    Rig(Rig, Layout),
 }
 
 impl Sensors {
@@ -116,7 +117,9 @@ impl Sensors {
                 RigPreset::RgbdImu,
                 Layout::Camera(format @ (DatasetFormat::Tum | DatasetFormat::Ros2)),
             ) => return Ok(Self::CameraImu { format, depth_png }),
-            (RigPreset::Euroc(rig), Layout::Euroc) => return Ok(Self::Rig(rig)),
+            (RigPreset::Euroc(rig), Layout::Euroc | Layout::Camera(DatasetFormat::Ros2)) => {
+                return Ok(Self::Rig(rig, layout))
+            }
             (RigPreset::Rgbd, _) => "rgbd".to_string(),
             (RigPreset::RgbdImu, _) => "rgbd-imu".to_string(),
             (RigPreset::Euroc(rig), _) => rig.name,
@@ -129,7 +132,7 @@ impl Sensors {
         match self {
             Self::Camera { .. } => settings::one_camera_render("a one-camera render"),
             Self::CameraImu { .. } => settings::rgbd_imu_render(),
-            Self::Rig(rig) => settings::euroc_rig_render(rig),
+            Self::Rig(rig, _) => settings::euroc_rig_render(rig),
         }
     }
 
@@ -142,7 +145,7 @@ impl Sensors {
         match self {
             Self::Camera { format, .. } => Layout::Camera(*format),
             Self::CameraImu { format, .. } => Layout::Camera(*format),
-            Self::Rig(_) => Layout::Euroc,
+            Self::Rig(_, layout) => *layout,
         }
     }
 }
@@ -239,9 +242,9 @@ impl Job {
                     Sensors::CameraImu { format, depth_png } => Box::new(
                         rig::rgbd_imu_render::plan(scene, *format, *depth_png, command, scenes)?,
                     ),
-                    Sensors::Rig(rig) => {
-                        Box::new(rig::euroc_render::plan(scene, rig, command, scenes)?)
-                    }
+                    Sensors::Rig(rig, layout) => Box::new(rig::euroc_render::plan(
+                        scene, rig, *layout, command, scenes,
+                    )?),
                 }
             }
             Source::Dataset {

@@ -5,7 +5,7 @@ use std::sync::OnceLock;
 
 use glam::DVec3;
 use rslam_core::dataset::euroc::{read_euroc, CameraColour, EurocDataset, GroundTruthState};
-use rslam_core::dataset::{read_image_has_colour, read_image_size, read_rgb};
+use rslam_core::dataset::{read_image_has_colour, read_image_size, read_rgb, Layout};
 use rslam_core::{DepthImage, Pose, RgbImage};
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
@@ -109,7 +109,7 @@ fn stereo_imu_rig_writes_a_euroc_stereo_pair_with_imu_and_ground_truth() {
     let job = Job {
         source: Source::Scene {
             scene: scene_job(Some(PATH_POSES)),
-            sensors: Sensors::Rig(Rig::stereo_imu()),
+            sensors: Sensors::Rig(Rig::stereo_imu(), Layout::Euroc),
         },
         out: out.clone(),
         force: false,

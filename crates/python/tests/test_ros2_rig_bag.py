@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 import yaml
 from rosbags.highlevel import AnyReader
+from PIL import Image
 from scipy.spatial.transform import Rotation
 
 from conftest import run_cli
@@ -86,3 +87,62 @@ def test_frames_and_ground_truth_equal_the_tum_layout_and_logs_follow_stamps(bag
     log_times = [t for _, t, _ in messages]
     assert log_times == sorted(log_times)
     assert [stamp_ns(m) for m in colours] == [t for topic, t, _ in messages if topic == "/camera/color/image_raw"]
+
+
+STEREO_JOB = ["render", "--scene", "room0", "--frames", "10", "--rig", "stereo-imu", "--perturb", "cam1:fog:2,imu_noise:2"]
+
+
+@pytest.fixture(scope="module")
+def stereo_bag_and_euroc(tmp_path_factory, rslam_bin):
+    root = tmp_path_factory.mktemp("stereo_bag")
+    run_cli(rslam_bin, *STEREO_JOB, "--format", "ros2", "--out", root / "bag")
+    run_cli(rslam_bin, *STEREO_JOB, "--format", "euroc", "--out", root / "euroc")
+    with AnyReader([root / "bag"]) as reader:
+        messages = [(c.topic, t, reader.deserialize(raw, c.msgtype)) for c, t, raw in reader.messages()]
+    return messages, root / "bag", root / "euroc/mav0"
+
+
+def sensor_yaml(path):
+    return yaml.safe_load(path.read_text().split("\n", 1)[1] if path.read_text().startswith("%YAML") else path.read_text())
+
+
+def test_a_stereo_rigs_cameras_equal_the_euroc_layouts_frame_for_frame(stereo_bag_and_euroc):
+    messages, bag, mav = stereo_bag_and_euroc
+    assert sorted(p.name for p in bag.iterdir()) == ["bag_0.mcap", "metadata.yaml", "rslam.b3sum", "rslam.json"]
+    for camera in ["cam0", "cam1"]:
+        rows = [line.split(",") for line in (mav / camera / "data.csv").read_text().splitlines()[1:]]
+        images = on(messages, f"/{camera}/image_raw")
+        assert [stamp_ns(m) for m in images] == [int(t) for t, _ in rows]
+        for message, (_, name) in zip(images, rows):
+            assert (message.encoding, message.header.frame_id) == ("mono8", camera)
+            png = np.asarray(Image.open(mav / camera / "data" / name.strip()))
+            assert np.array_equal(message.data.reshape(message.height, message.width), png)
+        sensor = sensor_yaml(mav / camera / "sensor.yaml")
+        (info, *_) = on(messages, f"/{camera}/camera_info")
+        fu, fv, cu, cv = sensor["intrinsics"]
+        assert [info.k[0], info.k[4], info.k[2], info.k[5]] == [fu, fv, cu, cv]
+        assert list(info.d[:4]) == sensor["distortion_coefficients"]
+        (tf,) = on(messages, "/tf_static")
+        (placed,) = [t for t in tf.transforms if t.child_frame_id == camera]
+        assert placed.header.frame_id == "body"
+        t_bs = np.array(sensor["T_BS"]["data"]).reshape(4, 4)
+        assert np.allclose(pose_matrix(placed.transform), t_bs, atol=1e-9)
+
+
+def test_a_stereo_rigs_imu_and_body_ground_truth_equal_the_euroc_layouts(stereo_bag_and_euroc):
+    messages, _, mav = stereo_bag_and_euroc
+    imu_rows = np.loadtxt(mav / "imu0/data.csv", delimiter=",", comments="#")
+    imu = on(messages, "/imu0")
+    assert len(imu) == len(imu_rows)
+    for message, row in zip(imu, imu_rows):
+        w, a = message.angular_velocity, message.linear_acceleration
+        assert [stamp_ns(message), w.x, w.y, w.z, a.x, a.y, a.z] == [int(row[0]), *row[1:]]
+    truth = np.loadtxt(mav / "state_groundtruth_estimate0/data.csv", delimiter=",", comments="#")
+    poses = on(messages, "/ground_truth/pose")
+    assert len(poses) == len(truth)
+    for message, row in zip(poses, truth):
+        p, q = message.pose.position, message.pose.orientation
+        assert stamp_ns(message) == int(row[0])
+        assert np.allclose([p.x, p.y, p.z, q.w, q.x, q.y, q.z], row[1:8], atol=1e-12)
+    log_times = [t for _, t, _ in messages]
+    assert log_times == sorted(log_times)

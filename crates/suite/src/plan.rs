@@ -153,7 +153,7 @@ fn estimated_bytes_per_frame(sequence: &Sequence) -> f64 {
     let (clean, noise) = match &sequence.sensors {
         Sensors::Camera { format, depth_png } => measured_bytes_per_pixel(*format, *depth_png),
         Sensors::CameraImu { format, depth_png } => measured_bytes_per_pixel(*format, *depth_png),
-        Sensors::Rig(_) => EUROC_GREY_BYTES_PER_PIXEL,
+        Sensors::Rig(..) => EUROC_GREY_BYTES_PER_PIXEL,
     };
     let pixels = sequence.camera.width as f64 * sequence.camera.height as f64;
     pixels * if noisy { noise } else { clean }

@@ -109,10 +109,10 @@ impl Sequence {
                     push("--depth-png", depth_png.to_string());
                 }
             }
-            Sensors::Rig(rig) => {
+            Sensors::Rig(rig, layout) => {
                 push("--rig", rig.name.clone());
                 push("--rate", self.rate_hz.to_string());
-                push("--format", Layout::Euroc.to_string());
+                push("--format", layout.to_string());
             }
         }
         push("--seed", self.seed.to_string());
@@ -174,7 +174,7 @@ impl Sequence {
             Some(n) => n,
             None => self.path_length(suite_dir)?,
         };
-        if let Sensors::Rig(rig) = &self.sensors {
+        if let Sensors::Rig(rig, _) = &self.sensors {
             let frames = rig_camera_frames(rig, poses, self.rate_hz, speed_up(&self.spec))?
                 .iter()
                 .map(|c| c.frames)

@@ -230,7 +230,7 @@ fn sensors(
     };
     let sensors = Sensors::new(preset, layout, depth_png).map_err(worded)?;
     sensors.check_spec(spec).map_err(worded)?;
-    if let Sensors::Rig(rig) = &sensors {
+    if let Sensors::Rig(rig, _) = &sensors {
         let cam0 = rig
             .cameras
             .first()

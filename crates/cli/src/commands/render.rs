@@ -28,10 +28,11 @@ pub struct RenderArgs {
     #[arg(long)]
     camera: Option<String>,
     /// Sensors: `rgbd` (one RGB-D camera, the default), `rgbd-imu` (that camera at a RealSense
-    /// D435i's colour-camera pose and its 200 Hz IMU; needs --format tum), `stereo` (two 752x480
-    /// grey cameras, 0.11 m apart, 20 Hz), `stereo-imu` (the same and a 200 Hz IMU) or a rig file
-    /// FILE.toml (cameras and an IMU of your own, see docs/src/rigs.md, "Rig files"); the stereo rigs and rig files
-    /// need --format euroc. The scene's path (or --traj) is the (first) camera's.
+    /// D435i's colour-camera pose and its 200 Hz IMU; needs --format tum or ros2), `stereo` (two
+    /// 752x480 grey cameras, 0.11 m apart, 20 Hz), `stereo-imu` (the same and a 200 Hz IMU) or a
+    /// rig file FILE.toml (cameras and an IMU of your own, see docs/src/rigs.md, "Rig files"); the
+    /// stereo rigs and rig files need --format euroc or ros2. The scene's path (or --traj) is the
+    /// (first) camera's.
     #[arg(long)]
     rig: Option<String>,
     /// Frame rate in Hz (with a stereo rig: the rate of the path's poses); default: 30 for the
@@ -39,8 +40,8 @@ pub struct RenderArgs {
     #[arg(long)]
     rate: Option<f64>,
     /// Output layout: replica (NICE-SLAM, SplaTAM, Co-SLAM, GO-SLAM), tum (ORB-SLAM3; with
-    /// --rig rgbd-imu plus imu0/), ros2 (a rosbag2 in MCAP storage for `ros2 bag play`; one
-    /// camera, with --rig rgbd-imu and its IMU on /imu0) or euroc (the stereo rigs; needs --rig).
+    /// --rig rgbd-imu plus imu0/), ros2 (a rosbag2 in MCAP storage for `ros2 bag play`, of one
+    /// camera or of any --rig) or euroc (the stereo rigs; needs --rig).
     #[arg(long, value_enum, default_value = "replica")]
     format: OutputFormat,
     /// Depth PNG compression: `fast`, or `small` (about a third of the size for 2–3× the

@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use anyhow::Context;
+use rslam_core::dataset::DatasetFormat;
 use rslam_pipeline::rig::CameraFrames;
 use rslam_pipeline::{FolderState, JobReport, Streams};
 use rslam_suite::{folder_bytes, format_bytes};
@@ -80,19 +81,23 @@ fn print_rig(
         .map(|fps| format!(" ({fps:.1} frames/s)"))
         .unwrap_or_default();
     let size = format_bytes(bytes);
+    let layout = match report.manifest.as_ref().and_then(|m| m.format) {
+        Some(DatasetFormat::Ros2) => "as a ROS 2 bag",
+        _ => "in the EuRoC layout",
+    };
     match report.found {
         FolderState::Complete => eprintln!(
             "{out} is already complete ({streams}, same job); nothing to do (--force redoes it)"
         ),
         FolderState::Resume if report.made == cameras.iter().map(|c| c.frames).sum::<usize>() => {
-            eprintln!("started {out} over: wrote {streams} in the EuRoC layout{rate}: {size}")
+            eprintln!("started {out} over: wrote {streams} {layout}{rate}: {size}")
         }
         FolderState::Resume => eprintln!(
-            "resumed {out}: {} frames made now{rate}, the rest kept; {streams} in the EuRoC layout: {size}",
+            "resumed {out}: {} frames made now{rate}, the rest kept; {streams} {layout}: {size}",
             report.made
         ),
         FolderState::Fresh => {
-            eprintln!("wrote {streams} to {out} in the EuRoC layout{rate}: {size}")
+            eprintln!("wrote {streams} to {out} {layout}{rate}: {size}")
         }
     }
     Ok(())

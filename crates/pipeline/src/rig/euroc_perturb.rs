@@ -46,7 +46,7 @@ use crate::output_folder::Written;
 use crate::pipeline::Pipeline;
 use crate::plan::{FramePlan, SourceTiming};
 use crate::progress::Progress;
-use crate::sink::{finish_writer, frames_kept, EurocCameraSink};
+use crate::sink::{finish_writer, frames_kept, RigCameraSink};
 use crate::source::RecordedSource;
 use crate::{settings, PipelineError};
 
@@ -166,7 +166,7 @@ fn write_camera(
     times_ns: Vec<u64>,
     writer: &Arc<EurocWriter>,
     progress: &dyn Progress,
-) -> Result<Option<EurocCameraSink>, PipelineError> {
+) -> Result<Option<RigCameraSink>, PipelineError> {
     if spec.image.is_empty() {
         for (frame, &t_ns) in camera.frames.iter().zip(&times_ns).skip(kept) {
             writer.copy_frame_ns(index, t_ns, &read_bytes(&frame.path)?)?;
@@ -176,7 +176,7 @@ fn write_camera(
     }
     let source = RecordedSource::euroc_camera(camera);
     let mut pipeline = Pipeline::new(ctx, source, spec, seed)?;
-    let mut sink = EurocCameraSink::new(writer.clone(), index, times_ns);
+    let mut sink = RigCameraSink::new(writer.clone(), index, times_ns);
     let sources: Vec<usize> = (kept..camera.frames.len()).collect();
     pipeline.run(ctx, &sources, progress, &mut sink)?;
     Ok(Some(sink))

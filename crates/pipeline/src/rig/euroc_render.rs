@@ -10,7 +10,8 @@
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::{EurocWriter, RadialTangential};
-use rslam_core::dataset::{DepthPng, Manifest};
+use rslam_core::dataset::ros2::RigBag;
+use rslam_core::dataset::{ContentWriter, DatasetFormat, DepthPng, Layout, Manifest};
 use rslam_core::{Distortion, Pose, SplineSe3};
 use rslam_gpu::GpuContext;
 use rslam_perturb::imu::shift_stamp;
@@ -28,8 +29,9 @@ use crate::manifest::ManifestParts;
 use crate::output_folder::Written;
 use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
+use crate::progress::Progress;
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
-use crate::sink::{finish_writer, frames_kept, EurocCameraSink};
+use crate::sink::{finish_writer, frames_kept, RigCameraSink, RigFrameWriter};
 use crate::source::SceneSource;
 use crate::{JobPart, PipelineError};
 
@@ -94,12 +96,15 @@ pub(crate) struct RigRender<'a> {
     spline: SplineSe3,
     runs: Vec<CameraRun>,
     streams: ImuStreams,
+    /// The EuRoC layout, or a ROS 2 bag (`Camera(Ros2)`).
+    layout: Layout,
     manifest: Manifest,
 }
 
 pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
     rig: &Rig,
+    layout: Layout,
     command: &[String],
     scenes: &SceneCache,
 ) -> Result<RigRender<'a>, PipelineError> {
@@ -167,7 +172,7 @@ pub(crate) fn plan<'a>(
         command,
         source: resolved.scene.name.clone(),
         source_hash: resolved.source_hash().to_string(),
-        format: None,
+        format: (layout == Layout::Camera(DatasetFormat::Ros2)).then_some(DatasetFormat::Ros2),
         camera: Some(cam0.intrinsics),
         distortion: scene.spec.distortion,
         depth_png: DepthPng::default(),
@@ -187,6 +192,7 @@ pub(crate) fn plan<'a>(
         spline,
         runs,
         streams,
+        layout,
         manifest,
     })
 }
@@ -213,53 +219,25 @@ impl Planned for RigRender<'_> {
     }
 
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
+        if self.layout == Layout::Camera(DatasetFormat::Ros2) {
+            return Ok(self.bag_writing(ctx));
+        }
         Ok(Box::new(move |out, found, manifest, progress| {
-            let (rig, runs, perturbed, spec) =
-                (&self.rig, &self.runs, &self.perturbed, &self.scene.spec);
+            let (rig, perturbed, spec) = (&self.rig, &self.perturbed, &self.scene.spec);
             let writer = Arc::new(EurocWriter::open(
                 out,
                 perturbed.written.cameras.clone(),
                 perturbed.written.imu.clone(),
             )?);
-            let stamps = rig
-                .cameras
-                .iter()
-                .zip(runs)
-                .enumerate()
-                .map(|(i, (camera, run))| {
-                    camera_stamps(spec, &camera.name, &clock_stamps(rig, i, &run.times_s)?)
-                })
-                .collect::<Result<Vec<_>, _>>()?;
+            let stamps = self.stamps()?;
             // A resumed run keeps each camera's frames up to the first one missing.
             let keep = found.keeps_written_frames(spec.stateful_item().is_some());
             let (kept, made) = frames_kept(&writer, &stamps, keep)?;
             progress.start(made, "rendering");
-            let mut sinks = Vec::new();
-            for (i, ((camera, run), times_ns)) in
-                rig.cameras.iter().zip(runs).zip(stamps).enumerate()
-            {
-                let poses = camera_poses(
-                    &self.spline,
-                    |k| perturbed.body_from_camera(i, k),
-                    &run.times_s,
-                )?;
-                let mut source =
-                    SceneSource::new(ctx, &self.resolved.scene, camera.intrinsics, poses)?;
-                source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
-                let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
-                if i == 0 {
-                    if let Some(csv) = perturbed.per_frame_csv(&times_ns) {
-                        writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
-                    }
-                }
-                let mut sink = EurocCameraSink::new(writer.clone(), i, times_ns);
-                let sources: Vec<usize> = (kept[i]..run.times_s.len()).collect();
-                pipeline.run(ctx, &sources, progress, &mut sink)?;
-                sinks.push(sink);
+            if let Some(csv) = perturbed.per_frame_csv(&stamps[0]) {
+                writer.write_record(PER_FRAME_FILE, csv.as_bytes())?;
             }
-            for sink in sinks {
-                sink.finish()?;
-            }
+            self.draw_cameras(ctx, writer.clone(), stamps, &kept, progress)?;
             progress.finish();
 
             if rig.imu.is_some() {
@@ -271,6 +249,89 @@ impl Planned for RigRender<'_> {
                 manifest: finish_writer(writer, manifest)?,
             })
         }))
+    }
+}
+
+impl RigRender<'_> {
+    /// Each camera's frame stamps: its capture times on its clock, moved by the spec's
+    /// `cam_imu_offset`.
+    fn stamps(&self) -> Result<Vec<Vec<u64>>, PipelineError> {
+        let rig = &self.rig;
+        rig.cameras
+            .iter()
+            .zip(&self.runs)
+            .enumerate()
+            .map(|(i, (camera, run))| {
+                let clock = clock_stamps(rig, i, &run.times_s)?;
+                camera_stamps(&self.scene.spec, &camera.name, &clock)
+            })
+            .collect()
+    }
+
+    /// Draws camera `i`'s frames from `kept[i]` on into `writer`, stamped `stamps[i]`, one
+    /// camera after another.
+    fn draw_cameras(
+        &self,
+        ctx: &GpuContext,
+        writer: Arc<dyn RigFrameWriter>,
+        stamps: Vec<Vec<u64>>,
+        kept: &[usize],
+        progress: &dyn Progress,
+    ) -> Result<(), PipelineError> {
+        let (rig, perturbed) = (&self.rig, &self.perturbed);
+        let mut sinks = Vec::new();
+        for (i, ((camera, run), times_ns)) in
+            rig.cameras.iter().zip(&self.runs).zip(stamps).enumerate()
+        {
+            let poses = camera_poses(
+                &self.spline,
+                |k| perturbed.body_from_camera(i, k),
+                &run.times_s,
+            )?;
+            let mut source = SceneSource::new(ctx, &self.resolved.scene, camera.intrinsics, poses)?;
+            source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
+            let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
+            let mut sink = RigCameraSink::new(writer.clone(), i, times_ns);
+            let sources: Vec<usize> = (kept[i]..run.times_s.len()).collect();
+            pipeline.run(ctx, &sources, progress, &mut sink)?;
+            sinks.push(sink);
+        }
+        for sink in sinks {
+            sink.finish()?;
+        }
+        Ok(())
+    }
+
+    /// A ROS 2 bag of the rig ([`RigBag`]), written from its first frame on every run; a
+    /// `@dynamic` calibration's per-frame record is not in it.
+    fn bag_writing<'a>(&'a self, ctx: &'a GpuContext) -> Writing<'a> {
+        Box::new(move |out, _found, manifest, progress| {
+            let written = &self.perturbed.written;
+            let bag = Arc::new(RigBag::create(
+                out,
+                written.cameras.clone(),
+                written.imu.clone(),
+            )?);
+            let stamps = self.stamps()?;
+            let made = stamps.iter().map(Vec::len).sum();
+            progress.start(made, "rendering");
+            let kept = vec![0; stamps.len()];
+            self.draw_cameras(ctx, bag.clone(), stamps, &kept, progress)?;
+            progress.finish();
+            let bag = Arc::try_unwrap(bag)
+                .map_err(|_| PipelineError::Worker("the rig bag is still shared".into()))?;
+            let name = out
+                .file_name()
+                .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
+            let closed = bag.finish(&name, &self.streams.imu, &self.streams.ground_truth)?;
+            let content = ContentWriter::new(out);
+            content.record(&closed.file, closed.blake3);
+            content.write("metadata.yaml", closed.metadata.as_bytes())?;
+            Ok(Written {
+                made,
+                manifest: content.finish(manifest)?,
+            })
+        })
     }
 }
 

@@ -12,8 +12,8 @@
 //! pose at each frame's capture time; under `cam_imu_offset` the frames' stamps move and it does
 //! not (its clock is the IMU's, as the body's ground truth).
 
-use rslam_core::dataset::euroc::{inertial_files, EurocCamera, EurocImu};
-use rslam_core::dataset::ros2::BagImu;
+use rslam_core::dataset::euroc::{inertial_files, EurocCamera, EurocImu, ImuSample};
+use rslam_core::dataset::ros2::{variances, BagImu};
 use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat, DepthPng, Manifest};
 use rslam_core::{Pose, SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
@@ -213,21 +213,15 @@ pub(crate) fn plan<'a>(
 }
 
 /// The IMU as a bag carries it: its readings, its pose in `camera`'s optical frame, and the
-/// variance of one reading at its rate (a noise density `σ` in units/√Hz at `f` Hz is a
-/// discrete standard deviation `σ √f`, Kalibr's convention).
-fn bag_imu(
-    imu: &EurocImu,
-    camera: &EurocCamera,
-    samples: Vec<rslam_core::dataset::euroc::ImuSample>,
-) -> BagImu {
+/// variance of one reading at its rate.
+fn bag_imu(imu: &EurocImu, camera: &EurocCamera, samples: Vec<ImuSample>) -> BagImu {
+    let (gyro_variance, accel_variance) = variances(imu);
+    let camera_from_body = camera.body_from_camera.inverse();
     BagImu {
         samples,
-        camera_from_imu: camera
-            .body_from_camera
-            .inverse()
-            .compose(&imu.body_from_imu),
-        gyro_variance: imu.gyroscope_noise_density.powi(2) * imu.rate_hz,
-        accel_variance: imu.accelerometer_noise_density.powi(2) * imu.rate_hz,
+        camera_from_imu: camera_from_body.compose(&imu.body_from_imu),
+        gyro_variance,
+        accel_variance,
     }
 }
 

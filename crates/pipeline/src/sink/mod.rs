@@ -4,15 +4,15 @@
 
 mod bag;
 mod dataset;
-mod euroc_camera;
 mod memory;
 mod perturbed_bag;
+mod rig_camera;
 
 pub use bag::CameraBagSink;
 pub use dataset::DatasetSink;
-pub use euroc_camera::{finish_writer, frames_kept, EurocCameraSink};
 pub use memory::{MemorySink, RgbdFrame};
 pub use perturbed_bag::PerturbedBagSink;
+pub use rig_camera::{finish_writer, frames_kept, RigCameraSink, RigFrameWriter};
 
 use rslam_gpu::MappedFrame;
 

@@ -129,7 +129,12 @@ const CHUNK_BYTES: u64 = 8 << 20;
 impl BagWriter {
     /// Starts the bag `<folder>/<name>_0.mcap` (as `.partial`) with `topics`, in that order.
     pub fn create(folder: &Path, name: &str, topics: &[Topic]) -> Result<Self, CoreError> {
-        let file = format!("{name}_0.mcap");
+        Self::create_file(folder, &format!("{name}_0.mcap"), topics)
+    }
+
+    /// Starts an MCAP file named `file` in `folder` (as `.partial`) with `topics`.
+    pub fn create_file(folder: &Path, file: &str, topics: &[Topic]) -> Result<Self, CoreError> {
+        let file = file.to_string();
         let partial = folder.join(format!("{file}{PARTIAL_SUFFIX}"));
         let out = HashedFile {
             out: BufWriter::new(File::create(&partial).map_err(|e| CoreError::io(&partial, e))?),

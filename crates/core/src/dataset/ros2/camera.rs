@@ -107,7 +107,8 @@ impl CameraBag {
             data: Bytes(&image.data),
         };
         self.bag.write(COLOR, stamp, &message)?;
-        self.bag.write(COLOR_INFO, stamp, &self.camera_info(stamp))
+        let info = camera_info(header(stamp), &self.intrinsics, self.distortion);
+        self.bag.write(COLOR_INFO, stamp, &info)
     }
 
     /// Depth captured at `time` and its camera info: millimetres, 0 where there is no depth.
@@ -128,33 +129,15 @@ impl CameraBag {
             data: Bytes(&data),
         };
         self.bag.write(DEPTH, stamp, &message)?;
-        self.bag.write(DEPTH_INFO, stamp, &self.camera_info(stamp))
+        let info = camera_info(header(stamp), &self.intrinsics, self.distortion);
+        self.bag.write(DEPTH_INFO, stamp, &info)
     }
 
     /// The optical frame's ground-truth pose in the world at `time`.
     pub fn write_ground_truth(&mut self, time: f64, pose: &crate::Pose) -> Result<(), CoreError> {
         let stamp = self.stamp_at(time)?;
-        let (t, q) = (pose.translation, pose.rotation);
-        let message = PoseStamped {
-            header: Header {
-                stamp,
-                frame_id: WORLD_FRAME.into(),
-            },
-            pose: Pose {
-                position: Vector3 {
-                    x: t.x,
-                    y: t.y,
-                    z: t.z,
-                },
-                orientation: Quaternion {
-                    x: q.x,
-                    y: q.y,
-                    z: q.z,
-                    w: q.w,
-                },
-            },
-        };
-        self.bag.write(GROUND_TRUTH, stamp, &message)
+        self.bag
+            .write(GROUND_TRUTH, stamp, &pose_in_world(stamp, pose))
     }
 
     /// Writes the IMU readings left, then closes the bag: its storage file's name and
@@ -192,7 +175,8 @@ impl CameraBag {
             if stamp.is_some_and(|stamp| at > stamp) {
                 break;
             }
-            self.bag.write(IMU, at, &imu_message(imu, sample, at))?;
+            let message = imu_message(sample, at, imu.gyro_variance, imu.accel_variance);
+            self.bag.write(IMU, at, &message)?;
             self.imu_written += 1;
         }
         Ok(())
@@ -201,38 +185,51 @@ impl CameraBag {
     /// `/tf_static`: the optical frame, and the IMU's, in `camera_link`.
     fn frames_in_body(&self, stamp: Time) -> TfMessage {
         let optical = optical_in_body();
-        let mut transforms = vec![transform_stamped(stamp, OPTICAL_FRAME, &optical)];
+        let mut transforms = vec![transform_stamped(
+            stamp,
+            BODY_FRAME,
+            OPTICAL_FRAME,
+            &optical,
+        )];
         if let Some(imu) = &self.imu {
             let imu_in_body = optical.compose(&imu.camera_from_imu);
-            transforms.push(transform_stamped(stamp, IMU_FRAME, &imu_in_body));
+            transforms.push(transform_stamped(
+                stamp,
+                BODY_FRAME,
+                IMU_FRAME,
+                &imu_in_body,
+            ));
         }
         TfMessage { transforms }
     }
+}
 
-    fn camera_info(&self, stamp: Time) -> CameraInfo {
-        let k = &self.intrinsics;
-        let (model, d) = match self.distortion {
-            Some(Distortion::Radtan { k1, k2, p1, p2 }) => ("plumb_bob", vec![k1, k2, p1, p2, 0.0]),
-            Some(Distortion::Equidistant { k1, k2, k3, k4 }) => {
-                ("equidistant", vec![k1, k2, k3, k4])
-            }
-            None => ("plumb_bob", vec![0.0; 5]),
-        };
-        CameraInfo {
-            header: header(stamp),
-            height: k.height,
-            width: k.width,
-            distortion_model: model.into(),
-            d,
-            k: [k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0],
-            r: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
-            p: [
-                k.fx, 0.0, k.cx, 0.0, 0.0, k.fy, k.cy, 0.0, 0.0, 0.0, 1.0, 0.0,
-            ],
-            binning_x: 0,
-            binning_y: 0,
-            roi: RegionOfInterest::default(),
-        }
+/// The `CameraInfo` of a pinhole camera with `distortion` (`plumb_bob` k1 k2 p1 p2 0, or
+/// `equidistant`), not rectified.
+pub(super) fn camera_info(
+    header: Header,
+    k: &Intrinsics,
+    distortion: Option<Distortion>,
+) -> CameraInfo {
+    let (model, d) = match distortion {
+        Some(Distortion::Radtan { k1, k2, p1, p2 }) => ("plumb_bob", vec![k1, k2, p1, p2, 0.0]),
+        Some(Distortion::Equidistant { k1, k2, k3, k4 }) => ("equidistant", vec![k1, k2, k3, k4]),
+        None => ("plumb_bob", vec![0.0; 5]),
+    };
+    CameraInfo {
+        header,
+        height: k.height,
+        width: k.width,
+        distortion_model: model.into(),
+        d,
+        k: [k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0],
+        r: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+        p: [
+            k.fx, 0.0, k.cx, 0.0, 0.0, k.fy, k.cy, 0.0, 0.0, 0.0, 1.0, 0.0,
+        ],
+        binning_x: 0,
+        binning_y: 0,
+        roi: RegionOfInterest::default(),
     }
 }
 
@@ -262,13 +259,42 @@ fn optical_in_body() -> crate::Pose {
     )
 }
 
-/// `child`'s pose in `camera_link` as a transform stamped `stamp`.
-fn transform_stamped(stamp: Time, child: &str, pose: &crate::Pose) -> TransformStamped {
+/// A pose in `world` stamped `stamp`.
+pub(super) fn pose_in_world(stamp: Time, pose: &crate::Pose) -> PoseStamped {
+    let (t, q) = (pose.translation, pose.rotation);
+    PoseStamped {
+        header: Header {
+            stamp,
+            frame_id: WORLD_FRAME.into(),
+        },
+        pose: Pose {
+            position: Vector3 {
+                x: t.x,
+                y: t.y,
+                z: t.z,
+            },
+            orientation: Quaternion {
+                x: q.x,
+                y: q.y,
+                z: q.z,
+                w: q.w,
+            },
+        },
+    }
+}
+
+/// `child`'s pose in `parent` as a transform stamped `stamp`.
+pub(super) fn transform_stamped(
+    stamp: Time,
+    parent: &str,
+    child: &str,
+    pose: &crate::Pose,
+) -> TransformStamped {
     let (t, q) = (pose.translation, pose.rotation);
     TransformStamped {
         header: Header {
             stamp,
-            frame_id: BODY_FRAME.into(),
+            frame_id: parent.into(),
         },
         child_frame_id: child.into(),
         transform: Transform {
@@ -289,7 +315,12 @@ fn transform_stamped(stamp: Time, child: &str, pose: &crate::Pose) -> TransformS
 
 /// One IMU reading: no orientation (REP 145: its covariance's first element −1), the rates and
 /// specific force with the reading's noise variance on the diagonal.
-fn imu_message(imu: &BagImu, sample: &ImuSample, stamp: Time) -> ImuMessage {
+pub(super) fn imu_message(
+    sample: &ImuSample,
+    stamp: Time,
+    gyro_variance: f64,
+    accel_variance: f64,
+) -> ImuMessage {
     let diagonal = |v: f64| [v, 0.0, 0.0, 0.0, v, 0.0, 0.0, 0.0, v];
     let vector = |v: glam::DVec3| Vector3 {
         x: v.x,
@@ -311,9 +342,9 @@ fn imu_message(imu: &BagImu, sample: &ImuSample, stamp: Time) -> ImuMessage {
         },
         orientation_covariance: no_orientation,
         angular_velocity: vector(sample.gyro),
-        angular_velocity_covariance: diagonal(imu.gyro_variance),
+        angular_velocity_covariance: diagonal(gyro_variance),
         linear_acceleration: vector(sample.accel),
-        linear_acceleration_covariance: diagonal(imu.accel_variance),
+        linear_acceleration_covariance: diagonal(accel_variance),
     }
 }
 

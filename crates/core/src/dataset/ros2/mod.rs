@@ -13,10 +13,14 @@ mod pose_topic;
 mod record_lengths;
 mod recorded;
 mod recorded_camera;
+mod rig_bag;
 mod schemas;
 
 pub use bag::{BagWriter, ClosedBag, LogTimes, Topic};
-pub use camera::{BagImu, CameraBag, DEPTH_UNITS_PER_METRE, IMU_FRAME, IMU_TOPIC};
+pub use camera::{
+    BagImu, CameraBag, DEPTH_UNITS_PER_METRE, GROUND_TRUTH_TOPIC, IMU_FRAME, IMU_TOPIC,
+    TF_STATIC_TOPIC,
+};
 pub use image_codec::{decode_colour, decode_depth, Codec, ImageEncoding};
 pub use messages::{
     cdr_bytes, from_cdr, Bytes, CameraInfo, CompressedImage, Header, Image, Pose, PoseStamped,
@@ -26,4 +30,5 @@ pub use perturbed_bag::PerturbedBag;
 pub use pose_topic::read_pose_topic;
 pub use recorded::{BagMessage, BagMessages, RecordedBag};
 pub use recorded_camera::{ImageMessage, ImageTopic, RecordedBagCamera};
+pub use rig_bag::{variances, RigBag, RIG_BODY_FRAME};
 pub use schemas::MessageType;

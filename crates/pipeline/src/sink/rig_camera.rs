@@ -1,23 +1,40 @@
-//! One camera's read-back frames into the EuRoC writer, encoded on a worker thread while the
-//! GPU renders on.
+//! One rig camera's read-back frames into the EuRoC writer or a rig's ROS 2 bag, encoded on a
+//! worker thread while the GPU renders on.
 
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::EurocWriter;
+use rslam_core::dataset::ros2::RigBag;
 use rslam_core::dataset::Manifest;
-use rslam_core::ImagePool;
+use rslam_core::{CoreError, ImagePool, RgbImage};
 use rslam_gpu::MappedFrame;
 
 use crate::encoder_pool::EncoderPool;
 use crate::sink::FrameSink;
 use crate::PipelineError;
 
-/// Hands source frame `i` of camera `camera` to [`EurocWriter::write_frame_ns`] at
-/// `times_ns[i]`.
+/// Where a rig camera's frames go: each camera's frames in stamp order.
+pub trait RigFrameWriter: Send + Sync {
+    fn write_frame(&self, camera: usize, t_ns: u64, image: &RgbImage) -> Result<(), CoreError>;
+}
+
+impl RigFrameWriter for EurocWriter {
+    fn write_frame(&self, camera: usize, t_ns: u64, image: &RgbImage) -> Result<(), CoreError> {
+        self.write_frame_ns(camera, t_ns, image)
+    }
+}
+
+impl RigFrameWriter for RigBag {
+    fn write_frame(&self, camera: usize, t_ns: u64, image: &RgbImage) -> Result<(), CoreError> {
+        RigBag::write_frame(self, camera, t_ns, image)
+    }
+}
+
+/// Hands source frame `i` of camera `camera` to its writer at `times_ns[i]`.
 /// The writer wants each camera's frames in time order, so each camera has one encoder thread of
 /// its own (frames of different cameras are encoded side by side); depth is not read back.
-pub struct EurocCameraSink {
-    writer: Arc<EurocWriter>,
+pub struct RigCameraSink {
+    writer: Arc<dyn RigFrameWriter>,
     camera: usize,
     times_ns: Arc<Vec<u64>>,
     pool: EncoderPool,
@@ -25,8 +42,8 @@ pub struct EurocCameraSink {
     images: Arc<ImagePool>,
 }
 
-impl EurocCameraSink {
-    pub fn new(writer: Arc<EurocWriter>, camera: usize, times_ns: Vec<u64>) -> Self {
+impl RigCameraSink {
+    pub fn new(writer: Arc<dyn RigFrameWriter>, camera: usize, times_ns: Vec<u64>) -> Self {
         Self {
             writer,
             camera,
@@ -72,7 +89,7 @@ pub fn finish_writer(
     Ok(writer.finish(manifest)?)
 }
 
-impl FrameSink for EurocCameraSink {
+impl FrameSink for RigCameraSink {
     /// EuRoC cameras have no depth.
     fn wants_depth(&self) -> bool {
         false
@@ -89,7 +106,7 @@ impl FrameSink for EurocCameraSink {
         let color = frame.color;
         self.pool.submit(move || {
             let color = color.unpack(&images)?;
-            writer.write_frame_ns(camera, t_ns, &color)?;
+            writer.write_frame(camera, t_ns, &color)?;
             images.give_rgb(color);
             Ok(())
         })
