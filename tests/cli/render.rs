@@ -137,7 +137,7 @@ fn tum_layout_reads_back() {
 }
 
 #[test]
-fn a_ros2_bag_is_sealed_like_a_dataset_and_rigs_and_bag_input_are_refused() {
+fn a_ros2_bag_is_sealed_like_a_dataset_and_perturbed_into_a_sealed_bag_of_its_own() {
     let ws = Workspace::new();
     let render = |out: &str, extra: &[&str]| {
         let mut args = vec![
@@ -169,17 +169,24 @@ fn a_ros2_bag_is_sealed_like_a_dataset_and_rigs_and_bag_input_are_refused() {
         "{}",
         again.stderr()
     );
-    render("rig", &["--rig", "rgbd-imu"]).fails_with(2, &["--rig rgbd-imu", "--format tum"]);
-    ws.rslam(&[
-        "perturb",
-        "--input",
-        "bag",
-        "--perturb",
-        "fog:3",
-        "--out",
-        "p",
-    ])
-    .fails_with(2, &["bag", "metadata.yaml", "not built yet"]);
+    let perturb = |out: &str| {
+        ws.rslam(&[
+            "perturb",
+            "--input",
+            "bag",
+            "--perturb",
+            "fog:3",
+            "--out",
+            out,
+        ])
+    };
+    perturb("p").success();
+    assert_eq!(
+        sorted_names(&ws.path("p")),
+        ["metadata.yaml", "p_0.mcap", "rslam.b3sum", "rslam.json"]
+    );
+    ws.rslam(&["verify", "p"]).success();
+    perturb("bag").fails_with(2, &["bag", "is the input itself"]);
 }
 
 #[test]

@@ -60,26 +60,16 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
         ("--depth-png", args.depth_png.is_some()),
     ];
     let given = given.iter().find(|(_, given)| *given).map(|(flag, _)| flag);
+    let states_its_own = match input {
+        PerturbInput::Euroc(_) => Some("a EuRoC dataset; its cameras and rates come from its calibration files and it has no depth"),
+        PerturbInput::Bag(_) => Some("a ROS 2 bag; its camera comes from its CameraInfo, its rate from its stamps, and its depth keeps its encoding"),
+        _ => None,
+    };
+    if let (Some(flag), Some(why)) = (given, states_its_own) {
+        anyhow::bail!("{flag}: {} is {why}", args.input.display());
+    }
     let what = match input {
-        PerturbInput::Dataset(_) => None,
-        PerturbInput::Euroc(_) => {
-            if let Some(flag) = given {
-                anyhow::bail!(
-                    "{flag}: {} is a EuRoC dataset; its cameras and rates come from its calibration files and it has no depth",
-                    args.input.display()
-                );
-            }
-            None
-        }
-        PerturbInput::Bag(_) => {
-            if let Some(flag) = given {
-                anyhow::bail!(
-                    "{flag}: {} is a ROS 2 bag; its camera comes from its CameraInfo, its rate from its stamps, and its depth keeps its encoding",
-                    args.input.display()
-                );
-            }
-            None
-        }
+        PerturbInput::Dataset(_) | PerturbInput::Euroc(_) | PerturbInput::Bag(_) => None,
         PerturbInput::ImageFolder(_) => Some("a folder of images"),
         PerturbInput::Image(_) => Some("one image"),
     };

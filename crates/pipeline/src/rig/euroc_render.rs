@@ -31,7 +31,7 @@ use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
 use crate::progress::Progress;
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
-use crate::sink::{finish_writer, frames_kept, RigCameraSink, RigFrameWriter};
+use crate::sink::{finish_writer, frames_kept, seal_bag, RigCameraSink, RigFrameWriter};
 use crate::source::SceneSource;
 use crate::{JobPart, PipelineError};
 
@@ -324,12 +324,9 @@ impl RigRender<'_> {
                 .file_name()
                 .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
             let closed = bag.finish(&name, &self.streams.imu, &self.streams.ground_truth)?;
-            let content = ContentWriter::new(out);
-            content.record(&closed.file, closed.blake3);
-            content.write("metadata.yaml", closed.metadata.as_bytes())?;
             Ok(Written {
                 made,
-                manifest: content.finish(manifest)?,
+                manifest: seal_bag(ContentWriter::new(out), closed, manifest)?,
             })
         })
     }

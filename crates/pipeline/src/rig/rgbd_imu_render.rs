@@ -166,37 +166,30 @@ pub(crate) fn plan<'a>(
 
     let written_camera = &perturbed.written.cameras[0];
     let written_imu = perturbed.written.imu.as_ref();
-    if format == DatasetFormat::Ros2 {
-        let bag_imu = written_imu.map(|imu| bag_imu(imu, written_camera, streams.imu));
-        return Ok(RgbdImuRender {
-            scene,
-            resolved,
-            camera,
-            frame_spec,
-            plan: frame_plan,
-            poses,
-            ground_truth,
-            format,
-            sensor_files: Vec::new(),
-            bag_imu,
-            manifest,
-        });
-    }
-    let mut sensor_files = inertial_files(written_imu, &streams.imu, &streams.ground_truth);
-    if let Some(csv) = perturbed.per_frame_csv(&stamps_ns) {
-        sensor_files.push((PER_FRAME_FILE.into(), csv));
-    }
-    if let Some(imu) = written_imu {
-        sensor_files.push((
-            ORBSLAM3_RGBD_INERTIAL_FILE.into(),
-            rgbd_inertial_settings(
-                &written_camera.intrinsics,
-                camera.rate_hz,
-                &written_camera.body_from_camera,
-                imu,
-            ),
-        ));
-    }
+    let (sensor_files, bag_imu) = match format {
+        DatasetFormat::Ros2 => (
+            Vec::new(),
+            written_imu.map(|imu| bag_imu(imu, written_camera, streams.imu)),
+        ),
+        _ => {
+            let mut files = inertial_files(written_imu, &streams.imu, &streams.ground_truth);
+            if let Some(csv) = perturbed.per_frame_csv(&stamps_ns) {
+                files.push((PER_FRAME_FILE.into(), csv));
+            }
+            if let Some(imu) = written_imu {
+                files.push((
+                    ORBSLAM3_RGBD_INERTIAL_FILE.into(),
+                    rgbd_inertial_settings(
+                        &written_camera.intrinsics,
+                        camera.rate_hz,
+                        &written_camera.body_from_camera,
+                        imu,
+                    ),
+                ));
+            }
+            (files, None)
+        }
+    };
     Ok(RgbdImuRender {
         scene,
         resolved,
@@ -207,7 +200,7 @@ pub(crate) fn plan<'a>(
         ground_truth,
         format,
         sensor_files,
-        bag_imu: None,
+        bag_imu,
         manifest,
     })
 }

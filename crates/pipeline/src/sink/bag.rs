@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use rslam_core::dataset::ros2::CameraBag;
+use rslam_core::dataset::ros2::{CameraBag, ClosedBag};
 use rslam_core::dataset::{ContentWriter, Manifest};
 use rslam_core::{ImagePool, Pose, Trajectory};
 use rslam_gpu::MappedFrame;
@@ -55,12 +55,20 @@ impl<'a> CameraBagSink<'a> {
             .map_err(|_| PipelineError::Worker("the bag is still shared".into()))?
             .into_inner()
             .unwrap_or_else(|p| p.into_inner());
-        let closed = bag.finish()?;
-        self.content.record(&closed.file, closed.blake3);
-        self.content
-            .write("metadata.yaml", closed.metadata.as_bytes())?;
-        Ok(self.content.finish(manifest)?)
+        seal_bag(self.content, bag.finish()?, manifest)
     }
+}
+
+/// Seals a bag's folder: the closed storage file's checksum and `metadata.yaml`, then the
+/// checksums and `manifest`, last.
+pub fn seal_bag(
+    content: ContentWriter,
+    closed: ClosedBag,
+    manifest: Manifest,
+) -> Result<Manifest, PipelineError> {
+    content.record(&closed.file, closed.blake3);
+    content.write("metadata.yaml", closed.metadata.as_bytes())?;
+    Ok(content.finish(manifest)?)
 }
 
 impl FrameSink for CameraBagSink<'_> {

@@ -8,7 +8,7 @@ mod memory;
 mod perturbed_bag;
 mod rig_camera;
 
-pub use bag::CameraBagSink;
+pub use bag::{seal_bag, CameraBagSink};
 pub use dataset::DatasetSink;
 pub use memory::{MemorySink, RgbdFrame};
 pub use perturbed_bag::PerturbedBagSink;

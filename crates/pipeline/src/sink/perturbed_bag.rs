@@ -12,7 +12,7 @@ use rslam_core::dataset::{ContentWriter, Manifest};
 use rslam_core::ImagePool;
 use rslam_gpu::MappedFrame;
 
-use super::FrameSink;
+use super::{seal_bag, FrameSink};
 use crate::encoder_pool::EncoderPool;
 use crate::plan::{FramePlan, SourceOutputs};
 use crate::PipelineError;
@@ -56,11 +56,7 @@ impl<'a> PerturbedBagSink<'a> {
             .map_err(|_| PipelineError::Worker("the bag is still shared".into()))?
             .into_inner()
             .unwrap_or_else(|p| p.into_inner());
-        let closed = bag.finish()?;
-        self.content.record(&closed.file, closed.blake3);
-        self.content
-            .write("metadata.yaml", closed.metadata.as_bytes())?;
-        Ok(self.content.finish(manifest)?)
+        seal_bag(self.content, bag.finish()?, manifest)
     }
 }
 
