@@ -257,7 +257,7 @@ fn missing_folders_are_errors() {
     let mut options = layout(dir.path());
     options.datasets_dir = dir.path().join("runs");
     let err = evaluate_runs(&options).unwrap_err().to_string();
-    assert!(err.ends_with("no dataset folder holding a ground truth; expected <datasets>/<sequence>/traj.txt (Replica), .../groundtruth.txt (TUM), .../mav0/state_groundtruth_estimate0/data.csv (EuRoC) or .../mav0/mocap0/data.csv (TUM-VI)"), "{err}");
+    assert!(err.ends_with("no dataset folder holding a ground truth; expected <datasets>/<sequence>/traj.txt (Replica), .../groundtruth.txt (TUM), .../mav0/state_groundtruth_estimate0/data.csv (EuRoC), .../mav0/mocap0/data.csv (TUM-VI) or .../metadata.yaml (a ROS 2 bag)"), "{err}");
     options.datasets_dir = dir.path().join("nope");
     assert!(evaluate_runs(&options)
         .unwrap_err()
