@@ -1,13 +1,14 @@
-//! `rslam perturb` on a recorded ROS 2 bag: its camera's colour (and depth) messages decoded,
+//! `rslam perturb` on a recorded ROS 2 bag: each camera's colour (and depth) messages decoded,
 //! perturbed and written back in their encodings into a bag of the same topics, every other
-//! message copied ([`rslam_core::dataset::ros2::RecordedBagCamera`]). `misalign` moves the depth
-//! stamps; `fast` is refused, since the copied topics keep their times. Like a bag rslam renders,
-//! it is written from its first message on every run.
+//! message copied ([`rslam_core::dataset::ros2::RecordedBagCameras`]). The spec applies to every
+//! camera (its depth items to the cameras with depth); `misalign` moves the depth stamps; `fast`
+//! is refused, since the copied topics keep their times. Like a bag rslam renders, it is written
+//! from its first message on every run.
 
 use std::path::Path;
 use std::sync::Arc;
 
-use rslam_core::dataset::ros2::{PerturbedBag, RecordedBag, RecordedBagCamera};
+use rslam_core::dataset::ros2::{PerturbedBag, RecordedBag, RecordedBagCamera, RecordedBagCameras};
 use rslam_core::dataset::{ContentWriter, DatasetFormat, DepthPng, Manifest};
 use rslam_gpu::GpuContext;
 use rslam_perturb::PerturbSpec;
@@ -17,18 +18,25 @@ use crate::manifest::ManifestParts;
 use crate::output_folder::Written;
 use crate::pipeline::Pipeline;
 use crate::plan::{FramePlan, SourceTiming};
-use crate::sink::PerturbedBagSink;
+use crate::rig::CameraFrames;
+use crate::sink::{seal_bag, PerturbedBagSink};
 use crate::source::BagSource;
 use crate::{settings, PipelineError};
 
 pub(crate) struct BagPerturb<'a> {
-    spec: &'a PerturbSpec,
     seed: u64,
-    camera: Arc<RecordedBagCamera>,
-    /// Per source frame: its colour and depth stamps, in seconds.
+    recorded: Arc<RecordedBagCameras>,
+    /// Per camera, in the order of `recorded.cameras`.
+    runs: Vec<CameraRun>,
+    manifest: Manifest,
+    spec: &'a PerturbSpec,
+}
+
+/// One camera's part: its spec, its frames' recorded colour and depth stamps (seconds), its plan.
+struct CameraRun {
+    spec: PerturbSpec,
     recorded_times: Vec<(f64, f64)>,
     plan: FramePlan,
-    manifest: Manifest,
 }
 
 pub(crate) fn plan<'a>(
@@ -37,8 +45,60 @@ pub(crate) fn plan<'a>(
     seed: u64,
     command: &[String],
 ) -> Result<BagPerturb<'a>, PipelineError> {
-    let camera = RecordedBagCamera::read(RecordedBag::open(input)?)?;
-    settings::check(spec, &settings::recorded_bag(&camera))?;
+    let recorded = RecordedBagCameras::read(RecordedBag::open(input)?)?;
+    settings::check(spec, &settings::recorded_bag(&recorded))?;
+    let runs: Vec<CameraRun> = recorded
+        .cameras
+        .iter()
+        .map(|camera| camera_run(camera, spec, seed))
+        .collect();
+    let cam0 = &recorded.cameras[0];
+    let cameras: Vec<serde_json::Value> = recorded
+        .cameras
+        .iter()
+        .zip(&runs)
+        .map(|(camera, run)| {
+            serde_json::json!({
+                "colour_topic": camera.colour.name,
+                "depth_topic": camera.depth.as_ref().map(|d| d.name.clone()),
+                "frames": run.plan.len(),
+            })
+        })
+        .collect();
+    let manifest = ManifestParts {
+        command,
+        source: input.display().to_string(),
+        source_hash: String::new(),
+        format: Some(DatasetFormat::Ros2),
+        camera: Some(cam0.intrinsics),
+        distortion: cam0.distortion,
+        depth_png: DepthPng::default(),
+        rate_hz: cam0.rate_hz,
+        seed,
+        spec,
+        plan: &runs[0].plan,
+        extra: serde_json::json!({ "cameras": cameras }),
+    }
+    .build()?;
+    Ok(BagPerturb {
+        seed,
+        recorded: Arc::new(recorded),
+        runs,
+        manifest,
+        spec,
+    })
+}
+
+/// A camera's run: the spec without its depth items where the camera has no depth.
+fn camera_run(camera: &RecordedBagCamera, spec: &PerturbSpec, seed: u64) -> CameraRun {
+    let spec = match camera.depth {
+        Some(_) => spec.clone(),
+        None => PerturbSpec {
+            depth: Vec::new(),
+            misalign: None,
+            ..spec.clone()
+        },
+    };
     let recorded_times: Vec<(f64, f64)> = camera
         .colour
         .messages
@@ -61,35 +121,14 @@ pub(crate) fn plan<'a>(
             depth_offsets: &depth_offsets,
             rate_hz: camera.rate_hz,
         },
-        spec,
+        &spec,
         seed,
     );
-    let manifest = ManifestParts {
-        command,
-        source: input.display().to_string(),
-        source_hash: String::new(),
-        format: Some(DatasetFormat::Ros2),
-        camera: Some(camera.intrinsics),
-        distortion: camera.distortion,
-        depth_png: DepthPng::default(),
-        rate_hz: camera.rate_hz,
-        seed,
+    CameraRun {
         spec,
-        plan: &plan,
-        extra: serde_json::json!({
-            "colour_topic": camera.colour.name,
-            "depth_topic": camera.depth.as_ref().map(|d| d.name.clone()),
-        }),
-    }
-    .build()?;
-    Ok(BagPerturb {
-        spec,
-        seed,
-        camera: Arc::new(camera),
         recorded_times,
         plan,
-        manifest,
-    })
+    }
 }
 
 impl Planned for BagPerturb<'_> {
@@ -98,25 +137,58 @@ impl Planned for BagPerturb<'_> {
     }
 
     fn streams(&self) -> Streams {
-        Streams::Frames(self.plan.len())
+        if let [run] = &self.runs[..] {
+            return Streams::Frames(run.plan.len());
+        }
+        let cameras = self
+            .recorded
+            .cameras
+            .iter()
+            .zip(&self.runs)
+            .map(|(camera, run)| CameraFrames {
+                name: camera.colour.name.clone(),
+                frames: run.plan.len(),
+            })
+            .collect();
+        Streams::Rig {
+            cameras,
+            imu_samples: 0,
+        }
     }
 
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
-        let source = BagSource::new(self.camera.clone());
-        let mut pipeline = Pipeline::new(ctx, source, self.spec, self.seed)?;
-        Ok(Box::new(move |out, _found, manifest, progress| {
-            let bag = PerturbedBag::create(out, self.camera.clone())?;
-            let content = ContentWriter::new(out);
-            let mut sink = PerturbedBagSink::new(bag, content, &self.plan, &self.recorded_times);
-            let sources = self.plan.needed_sources();
-            progress.start(sources.len(), "perturbing");
-            pipeline.run(ctx, &sources, progress, &mut sink)?;
-            progress.finish();
-            let manifest = sink.finish(manifest)?;
-            Ok(Written {
-                made: sources.len(),
-                manifest,
+        let pipelines = self
+            .runs
+            .iter()
+            .enumerate()
+            .map(|(i, run)| {
+                let source = BagSource::new(self.recorded.clone(), i);
+                Pipeline::new(ctx, source, &run.spec, self.seed)
             })
+            .collect::<Result<Vec<_>, _>>()?;
+        debug_assert!(self.spec.fast.is_none(), "refused by the bag's setting");
+        Ok(Box::new(move |out, _found, manifest, progress| {
+            let bag = Arc::new(PerturbedBag::create(out, self.recorded.clone())?);
+            let made = self
+                .runs
+                .iter()
+                .map(|r| r.plan.needed_sources().len())
+                .sum();
+            progress.start(made, "perturbing");
+            for (i, (mut pipeline, run)) in pipelines.into_iter().zip(&self.runs).enumerate() {
+                let mut sink =
+                    PerturbedBagSink::new(bag.clone(), i, &run.plan, &run.recorded_times);
+                pipeline.run(ctx, &run.plan.needed_sources(), progress, &mut sink)?;
+                sink.finish()?;
+            }
+            progress.finish();
+            let bag = Arc::try_unwrap(bag)
+                .map_err(|_| PipelineError::Worker("the bag is still shared".into()))?;
+            let name = out
+                .file_name()
+                .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
+            let manifest = seal_bag(ContentWriter::new(out), bag.finish(&name)?, manifest)?;
+            Ok(Written { made, manifest })
         }))
     }
 }

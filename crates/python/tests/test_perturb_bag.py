@@ -242,3 +242,30 @@ def test_bags_rslam_cannot_perturb_are_refused_in_one_line_naming_bag_and_topic(
 
     line = refusal(rslam_bin, robot_bag, tmp_path, spec="fast:2")
     assert "fast" in line and "copied with their times" in line
+
+
+def test_each_camera_of_a_stereo_bag_is_perturbed_and_the_rest_copied(rslam_bin, tmp_path):
+    stereo = tmp_path / "stereo"
+    run_cli(rslam_bin, "render", "--scene", "room0", "--frames", "8", "--rig", "stereo-imu", "--format", "ros2",
+            "--out", stereo)
+    out = tmp_path / "stereo_noisy"
+    run_cli(rslam_bin, "perturb", "--input", stereo, "--perturb", "gaussian_noise:3", "--out", out)
+    before, types_before = raw_messages(stereo)
+    after, types_after = raw_messages(out)
+    assert types_after == types_before
+    cameras = ["/cam0/image_raw", "/cam1/image_raw"]
+    for topic in before:
+        if topic not in cameras:
+            assert after[topic] == before[topic], topic
+    for topic in cameras:
+        assert [t for t, _ in after[topic]] == [t for t, _ in before[topic]]
+        for a, b in zip(deserialized(stereo, topic), deserialized(out, topic)):
+            assert (b.encoding, b.header.frame_id, stamp_ns(b)) == ("mono8", a.header.frame_id, stamp_ns(a))
+            spread = np.std(b.data.astype(float) - a.data.astype(float))
+            assert 20 < spread < 60, (topic, spread)
+    with Reader(out) as reader:
+        log_times = [t for _, t, _ in reader.messages()]
+    assert log_times == sorted(log_times)
+    assert sorted(p.name for p in out.iterdir()) == ["metadata.yaml", "rslam.b3sum", "rslam.json", "stereo_noisy_0.mcap"]
+    line = refusal(rslam_bin, stereo, tmp_path, spec="depth_missing:2")
+    assert "stereo" in line and "no depth topic" in line

@@ -1,10 +1,10 @@
 //! A recorded ROS 2 bag as `rslam perturb --input BAG` reads it: the MCAP storage file of a
 //! rosbag2 folder, every message read and the camera found
-//! (`rslam_core::dataset::ros2::RecordedBagCamera`).
+//! (`rslam_core::dataset::ros2::RecordedBagCameras`).
 
 use std::path::Path;
 
-use rslam_core::dataset::ros2::{RecordedBag, RecordedBagCamera};
+use rslam_core::dataset::ros2::{RecordedBag, RecordedBagCameras};
 
 use crate::Scratch;
 
@@ -18,12 +18,15 @@ pub fn prepare(dir: &Path) -> std::io::Result<()> {
 pub fn storage(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
     scratch.write(STORAGE, input)?;
     let bag = RecordedBag::open(&scratch.dir).map_err(|e| e.to_string())?;
-    let camera = RecordedBagCamera::read(bag).map_err(|e| e.to_string())?;
-    let frames = camera.colour.messages.len();
-    assert!(frames >= 2 && camera.rate_hz.is_finite() && camera.rate_hz > 0.0);
-    if let Some(depth) = &camera.depth {
-        assert_eq!(depth.messages.len(), frames);
+    let recorded = RecordedBagCameras::read(bag).map_err(|e| e.to_string())?;
+    assert!(!recorded.cameras.is_empty());
+    for camera in &recorded.cameras {
+        let frames = camera.colour.messages.len();
+        assert!(frames >= 2 && camera.rate_hz.is_finite() && camera.rate_hz > 0.0);
+        if let Some(depth) = &camera.depth {
+            assert_eq!(depth.messages.len(), frames);
+        }
+        assert!(recorded.is_perturbed(camera.colour.index));
     }
-    assert!(camera.is_perturbed(camera.colour.index));
     Ok(())
 }

@@ -1,28 +1,26 @@
-//! A recorded bag's camera, perturbed, into a bag of the same topics
+//! A recorded bag's camera, perturbed, into its spool of the bag of the same topics
 //! ([`rslam_core::dataset::ros2::PerturbedBag`]): each source frame's colour and depth are
 //! unpacked, encoded as the recorded ones were and written on one worker thread, in source
-//! order, between the messages copied from the input; `metadata.yaml`, the checksums and the
-//! manifest come last.
+//! order.
 
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use rslam_core::dataset::ros2::PerturbedBag;
-use rslam_core::dataset::{ContentWriter, Manifest};
 use rslam_core::ImagePool;
 use rslam_gpu::MappedFrame;
 
-use super::{seal_bag, FrameSink};
+use super::FrameSink;
 use crate::encoder_pool::EncoderPool;
 use crate::plan::{FramePlan, SourceOutputs};
 use crate::PipelineError;
 
 pub struct PerturbedBagSink<'a> {
-    bag: Arc<Mutex<PerturbedBag>>,
+    bag: Arc<PerturbedBag>,
+    camera: usize,
     /// One thread keeps the messages in order; its queue of four frames holds the GPU back when
     /// the disk is slow.
     writer: EncoderPool,
-    content: ContentWriter,
     images: Arc<ImagePool>,
     plan: &'a FramePlan,
     /// Per source frame: its colour and depth capture times as recorded.
@@ -31,16 +29,17 @@ pub struct PerturbedBagSink<'a> {
 }
 
 impl<'a> PerturbedBagSink<'a> {
+    /// Writes camera `camera`'s frames into `bag`.
     pub fn new(
-        bag: PerturbedBag,
-        content: ContentWriter,
+        bag: Arc<PerturbedBag>,
+        camera: usize,
         plan: &'a FramePlan,
         recorded_times: &'a [(f64, f64)],
     ) -> Self {
         Self {
-            bag: Arc::new(Mutex::new(bag)),
+            bag,
+            camera,
             writer: EncoderPool::new(1, 4),
-            content,
             images: Arc::default(),
             outputs: plan.outputs_by_source(),
             plan,
@@ -48,15 +47,9 @@ impl<'a> PerturbedBagSink<'a> {
         }
     }
 
-    /// Copies the rest of the input, closes the bag, writes `metadata.yaml`, then the
-    /// checksums and `manifest`, last.
-    pub fn finish(self, manifest: Manifest) -> Result<Manifest, PipelineError> {
-        self.writer.finish()?;
-        let bag = Arc::try_unwrap(self.bag)
-            .map_err(|_| PipelineError::Worker("the bag is still shared".into()))?
-            .into_inner()
-            .unwrap_or_else(|p| p.into_inner());
-        seal_bag(self.content, bag.finish()?, manifest)
+    /// Waits for the camera's frames to be in its spool.
+    pub fn finish(self) -> Result<(), PipelineError> {
+        self.writer.finish()
     }
 }
 
@@ -78,16 +71,15 @@ impl FrameSink for PerturbedBagSink<'_> {
             .map(|&j| self.plan.frames[j].depth_time - depth_time)
             .collect();
         depth_shifts.dedup();
-        let (bag, images) = (self.bag.clone(), self.images.clone());
+        let (bag, images, camera) = (self.bag.clone(), self.images.clone(), self.camera);
         self.writer.submit(move || {
             let (colour, depth) = frame.unpack(&images)?;
-            let mut bag = bag.lock().unwrap_or_else(|p| p.into_inner());
             for &shift in &colour_shifts {
-                bag.write_colour(source, shift, &colour)?;
+                bag.write_colour(camera, source, shift, &colour)?;
             }
             if let Some(depth) = &depth {
                 for &shift in &depth_shifts {
-                    bag.write_depth(source, shift, depth)?;
+                    bag.write_depth(camera, source, shift, depth)?;
                 }
             }
             images.give_rgb(colour);

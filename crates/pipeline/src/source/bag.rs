@@ -1,10 +1,12 @@
-//! The camera of a recorded ROS 2 bag: its colour (and depth) messages, read from the bag in
-//! file order on the decoding threads and decoded there into upload buffers ahead of the GPU.
+//! A camera of a recorded ROS 2 bag: its colour (and depth) messages, read from the bag in file
+//! order on the decoding threads and decoded there into upload buffers ahead of the GPU.
 
 use std::collections::{HashMap, HashSet};
 use std::sync::{Arc, Mutex};
 
-use rslam_core::dataset::ros2::{decode_colour, decode_depth, BagMessages, RecordedBagCamera};
+use rslam_core::dataset::ros2::{
+    decode_colour, decode_depth, BagMessages, RecordedBagCamera, RecordedBagCameras,
+};
 use rslam_core::{CoreError, Intrinsics};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
@@ -12,41 +14,48 @@ use crate::source::{check_in_range, FrameSource};
 use crate::upload_ahead::UploadAhead;
 use crate::PipelineError;
 
-/// Source frame `i` is the camera's colour message `i` and depth message `i`.
+/// Source frame `i` is camera `camera`'s colour message `i` and depth message `i`.
 pub struct BagSource {
-    camera: Arc<RecordedBagCamera>,
+    recorded: Arc<RecordedBagCameras>,
+    camera: usize,
     frames_ahead: UploadAhead,
 }
 
 impl BagSource {
-    pub fn new(camera: Arc<RecordedBagCamera>) -> Self {
-        let (width, height) = camera.colour.size;
-        let with_depth = camera.depth.is_some();
+    pub fn new(recorded: Arc<RecordedBagCameras>, camera: usize) -> Self {
+        let spec = &recorded.cameras[camera];
+        let (width, height) = spec.colour.size;
+        let frames_ahead = UploadAhead::new(width, height, spec.depth.is_some());
         Self {
+            recorded,
             camera,
-            frames_ahead: UploadAhead::new(width, height, with_depth),
+            frames_ahead,
         }
+    }
+
+    fn spec(&self) -> &RecordedBagCamera {
+        &self.recorded.cameras[self.camera]
     }
 }
 
 impl FrameSource for BagSource {
     fn size(&self) -> (u32, u32) {
-        self.camera.colour.size
+        self.spec().colour.size
     }
 
     fn has_depth(&self) -> bool {
-        self.camera.depth.is_some()
+        self.spec().depth.is_some()
     }
 
     fn camera(&self) -> Option<Intrinsics> {
-        Some(self.camera.intrinsics)
+        Some(self.spec().intrinsics)
     }
 
     fn prepare(&mut self, ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
-        let camera = &self.camera;
+        let camera = self.spec();
         check_in_range(sources, camera.colour.messages.len(), &camera.colour.name)?;
         let messages = Mutex::new(CameraMessages {
-            messages: camera.bag.messages()?,
+            messages: self.recorded.bag.messages()?,
             colour_channel: camera.colour.channel,
             depth_channel: camera.depth.as_ref().map(|d| d.channel),
             read: (0, 0),
@@ -54,18 +63,19 @@ impl FrameSource for BagSource {
             waiting: HashMap::new(),
         });
         let messages = Arc::new(messages);
-        let camera = camera.clone();
+        let (recorded, camera_index) = (self.recorded.clone(), self.camera);
         let items = sources.iter().map(|&s| (s, s)).collect();
-        self.frames_ahead.start(ctx, items, move |&index, filler| {
+        self.frames_ahead.start(ctx, items, move |&frame, filler| {
             // The decoding threads take frames in order, a few at a time: each reads on in the
             // bag to its own messages, setting aside those of the frames after it.
             let (colour, depth) = messages
                 .lock()
                 .unwrap_or_else(|p| p.into_inner())
-                .take(index)?;
+                .take(frame)?;
+            let camera = &recorded.cameras[camera_index];
             let bad = |topic: &str, e: String| {
                 PipelineError::from(CoreError::bad_file(
-                    &camera.bag.folder,
+                    &recorded.bag.folder,
                     format!("topic {topic}: {e}"),
                 ))
             };

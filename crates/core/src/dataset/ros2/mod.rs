@@ -1,11 +1,12 @@
 //! The ROS 2 bag layout (`--format ros2`): one rosbag2 folder holding an MCAP file (profile
 //! `ros2`, `ros2msg` schemas, CDR messages) and the `metadata.yaml` that `ros2 bag` reads
 //! (docs/src/formats.md, "ROS 2 bag layout"); and a recorded bag read, its camera's images
-//! perturbed and every other message copied ([`RecordedBagCamera`], [`PerturbedBag`]).
+//! perturbed and every other message copied ([`RecordedBagCameras`], [`PerturbedBag`]).
 
 mod bag;
 mod camera;
 mod image_codec;
+mod merge;
 mod messages;
 mod metadata;
 mod perturbed_bag;
@@ -29,6 +30,6 @@ pub use messages::{
 pub use perturbed_bag::PerturbedBag;
 pub use pose_topic::read_pose_topic;
 pub use recorded::{BagMessage, BagMessages, RecordedBag};
-pub use recorded_camera::{ImageMessage, ImageTopic, RecordedBagCamera};
+pub use recorded_camera::{ImageMessage, ImageTopic, RecordedBagCamera, RecordedBagCameras};
 pub use rig_bag::{variances, RigBag, RIG_BODY_FRAME};
 pub use schemas::MessageType;

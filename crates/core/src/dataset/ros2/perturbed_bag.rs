@@ -1,115 +1,148 @@
-//! A recorded bag written again with its camera's images perturbed: every other message is
-//! copied byte for byte with its times and sequence number, read a second time from the input
-//! and interleaved by log time with the images written anew. An image keeps its header (its
-//! stamp moved where the plan re-stamps it, its log and publish times moved by as much) and its
-//! encoding.
+//! A recorded bag written again with its cameras' images perturbed. The cameras are perturbed
+//! one after another, each into a spool file of its own (`cameraN.spool`, MCAP); at the end every
+//! other message of the input is copied byte for byte with its times and sequence number, merged
+//! by log time with the spools' images, and the spools are removed. An image keeps its header
+//! (its stamp moved where the plan re-stamps it, its log and publish times moved by as much) and
+//! its encoding.
 
-use std::path::Path;
-use std::sync::Arc;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 use super::bag::{BagWriter, ClosedBag, LogTimes};
 use super::image_codec::{encode_colour, encode_depth};
+use super::merge::merge_by_log_time;
 use super::messages::{Header, Time};
-use super::recorded::{BagMessage, BagMessages};
-use super::recorded_camera::{ImageTopic, RecordedBagCamera};
+use super::recorded::RecordedBag;
+use super::recorded_camera::{ImageTopic, RecordedBagCamera, RecordedBagCameras};
 use crate::{CoreError, DepthImage, RgbImage};
 
+const SPOOL_EXTENSION: &str = "spool";
+
 pub struct PerturbedBag {
-    camera: Arc<RecordedBagCamera>,
-    bag: BagWriter,
-    /// The input, read again for the messages to copy.
-    recorded: BagMessages,
-    /// The next message to copy, read but logged after what was written last.
-    waiting: Option<BagMessage>,
+    recorded: Arc<RecordedBagCameras>,
+    folder: PathBuf,
+    /// Per camera, its images so far.
+    spools: Vec<Mutex<BagWriter>>,
 }
 
 impl PerturbedBag {
-    /// Starts the bag in `folder` with every topic of `camera`'s bag.
-    pub fn create(folder: &Path, camera: Arc<RecordedBagCamera>) -> Result<Self, CoreError> {
-        let name = folder
-            .file_name()
-            .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
+    /// Starts the bag in `folder` of `recorded`'s topics, a spool per camera.
+    pub fn create(folder: &Path, recorded: Arc<RecordedBagCameras>) -> Result<Self, CoreError> {
+        let spools = recorded
+            .cameras
+            .iter()
+            .enumerate()
+            .map(|(i, camera)| {
+                let topics: Vec<_> = [Some(&camera.colour), camera.depth.as_ref()]
+                    .into_iter()
+                    .flatten()
+                    .map(|t| recorded.topics[t.index].clone())
+                    .collect();
+                let file = format!("camera{i}.{SPOOL_EXTENSION}");
+                BagWriter::create_file(folder, &file, &topics).map(Mutex::new)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Self {
-            bag: BagWriter::create(folder, &name, &camera.topics)?,
-            recorded: camera.bag.messages()?,
-            camera,
-            waiting: None,
+            recorded,
+            folder: folder.to_path_buf(),
+            spools,
         })
     }
 
-    /// Colour message `index` of the camera, its stamp moved by `shift_s` seconds.
+    /// Colour message `index` of camera `camera`, its stamp moved by `shift_s` seconds.
     pub fn write_colour(
-        &mut self,
+        &self,
+        camera: usize,
         index: usize,
         shift_s: f64,
         colour: &RgbImage,
     ) -> Result<(), CoreError> {
-        let topic = &self.camera.colour;
-        let (header, times) = moved(topic, index, shift_s);
-        let data =
-            encode_colour(header, colour, &topic.encoding).map_err(|e| self.error(topic, e))?;
-        self.write(topic.index, times, &data)
+        let (spec, spool) = self.camera(camera)?;
+        let (header, times) = moved(&spec.colour, index, shift_s);
+        let data = encode_colour(header, colour, &spec.colour.encoding)
+            .map_err(|e| self.error(&spec.colour, e))?;
+        let mut spool = spool.lock().unwrap_or_else(|p| p.into_inner());
+        spool.write_bytes(0, times, &data)
     }
 
-    /// Depth message `index` of the camera, its stamp moved by `shift_s` seconds.
+    /// Depth message `index` of camera `camera`, its stamp moved by `shift_s` seconds.
     pub fn write_depth(
-        &mut self,
+        &self,
+        camera: usize,
         index: usize,
         shift_s: f64,
         depth: &DepthImage,
     ) -> Result<(), CoreError> {
-        let Some(topic) = &self.camera.depth else {
-            return Err(CoreError::bad_file(
-                &self.camera.bag.folder,
-                "depth written to a bag without a depth topic",
+        let (spec, spool) = self.camera(camera)?;
+        let Some(topic) = &spec.depth else {
+            return Err(self.error(
+                &spec.colour,
+                "depth written to a camera without depth".into(),
             ));
         };
         let (header, times) = moved(topic, index, shift_s);
         let data =
             encode_depth(header, depth, &topic.encoding).map_err(|e| self.error(topic, e))?;
-        self.write(topic.index, times, &data)
+        let mut spool = spool.lock().unwrap_or_else(|p| p.into_inner());
+        spool.write_bytes(1, times, &data)
     }
 
-    /// Copies what is left of the input and closes the bag.
-    pub fn finish(mut self) -> Result<ClosedBag, CoreError> {
-        self.copy_until(u64::MAX)?;
-        self.bag.finish()
-    }
-
-    fn write(&mut self, topic: usize, times: LogTimes, data: &[u8]) -> Result<(), CoreError> {
-        self.copy_until(times.log_time)?;
-        self.bag.write_bytes(topic, times, data)
-    }
-
-    /// Copies the input's messages logged up to `log_time`, but the camera's images.
-    fn copy_until(&mut self, log_time: u64) -> Result<(), CoreError> {
-        loop {
-            let message = match self.waiting.take() {
-                Some(message) => message,
-                None => match self.recorded.next() {
-                    Some(message) => message?,
-                    None => return Ok(()),
-                },
-            };
-            if message.log_time > log_time {
-                self.waiting = Some(message);
-                return Ok(());
+    /// Merges the input's other messages with the cameras' spools into the bag `<name>_0.mcap`
+    /// and removes the spools.
+    pub fn finish(self, name: &str) -> Result<ClosedBag, CoreError> {
+        let mut spools = Vec::new();
+        for spool in self.spools {
+            let closed = spool
+                .into_inner()
+                .unwrap_or_else(|p| p.into_inner())
+                .finish()?;
+            spools.push(RecordedBag {
+                folder: self.folder.clone(),
+                storage: self.folder.join(&closed.file),
+            });
+        }
+        let recorded = &self.recorded;
+        let mut bag = BagWriter::create(&self.folder, name, &recorded.topics)?;
+        let streams = std::iter::once(&recorded.bag)
+            .chain(&spools)
+            .map(RecordedBag::messages)
+            .collect::<Result<Vec<_>, _>>()?;
+        merge_by_log_time(&mut bag, streams, |stream, message| match stream {
+            0 => {
+                let topic = recorded
+                    .topic_of_channel
+                    .get(&message.channel.id)
+                    .copied()?;
+                (!recorded.is_perturbed(topic)).then_some(topic)
             }
-            let topic = self.camera.topic_of_channel[&message.channel.id];
-            if !self.camera.is_perturbed(topic) {
-                let times = LogTimes {
-                    log_time: message.log_time,
-                    publish_time: message.publish_time,
-                    sequence: message.sequence,
-                };
-                self.bag.write_bytes(topic, times, &message.data)?;
+            _ => {
+                let camera = &recorded.cameras[stream - 1];
+                let depth = camera.depth.as_ref().filter(|d| d.name == message.topic());
+                Some(depth.unwrap_or(&camera.colour).index)
             }
+        })?;
+        for spool in &spools {
+            std::fs::remove_file(&spool.storage).map_err(|e| CoreError::io(&spool.storage, e))?;
+        }
+        bag.finish()
+    }
+
+    fn camera(&self, camera: usize) -> Result<(&RecordedBagCamera, &Mutex<BagWriter>), CoreError> {
+        match (self.recorded.cameras.get(camera), self.spools.get(camera)) {
+            (Some(spec), Some(spool)) => Ok((spec, spool)),
+            _ => Err(CoreError::bad_file(
+                &self.folder,
+                format!(
+                    "camera {camera}: the bag has {}",
+                    self.recorded.cameras.len()
+                ),
+            )),
         }
     }
 
     fn error(&self, topic: &ImageTopic, message: String) -> CoreError {
         CoreError::bad_file(
-            &self.camera.bag.folder,
+            &self.recorded.bag.folder,
             format!("topic {}: {message}", topic.name),
         )
     }
@@ -139,7 +172,7 @@ mod tests {
     use super::super::bag::Topic;
     use super::super::camera::{CameraBag, COLOR_TOPIC, DEPTH_TOPIC};
     use super::super::image_codec::{decode_colour, decode_depth};
-    use super::super::recorded::RecordedBag;
+    use super::super::recorded::BagMessage;
     use super::super::schemas::MessageType;
     use super::*;
     use crate::{Intrinsics, Pose};
@@ -186,33 +219,37 @@ mod tests {
     #[test]
     fn the_camera_is_found_with_its_rate_and_every_topic() {
         let dir = tempfile::tempdir().unwrap();
-        let camera = RecordedBagCamera::read(recorded(&dir.path().join("in"))).unwrap();
+        let recorded = RecordedBagCameras::read(recorded(&dir.path().join("in"))).unwrap();
+        let [camera] = &recorded.cameras[..] else {
+            panic!("{} cameras", recorded.cameras.len());
+        };
         assert_eq!(camera.colour.name, COLOR_TOPIC);
         assert_eq!(camera.depth.as_ref().unwrap().name, DEPTH_TOPIC);
         assert_eq!(camera.colour.messages.len(), FRAMES);
         assert!((camera.rate_hz - 30.0).abs() < 1e-3, "{}", camera.rate_hz);
         assert_eq!((camera.intrinsics.fx, camera.intrinsics.cy), (3.0, 1.0));
-        assert_eq!(camera.topics.len(), 6);
+        assert_eq!(recorded.topics.len(), 6);
     }
 
     #[test]
     fn images_are_written_anew_and_every_other_message_copied_as_it_was() {
         let dir = tempfile::tempdir().unwrap();
         let input = recorded(&dir.path().join("in"));
-        let camera = Arc::new(RecordedBagCamera::read(input.clone()).unwrap());
+        let recorded = Arc::new(RecordedBagCameras::read(input.clone()).unwrap());
+        let camera = &recorded.cameras[0];
         let out = dir.path().join("out");
         std::fs::create_dir_all(&out).unwrap();
-        let mut bag = PerturbedBag::create(&out, camera.clone()).unwrap();
+        let bag = PerturbedBag::create(&out, recorded.clone()).unwrap();
         let inverted = |i| {
             let mut c = colour(i);
             c.data.iter_mut().for_each(|v| *v = 255 - *v);
             c
         };
         for i in 0..FRAMES {
-            bag.write_colour(i, 0.0, &inverted(i)).unwrap();
-            bag.write_depth(i, 0.010, &depth(i)).unwrap();
+            bag.write_colour(0, i, 0.0, &inverted(i)).unwrap();
+            bag.write_depth(0, i, 0.010, &depth(i)).unwrap();
         }
-        let closed = bag.finish().unwrap();
+        let closed = bag.finish("out").unwrap();
         std::fs::write(out.join("metadata.yaml"), closed.metadata).unwrap();
         let (before, after) = (
             messages(&input),
@@ -225,7 +262,7 @@ mod tests {
                 .map(|m| (m.log_time, m.sequence, m.data.clone()))
                 .collect()
         };
-        for topic in &camera.topics {
+        for topic in &recorded.topics {
             if topic.name != COLOR_TOPIC && topic.name != DEPTH_TOPIC {
                 assert_eq!(
                     on(&before, &topic.name),
@@ -261,7 +298,7 @@ mod tests {
         let input = recorded(&dir.path().join("in"));
         let bytes = std::fs::read(&input.storage).unwrap();
         std::fs::write(&input.storage, &bytes[..bytes.len() * 2 / 3]).unwrap();
-        let error = RecordedBagCamera::read(input).unwrap_err().to_string();
+        let error = RecordedBagCameras::read(input).unwrap_err().to_string();
         assert!(error.contains("not a whole MCAP file"), "{error}");
         assert!(error.contains("in_0.mcap"), "{error}");
 
@@ -289,7 +326,7 @@ mod tests {
         let closed = bag.finish().unwrap();
         std::fs::write(folder.join("metadata.yaml"), closed.metadata).unwrap();
         let bag = RecordedBag::open(&folder).unwrap();
-        let error = RecordedBagCamera::read(bag).unwrap_err().to_string();
+        let error = RecordedBagCameras::read(bag).unwrap_err().to_string();
         assert!(
             error.contains("no_info") && error.contains("on /cam/camera_info for /cam/image_raw"),
             "{error}"

@@ -1,9 +1,10 @@
-//! The camera rslam perturbs in a recorded bag, found by reading the bag once: its colour image
-//! topic (`Image` or `CompressedImage`) and, when the bag has one, the depth topic registered to
-//! it, each message's stamp and times, and the intrinsics of the colour topic's `CameraInfo`.
-//! Every other topic is copied as it is. A bag with an image topic rslam cannot read, several
-//! colour or depth topics, depth on its own camera or not one-to-one with colour is refused,
-//! naming the bag and the topic.
+//! The cameras rslam perturbs in a recorded bag, found by reading the bag once: each colour image
+//! topic (`Image` or `CompressedImage`; a stereo pair, infrared cameras) is a camera of its own,
+//! with the intrinsics of its `CameraInfo`; a depth topic joins the colour topic it is registered
+//! to (same size and intrinsics, one message per colour message by stamp). Each message's stamp
+//! and times are kept. Every other topic is copied as it is. A bag with an image topic rslam
+//! cannot read, depth registered to no colour topic or not one-to-one with it is refused, naming
+//! the bag and the topic.
 
 use std::collections::HashMap;
 
@@ -38,20 +39,26 @@ pub struct ImageTopic {
     pub messages: Vec<ImageMessage>,
 }
 
-/// A recorded bag's camera: source frame `i` is colour message `i` and depth message `i`.
+/// A camera of a recorded bag: source frame `i` is colour message `i` and depth message `i`.
 #[derive(Clone, Debug)]
 pub struct RecordedBagCamera {
-    pub bag: RecordedBag,
-    /// Every topic, in the order its first message comes.
-    pub topics: Vec<Topic>,
-    /// The index in `topics` of each MCAP channel id.
-    pub topic_of_channel: HashMap<u16, usize>,
     pub colour: ImageTopic,
     pub depth: Option<ImageTopic>,
     pub intrinsics: Intrinsics,
     pub distortion: Option<Distortion>,
     /// The median rate of the colour stamps.
     pub rate_hz: f64,
+}
+
+/// A recorded bag's topics and its cameras, in the order their topics first appear.
+#[derive(Clone, Debug)]
+pub struct RecordedBagCameras {
+    pub bag: RecordedBag,
+    /// Every topic, in the order its first message comes.
+    pub topics: Vec<Topic>,
+    /// The index in `topics` of each MCAP channel id.
+    pub topic_of_channel: HashMap<u16, usize>,
+    pub cameras: Vec<RecordedBagCamera>,
 }
 
 /// What reading the bag found on each topic.
@@ -63,7 +70,7 @@ struct Found {
     camera_infos: HashMap<String, CameraInfo>,
 }
 
-impl RecordedBagCamera {
+impl RecordedBagCameras {
     pub fn read(bag: RecordedBag) -> Result<Self, CoreError> {
         let mut found = Found::default();
         for message in bag.messages()? {
@@ -74,73 +81,66 @@ impl RecordedBagCamera {
             std::mem::take(&mut found.images)
                 .into_iter()
                 .partition(|t| t.encoding.is_depth());
-        let names = |topics: &[ImageTopic]| {
-            let names: Vec<&str> = topics.iter().map(|t| t.name.as_str()).collect();
-            names.join(", ")
-        };
-        let colour = match <[ImageTopic; 1]>::try_from(colours) {
-            Ok([colour]) => colour,
-            Err(colours) if colours.is_empty() => {
-                return Err(bad(format!(
-                    "no colour image topic ({IMAGE_TYPE} or {COMPRESSED_IMAGE_TYPE}) to perturb"
-                )))
-            }
-            Err(colours) => {
-                return Err(bad(format!(
-                    "{} colour image topics ({}): perturbing several cameras of one bag is not built yet",
-                    colours.len(),
-                    names(&colours)
-                )))
-            }
-        };
-        if depths.len() > 1 {
+        if colours.is_empty() {
             return Err(bad(format!(
-                "{} depth image topics ({}): expected at most one, registered to {}",
-                depths.len(),
-                names(&depths),
-                colour.name
+                "no colour image topic ({IMAGE_TYPE} or {COMPRESSED_IMAGE_TYPE}) to perturb"
             )));
         }
-        let depth = depths.into_iter().next();
-        let info = found.camera_info_of(&colour).map_err(bad)?;
-        let intrinsics = Intrinsics::from_pinhole((info.width, info.height), k_of(info))
-            .map_err(|e| bad(format!("the CameraInfo of {}: {e}", colour.name)))?;
-        if (info.width, info.height) != colour.size {
-            return Err(bad(format!(
-                "{} holds {}x{} images, but its CameraInfo says {}x{}",
-                colour.name, colour.size.0, colour.size.1, info.width, info.height
-            )));
-        }
-        let distortion = distortion_of(info)
-            .map_err(|e| bad(format!("the CameraInfo of {}: {e}", colour.name)))?;
-        if let Some(depth) = &depth {
-            let depth_info = found.camera_info_of(depth).map_err(bad)?;
-            if depth.size != colour.size || k_of(depth_info) != k_of(info) {
+        let mut cameras = Vec::new();
+        for colour in colours {
+            let info = found.camera_info_of(&colour).map_err(bad)?;
+            let intrinsics = Intrinsics::from_pinhole((info.width, info.height), k_of(info))
+                .map_err(|e| bad(format!("the CameraInfo of {}: {e}", colour.name)))?;
+            if (info.width, info.height) != colour.size {
                 return Err(bad(format!(
-                    "depth topic {} is not registered to {} (its size or CameraInfo differs): perturbing depth on a camera of its own is not built yet",
-                    depth.name, colour.name
+                    "{} holds {}x{} images, but its CameraInfo says {}x{}",
+                    colour.name, colour.size.0, colour.size.1, info.width, info.height
                 )));
             }
+            let distortion = distortion_of(info)
+                .map_err(|e| bad(format!("the CameraInfo of {}: {e}", colour.name)))?;
+            let rate_hz = rate_of(&colour).map_err(bad)?;
+            cameras.push(RecordedBagCamera {
+                colour,
+                depth: None,
+                intrinsics,
+                distortion,
+                rate_hz,
+            });
         }
-        let rate_hz = rate_of(&colour).map_err(bad)?;
-        if let Some(depth) = &depth {
-            pair_one_to_one(&colour, depth, rate_hz).map_err(bad)?;
+        for depth in depths {
+            let info = found.camera_info_of(&depth).map_err(bad)?;
+            let registered = cameras.iter_mut().find(|c| {
+                depth.size == c.colour.size && k_of(info) == k_of_intrinsics(&c.intrinsics)
+            });
+            let Some(camera) = registered else {
+                return Err(bad(format!(
+                    "depth topic {} is registered to no colour topic (none has its size and CameraInfo): perturbing depth on a camera of its own is not built yet",
+                    depth.name
+                )));
+            };
+            if let Some(first) = &camera.depth {
+                return Err(bad(format!(
+                    "depth topics {} and {} are both registered to {}: expected one",
+                    first.name, depth.name, camera.colour.name
+                )));
+            }
+            pair_one_to_one(&camera.colour, &depth, camera.rate_hz).map_err(bad)?;
+            camera.depth = Some(depth);
         }
         Ok(Self {
             bag,
             topics: found.topics,
             topic_of_channel: found.by_channel,
-            colour,
-            depth,
-            intrinsics,
-            distortion,
-            rate_hz,
+            cameras,
         })
     }
 
-    /// Whether topic `index` is one rslam writes anew (the camera's colour or depth).
+    /// Whether topic `index` is one rslam writes anew (a camera's colour or depth).
     pub fn is_perturbed(&self, index: usize) -> bool {
-        index == self.colour.index || self.depth.as_ref().is_some_and(|d| d.index == index)
+        self.cameras
+            .iter()
+            .any(|c| c.colour.index == index || c.depth.as_ref().is_some_and(|d| d.index == index))
     }
 }
 
@@ -254,6 +254,10 @@ impl Found {
 
 fn k_of(info: &CameraInfo) -> [f64; 4] {
     [info.k[0], info.k[4], info.k[2], info.k[5]]
+}
+
+fn k_of_intrinsics(k: &Intrinsics) -> [f64; 4] {
+    [k.fx, k.fy, k.cx, k.cy]
 }
 
 /// The lens of a `CameraInfo`: none when every coefficient is 0, radtan for `plumb_bob` (or
