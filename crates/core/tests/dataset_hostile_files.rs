@@ -48,6 +48,33 @@ fn an_empty_association_list_is_named_not_rgb_txt() {
     );
 }
 
+#[test]
+fn frame_times_too_close_for_a_finite_rate_are_an_error_naming_the_dataset() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("rgb.txt"),
+        "0.000 rgb/0.png
+1e-320 rgb/1.png
+",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("depth.txt"),
+        "0.000 depth/0.png
+1e-320 depth/1.png
+",
+    )
+    .unwrap();
+    let measured = DatasetOverrides {
+        rate_hz: None,
+        ..tum_overrides()
+    };
+    assert_eq!(
+        error_of(dir.path(), &measured),
+        "D: frame rate inf Hz (given, from rslam.json or from the frame times): expected a positive finite rate"
+    );
+}
+
 fn replica_with_camera(camera_json: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("results")).unwrap();

@@ -167,7 +167,12 @@ fn no_camera(root: &Path, looked_in: &str) -> CoreError {
 fn rate_or_error(rate_hz: Option<f64>, root: &Path, why: &str) -> Result<f64, CoreError> {
     match rate_hz {
         Some(hz) if hz.is_finite() && hz > 0.0 => Ok(hz),
-        Some(hz) => Err(CoreError::BadRate { hz }),
+        Some(hz) => Err(CoreError::bad_file(
+            root,
+            format!(
+                "frame rate {hz} Hz (given, from rslam.json or from the frame times): expected a positive finite rate"
+            ),
+        )),
         None => Err(CoreError::bad_file(
             root,
             format!("unknown frame rate ({why}); give it explicitly (rslam: --rate)"),
