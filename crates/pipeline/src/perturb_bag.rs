@@ -23,13 +23,12 @@ use crate::sink::{seal_bag, PerturbedBagSink};
 use crate::source::BagSource;
 use crate::{settings, PipelineError};
 
-pub(crate) struct BagPerturb<'a> {
+pub(crate) struct BagPerturb {
     seed: u64,
     recorded: Arc<RecordedBagCameras>,
     /// Per camera, in the order of `recorded.cameras`.
     runs: Vec<CameraRun>,
     manifest: Manifest,
-    spec: &'a PerturbSpec,
 }
 
 /// One camera's part: its spec, its frames' recorded colour and depth stamps (seconds), its plan.
@@ -39,12 +38,12 @@ struct CameraRun {
     plan: FramePlan,
 }
 
-pub(crate) fn plan<'a>(
+pub(crate) fn plan(
     input: &Path,
-    spec: &'a PerturbSpec,
+    spec: &PerturbSpec,
     seed: u64,
     command: &[String],
-) -> Result<BagPerturb<'a>, PipelineError> {
+) -> Result<BagPerturb, PipelineError> {
     let recorded = RecordedBagCameras::read(RecordedBag::open(input)?)?;
     settings::check(spec, &settings::recorded_bag(&recorded))?;
     let runs: Vec<CameraRun> = recorded
@@ -85,7 +84,6 @@ pub(crate) fn plan<'a>(
         recorded: Arc::new(recorded),
         runs,
         manifest,
-        spec,
     })
 }
 
@@ -131,7 +129,7 @@ fn camera_run(camera: &RecordedBagCamera, spec: &PerturbSpec, seed: u64) -> Came
     }
 }
 
-impl Planned for BagPerturb<'_> {
+impl Planned for BagPerturb {
     fn manifest(&self) -> &Manifest {
         &self.manifest
     }
@@ -166,7 +164,6 @@ impl Planned for BagPerturb<'_> {
                 Pipeline::new(ctx, source, &run.spec, self.seed)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        debug_assert!(self.spec.fast.is_none(), "refused by the bag's setting");
         Ok(Box::new(move |out, _found, manifest, progress| {
             let bag = Arc::new(PerturbedBag::create(out, self.recorded.clone())?);
             let made = self
@@ -184,10 +181,7 @@ impl Planned for BagPerturb<'_> {
             progress.finish();
             let bag = Arc::try_unwrap(bag)
                 .map_err(|_| PipelineError::Worker("the bag is still shared".into()))?;
-            let name = out
-                .file_name()
-                .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
-            let manifest = seal_bag(ContentWriter::new(out), bag.finish(&name)?, manifest)?;
+            let manifest = seal_bag(ContentWriter::new(out), bag.finish()?, manifest)?;
             Ok(Written { made, manifest })
         }))
     }

@@ -320,10 +320,7 @@ impl RigRender<'_> {
             progress.finish();
             let bag = Arc::try_unwrap(bag)
                 .map_err(|_| PipelineError::Worker("the rig bag is still shared".into()))?;
-            let name = out
-                .file_name()
-                .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
-            let closed = bag.finish(&name, &self.streams.imu, &self.streams.ground_truth)?;
+            let closed = bag.finish(&self.streams.imu, &self.streams.ground_truth)?;
             Ok(Written {
                 made,
                 manifest: seal_bag(ContentWriter::new(out), closed, manifest)?,

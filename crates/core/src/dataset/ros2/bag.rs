@@ -16,6 +16,13 @@ use super::schemas::MessageType;
 use crate::dataset::PARTIAL_SUFFIX;
 use crate::CoreError;
 
+/// The name of the bag in `folder`: the folder's own, as `ros2 bag record -o` names it.
+pub fn bag_name(folder: &Path) -> String {
+    folder
+        .file_name()
+        .map_or("rslam".into(), |n| n.to_string_lossy().into_owned())
+}
+
 /// A topic to write: its name, its message type's name and MCAP schema (`ros2msg` text), and
 /// rosbag2's `offered_qos_profiles` for it (YAML; empty for the subscriber's default).
 #[derive(Clone, Debug, PartialEq)]

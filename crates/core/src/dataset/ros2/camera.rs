@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use super::bag::{BagWriter, ClosedBag, Topic};
+use super::bag::{bag_name, BagWriter, ClosedBag, Topic};
 use super::messages::{
     Bytes, CameraInfo, Header, Image, Imu as ImuMessage, Pose, PoseStamped, Quaternion,
     RegionOfInterest, TfMessage, Time, Transform, TransformStamped, Vector3,
@@ -70,9 +70,7 @@ impl CameraBag {
         distortion: Option<Distortion>,
         imu: Option<BagImu>,
     ) -> Result<Self, CoreError> {
-        let name = folder
-            .file_name()
-            .map_or("rslam".into(), |n| n.to_string_lossy().into_owned());
+        let name = bag_name(folder);
         let mut topics = vec![
             Topic::new(COLOR_TOPIC, MessageType::Image),
             Topic::new(COLOR_INFO_TOPIC, MessageType::CameraInfo),

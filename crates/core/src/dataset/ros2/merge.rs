@@ -1,11 +1,30 @@
 //! Messages of several MCAP files, each in log-time order, written into one bag in log-time
-//! order: a recorded bag's copied messages with the spools of its perturbed cameras.
+//! order: a recorded bag's copied messages with the spools of its perturbed cameras, a rig's
+//! cameras with its IMU and ground truth. A spool is an MCAP file of one stream, written while
+//! the streams are made one after another and removed once merged.
 
 use std::iter::Peekable;
+use std::path::Path;
 
 use super::bag::{BagWriter, LogTimes};
-use super::recorded::{BagMessage, BagMessages};
+use super::recorded::{BagMessage, BagMessages, RecordedBag};
 use crate::CoreError;
+
+/// Closes `spool`, written in `folder`, for reading.
+pub(super) fn close_spool(folder: &Path, spool: BagWriter) -> Result<RecordedBag, CoreError> {
+    let closed = spool.finish()?;
+    Ok(RecordedBag {
+        folder: folder.to_path_buf(),
+        storage: folder.join(closed.file),
+    })
+}
+
+pub(super) fn remove_spools(spools: &[RecordedBag]) -> Result<(), CoreError> {
+    for spool in spools {
+        std::fs::remove_file(&spool.storage).map_err(|e| CoreError::io(&spool.storage, e))?;
+    }
+    Ok(())
+}
 
 /// Writes every message of `streams` into `bag`, the earliest logged first (on a tie, the
 /// stream listed first); `topic_of(stream, message)` is the bag's topic index for it, `None` to

@@ -8,9 +8,9 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use super::bag::{BagWriter, ClosedBag, LogTimes};
+use super::bag::{bag_name, BagWriter, ClosedBag, LogTimes};
 use super::image_codec::{encode_colour, encode_depth};
-use super::merge::merge_by_log_time;
+use super::merge::{close_spool, merge_by_log_time, remove_spools};
 use super::messages::{Header, Time};
 use super::recorded::RecordedBag;
 use super::recorded_camera::{ImageTopic, RecordedBagCamera, RecordedBagCameras};
@@ -87,22 +87,19 @@ impl PerturbedBag {
         spool.write_bytes(1, times, &data)
     }
 
-    /// Merges the input's other messages with the cameras' spools into the bag `<name>_0.mcap`
-    /// and removes the spools.
-    pub fn finish(self, name: &str) -> Result<ClosedBag, CoreError> {
-        let mut spools = Vec::new();
-        for spool in self.spools {
-            let closed = spool
-                .into_inner()
-                .unwrap_or_else(|p| p.into_inner())
-                .finish()?;
-            spools.push(RecordedBag {
-                folder: self.folder.clone(),
-                storage: self.folder.join(&closed.file),
-            });
-        }
+    /// Merges the input's other messages with the cameras' spools into the bag and removes the
+    /// spools.
+    pub fn finish(self) -> Result<ClosedBag, CoreError> {
+        let spools = self
+            .spools
+            .into_iter()
+            .map(|spool| {
+                let spool = spool.into_inner().unwrap_or_else(|p| p.into_inner());
+                close_spool(&self.folder, spool)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let recorded = &self.recorded;
-        let mut bag = BagWriter::create(&self.folder, name, &recorded.topics)?;
+        let mut bag = BagWriter::create(&self.folder, &bag_name(&self.folder), &recorded.topics)?;
         let streams = std::iter::once(&recorded.bag)
             .chain(&spools)
             .map(RecordedBag::messages)
@@ -121,9 +118,7 @@ impl PerturbedBag {
                 Some(depth.unwrap_or(&camera.colour).index)
             }
         })?;
-        for spool in &spools {
-            std::fs::remove_file(&spool.storage).map_err(|e| CoreError::io(&spool.storage, e))?;
-        }
+        remove_spools(&spools)?;
         bag.finish()
     }
 
@@ -249,7 +244,7 @@ mod tests {
             bag.write_colour(0, i, 0.0, &inverted(i)).unwrap();
             bag.write_depth(0, i, 0.010, &depth(i)).unwrap();
         }
-        let closed = bag.finish("out").unwrap();
+        let closed = bag.finish().unwrap();
         std::fs::write(out.join("metadata.yaml"), closed.metadata).unwrap();
         let (before, after) = (
             messages(&input),

@@ -5,16 +5,18 @@
 //! `state_groundtruth_estimate0`), and every sensor's `T_BS` in frame `body` on `/tf_static`.
 //!
 //! The cameras are drawn one after another, so each camera's messages go to a spool file of its
-//! own (`camN.spool`, MCAP); [`RigBag::finish`] merges the spools, the IMU and the ground truth
-//! into the bag in stamp order and removes the spools.
+//! own (`camN.spool`, MCAP); [`RigBag::finish`] spools the IMU and the ground truth too, merges
+//! every spool into the bag in stamp order and removes them.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
-use super::bag::{BagWriter, ClosedBag, Topic};
+use super::bag::{bag_name, BagWriter, ClosedBag, Topic};
 use super::camera::{camera_info, imu_message, pose_in_world, transform_stamped};
+use super::merge::{close_spool, merge_by_log_time, remove_spools};
 use super::messages::{Bytes, Header, Image, TfMessage, Time};
-use super::recorded::{BagMessage, RecordedBag};
+use super::recorded::RecordedBag;
 use super::schemas::MessageType;
 use super::{GROUND_TRUTH_TOPIC, IMU_FRAME, IMU_TOPIC, TF_STATIC_TOPIC};
 use crate::dataset::codec::luma8;
@@ -31,6 +33,8 @@ pub struct RigBag {
     imu: Option<EurocImu>,
     /// Per camera, its messages so far.
     spools: Vec<Mutex<BagWriter>>,
+    /// The earliest frame stamp written, in nanoseconds (`u64::MAX` before the first).
+    first_frame_ns: AtomicU64,
 }
 
 impl RigBag {
@@ -52,6 +56,7 @@ impl RigBag {
             cameras,
             imu,
             spools,
+            first_frame_ns: AtomicU64::new(u64::MAX),
         })
     }
 
@@ -93,108 +98,73 @@ impl RigBag {
             .then(|| Distortion::from_coefficients(Distortion::RADTAN, lens))
             .flatten();
         let info = camera_info(header, &spec.intrinsics, distortion);
+        self.first_frame_ns.fetch_min(t_ns, Ordering::Relaxed);
         let mut spool = spool.lock().unwrap_or_else(|p| p.into_inner());
         spool.write(0, stamp, &message)?;
         spool.write(1, stamp, &info)
     }
 
-    /// Merges the cameras' spools, `imu` and `ground_truth` into the bag in stamp order, with
-    /// `/tf_static` first; removes the spools.
+    /// Merges the cameras' spools, `imu` and `ground_truth` (each written to a spool of its
+    /// own first) into the bag in stamp order, with `/tf_static` first; removes the spools.
     pub fn finish(
         mut self,
-        name: &str,
         imu: &[ImuSample],
         ground_truth: &[GroundTruthState],
     ) -> Result<ClosedBag, CoreError> {
         let mut topics: Vec<Topic> = self.cameras.iter().flat_map(camera_topics).collect();
-        let imu_topic = topics.len();
+        let imu_samples = if self.imu.is_some() { imu } else { &[] };
+        let imu_topic = Topic::new(IMU_TOPIC, MessageType::Imu);
+        let truth_topic = Topic::new(GROUND_TRUTH_TOPIC, MessageType::PoseStamped);
         if self.imu.is_some() {
-            topics.push(Topic::new(IMU_TOPIC, MessageType::Imu));
+            topics.push(imu_topic.clone());
         }
-        let truth_topic = topics.len();
-        topics.push(Topic::new(GROUND_TRUTH_TOPIC, MessageType::PoseStamped));
-        let tf_topic = topics.len();
+        topics.push(truth_topic.clone());
         topics.push(Topic::latched(TF_STATIC_TOPIC, MessageType::TfMessage));
 
-        let mut spools = Vec::new();
+        let mut imu_spool = BagWriter::create_file(&self.folder, "imu0.spool", &[imu_topic])?;
+        let (gyro, accel) = self.imu.as_ref().map_or((0.0, 0.0), variances);
+        for sample in imu_samples {
+            let stamp = Time::from_nanoseconds(sample.t_ns as i64);
+            imu_spool.write(0, stamp, &imu_message(sample, stamp, gyro, accel))?;
+        }
+        let mut truth_spool =
+            BagWriter::create_file(&self.folder, "ground_truth.spool", &[truth_topic])?;
+        for state in ground_truth {
+            let stamp = Time::from_nanoseconds(state.t_ns as i64);
+            truth_spool.write(0, stamp, &pose_in_world(stamp, &state.world_from_body))?;
+        }
+        // On a tie the IMU comes first, then the ground truth, then the cameras in order.
+        let mut spools = vec![
+            close_spool(&self.folder, imu_spool)?,
+            close_spool(&self.folder, truth_spool)?,
+        ];
         for spool in std::mem::take(&mut self.spools) {
-            let closed = spool
-                .into_inner()
-                .unwrap_or_else(|p| p.into_inner())
-                .finish()?;
-            let storage = self.folder.join(&closed.file);
-            spools.push(RecordedBag {
-                folder: self.folder.clone(),
-                storage,
-            });
+            let spool = spool.into_inner().unwrap_or_else(|p| p.into_inner());
+            spools.push(close_spool(&self.folder, spool)?);
         }
-        let mut bag = BagWriter::create(&self.folder, name, &topics)?;
-        let mut streams = spools
+
+        let name = bag_name(&self.folder);
+        let mut bag = BagWriter::create(&self.folder, &name, &topics)?;
+        let first_frame = self.first_frame_ns.load(Ordering::Relaxed);
+        let first = [
+            imu_samples.first().map(|s| s.t_ns),
+            ground_truth.first().map(|s| s.t_ns),
+        ]
+        .into_iter()
+        .flatten()
+        .fold(first_frame, u64::min);
+        if first != u64::MAX {
+            let stamp = Time::from_nanoseconds(first as i64);
+            bag.write(topics.len() - 1, stamp, &self.sensors_in_body(stamp))?;
+        }
+        let streams = spools
             .iter()
-            .map(|spool| spool.messages().map(Iterator::peekable))
+            .map(RecordedBag::messages)
             .collect::<Result<Vec<_>, _>>()?;
-        let (mut next_imu, mut next_truth) = (0, 0);
-        let imu_samples = if self.imu.is_some() { imu } else { &[] };
-        let mut tf_written = false;
-        loop {
-            // The earliest of the next messages: a camera's (its log time), the IMU's, the truth's.
-            let mut earliest: Option<(u64, usize)> = None;
-            for (i, stream) in streams.iter_mut().enumerate() {
-                if let Some(message) = stream.peek() {
-                    let t = match message {
-                        Ok(message) => message.log_time,
-                        Err(_) => 0,
-                    };
-                    if earliest.is_none_or(|(e, _)| t < e) {
-                        earliest = Some((t, i));
-                    }
-                }
-            }
-            let imu_t = imu_samples.get(next_imu).map(|s| s.t_ns);
-            let truth_t = ground_truth.get(next_truth).map(|s| s.t_ns);
-            let first = [earliest.map(|e| e.0), imu_t, truth_t]
-                .into_iter()
-                .flatten()
-                .min();
-            let Some(first) = first else { break };
-            if !tf_written {
-                tf_written = true;
-                let stamp = Time::from_nanoseconds(first as i64);
-                bag.write(tf_topic, stamp, &self.sensors_in_body(stamp))?;
-            }
-            if imu_t == Some(first) {
-                let sample = &imu_samples[next_imu];
-                let stamp = Time::from_nanoseconds(sample.t_ns as i64);
-                let (gyro, accel) = self.imu.as_ref().map_or((0.0, 0.0), variances);
-                bag.write(imu_topic, stamp, &imu_message(sample, stamp, gyro, accel))?;
-                next_imu += 1;
-            } else if truth_t == Some(first) {
-                let state = &ground_truth[next_truth];
-                let stamp = Time::from_nanoseconds(state.t_ns as i64);
-                bag.write(
-                    truth_topic,
-                    stamp,
-                    &pose_in_world(stamp, &state.world_from_body),
-                )?;
-                next_truth += 1;
-            } else if let Some((_, camera)) = earliest {
-                let message: BagMessage = match streams[camera].next() {
-                    Some(message) => message?,
-                    None => continue,
-                };
-                let topic = 2 * camera + usize::from(message.topic().ends_with("camera_info"));
-                let times = super::bag::LogTimes {
-                    log_time: message.log_time,
-                    publish_time: message.publish_time,
-                    sequence: message.sequence,
-                };
-                bag.write_bytes(topic, times, &message.data)?;
-            }
-        }
-        drop(streams);
-        for spool in &spools {
-            std::fs::remove_file(&spool.storage).map_err(|e| CoreError::io(&spool.storage, e))?;
-        }
+        merge_by_log_time(&mut bag, streams, |_, message| {
+            topics.iter().position(|t| t.name == message.topic())
+        })?;
+        remove_spools(&spools)?;
         bag.finish()
     }
 
