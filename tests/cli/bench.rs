@@ -165,37 +165,103 @@ fn a_method_for_another_layout_is_refused_before_any_run() {
         .fails_with(2, &["bad.toml:3:", "a lone '{'"]);
 }
 
+/// Two mappers: one writes the scene's own mesh, one a triangle no camera of the sequence saw.
+/// Culled to what the cameras saw (the default), the first is perfect over a part of the room
+/// and the second is reported as not measured; without culling, both are measured over the whole
+/// room.
 #[test]
-fn a_reconstruction_is_kept_and_measured_against_the_scene_mesh() {
+fn a_reconstruction_is_kept_and_measured_against_what_the_cameras_saw() {
     let ws = Workspace::new();
     suite(&ws);
-    ws.write(
-        "mapper.toml",
-        r#"name = "mapper"
+    ws.rslam(&["scene", "export", "room0", "--out", "room0.ply"])
+        .success();
+    let mapper = |name: &str, writes: &str| {
+        ws.write(
+            &format!("{name}.toml"),
+            &format!(
+                r#"name = "{name}"
 reads = "tum"
 timeout_s = 30
-mesh = "{work}/mesh.ply"
-command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 10\n1 0 10\n0 1 10\n3 0 1 2\n' > \"$3\"", "sh", "{dataset}", "{estimate}", "{work}/mesh.ply"]
-"#,
-    );
-    ws.rslam(&["suite", "bench", "suite", "--methods", "mapper.toml"])
-        .success();
-    assert!(ws
-        .path("suite/runs/mapper/room0__fog-3/0.mesh.ply")
-        .is_file());
-    let out = ws.rslam(&["suite", "report", "suite"]).success();
-    assert!(out.contains("2 reconstruction(s)"), "{out}");
-    assert!(ws.path("suite/report/ground_truth/room0.ply").is_file());
-    let csv = std::fs::read_to_string(ws.path("suite/report/reconstruction.csv")).unwrap();
-    let rows: Vec<&str> = csv.lines().skip(1).collect();
-    assert_eq!(rows.len(), 2, "{csv}");
-    for row in rows {
-        let fields: Vec<f64> = row.split(',').skip(3).map(|v| v.parse().unwrap()).collect();
-        // One triangle at the origin: far from most of the room, covering almost none of it.
-        assert!(
-            fields[0] > 1.0 && fields[1] > 10.0 && fields[2] < 10.0,
-            "{row}"
+mesh = "{{work}}/mesh.ply"
+command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && {writes} > \"$3\"", "sh", "{{dataset}}", "{{estimate}}", "{{work}}/mesh.ply"]
+"#
+            ),
         );
+    };
+    mapper(
+        "scene_mesh",
+        &format!("cat '{}'", ws.path("room0.ply").display()),
+    );
+    mapper(
+        "far_triangle",
+        r"printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 10\n1 0 10\n0 1 10\n3 0 1 2\n'",
+    );
+    ws.rslam(&[
+        "suite",
+        "bench",
+        "suite",
+        "--methods",
+        "scene_mesh.toml",
+        "--methods",
+        "far_triangle.toml",
+    ])
+    .success();
+    assert!(ws
+        .path("suite/runs/far_triangle/room0__fog-3/0.mesh.ply")
+        .is_file());
+
+    let out = ws.rslam(&["suite", "report", "suite"]).success();
+    assert!(
+        out.contains("4 reconstruction(s) against the ground-truth meshes, culling visible"),
+        "{out}"
+    );
+    assert!(
+        out.contains("far_triangle room0__clean #0: not measured: "),
+        "{out}"
+    );
+    assert!(ws.path("suite/report/ground_truth/room0.ply").is_file());
+    let rows = |ws: &Workspace| -> Vec<Vec<String>> {
+        let csv = std::fs::read_to_string(ws.path("suite/report/reconstruction.csv")).unwrap();
+        assert!(csv.starts_with("method,sequence,repeat,accuracy_cm,completion_cm,completion_ratio_percent,culling,reconstruction_kept_percent,ground_truth_kept_percent,failure\n"), "{csv}");
+        csv.lines()
+            .skip(1)
+            .map(|l| l.splitn(10, ',').map(String::from).collect())
+            .collect()
+    };
+    let number = |v: &String| v.parse::<f64>().unwrap();
+    for row in rows(&ws) {
+        if row[0] == "scene_mesh" {
+            assert_eq!(
+                (number(&row[3]), number(&row[4]), number(&row[5])),
+                (0.0, 0.0, 100.0),
+                "{row:?}"
+            );
+            assert_eq!(row[6], "visible");
+            assert!(
+                number(&row[8]) < 50.0,
+                "6 frames see part of the room: {row:?}"
+            );
+        } else {
+            assert!(
+                row[3].is_empty()
+                    && row[9].contains("no point of it lies in what the ground-truth cameras saw"),
+                "{row:?}"
+            );
+        }
+    }
+
+    ws.rslam(&["suite", "report", "suite", "--cull", "none"])
+        .success();
+    for row in rows(&ws) {
+        assert_eq!(row[6], "none", "{row:?}");
+        assert_eq!(number(&row[8]), 100.0);
+        if row[0] == "far_triangle" {
+            // One triangle far from most of the room, covering almost none of it.
+            assert!(
+                number(&row[3]) > 1.0 && number(&row[4]) > 10.0 && number(&row[5]) < 10.0,
+                "{row:?}"
+            );
+        }
     }
 }
 

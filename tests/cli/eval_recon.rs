@@ -1,6 +1,7 @@
 //! `rslam eval recon`: mapping metrics of a mesh or point cloud against the ground-truth mesh.
 
 use crate::harness::Workspace;
+use crate::render::SMALL_CAMERA;
 
 /// The unit square at height z as an ASCII PLY mesh, or its four corners and centre as a point
 /// cloud.
@@ -38,6 +39,8 @@ fn prints_accuracy_completion_and_ratio_of_a_shifted_plane() {
             "gt.ply",
             "--samples",
             "5000",
+            "--cull",
+            "none",
         ])
         .success();
     for fragment in [
@@ -59,6 +62,8 @@ fn prints_accuracy_completion_and_ratio_of_a_shifted_plane() {
             "5000",
             "--threshold-cm",
             "2",
+            "--cull",
+            "none",
         ])
         .success();
     assert!(
@@ -83,6 +88,8 @@ fn json_has_the_metrics_and_what_was_sampled() {
             "3",
             "--seed",
             "9",
+            "--cull",
+            "none",
             "--json",
         ])
         .success();
@@ -110,7 +117,15 @@ fn bad_input_is_a_one_line_error_and_trajectories_still_evaluate() {
         "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
     );
     let err = ws
-        .rslam(&["eval", "recon", "empty.ply", "--gt", "gt.ply"])
+        .rslam(&[
+            "eval",
+            "recon",
+            "empty.ply",
+            "--gt",
+            "gt.ply",
+            "--cull",
+            "none",
+        ])
         .fails_with(
             2,
             &["empty.ply: no vertices: expected a mesh or a point cloud"],
@@ -128,6 +143,23 @@ fn bad_input_is_a_one_line_error_and_trajectories_still_evaluate() {
         "0",
     ])
     .fails_with(2, &["samples = 0"]);
+    let err = ws
+        .rslam(&["eval", "recon", "gt.ply", "--gt", "gt.ply"])
+        .fails_with(
+            2,
+            &["culling = visible: expected the ground-truth cameras of the dataset (--dataset DIR), or culling none"],
+        );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    ws.rslam(&[
+        "eval",
+        "recon",
+        "gt.ply",
+        "--gt",
+        "gt.ply",
+        "--dataset",
+        "nowhere",
+    ])
+    .fails_with(2, &["nowhere"]);
     let help = ws.rslam(&["eval", "recon", "--help"]).success();
     assert!(
         help.contains("Distances are to the other side's surface"),
@@ -141,4 +173,75 @@ fn bad_input_is_a_one_line_error_and_trajectories_still_evaluate() {
         .rslam(&["eval", "traj.txt", "traj.txt"])
         .success()
         .contains("pairs\t3"));
+}
+
+/// The scene's mesh against itself over what 4 frames of a TUM dataset, a stereo rig and two
+/// agents saw: perfect, with the culling, its views and what it kept reported.
+#[test]
+fn culls_to_the_views_of_a_dataset_a_rig_and_agents() {
+    let ws = Workspace::new();
+    ws.rslam(&["scene", "export", "room0", "--out", "room0.ply"])
+        .success();
+    let render = |out: &str, extra: &[&str]| {
+        let mut args = vec!["render", "--scene", "room0", "--frames", "4", "--out", out];
+        args.extend_from_slice(extra);
+        ws.rslam(&args).success();
+    };
+    render("tum", &["--format", "tum", "--camera", SMALL_CAMERA]);
+    render("rig", &["--rig", "stereo-imu", "--format", "euroc"]);
+    render("agents", &["--agents", "2", "--camera", SMALL_CAMERA]);
+    let frames_of = |camera: &str| {
+        let csv = std::fs::read_to_string(ws.path(&format!("rig/mav0/{camera}/data.csv"))).unwrap();
+        csv.lines().filter(|l| !l.starts_with('#')).count()
+    };
+    let rig_views = frames_of("cam0") + frames_of("cam1");
+    assert!(rig_views >= 4, "{rig_views}");
+    for (dataset, views) in [("tum", 4), ("rig", rig_views), ("agents", 8)] {
+        let out = ws
+            .rslam(&[
+                "eval",
+                "recon",
+                "room0.ply",
+                "--gt",
+                "room0.ply",
+                "--dataset",
+                dataset,
+                "--samples",
+                "20000",
+            ])
+            .success();
+        for fragment in [
+            format!("culling\tvisible: points a ground-truth camera saw past the ground-truth mesh (2 cm tolerance), {views} views; kept "),
+            "accuracy (cm)\t0.0000".into(),
+            "completion (cm)\t0.0000".into(),
+            "completion ratio (< 5 cm, %)\t100.00".into(),
+        ] {
+            assert!(out.contains(&fragment), "{dataset}: missing '{fragment}' in:\n{out}");
+        }
+        let json: serde_json::Value = serde_json::from_str(
+            &ws.rslam(&[
+                "eval",
+                "recon",
+                "room0.ply",
+                "--gt",
+                "room0.ply",
+                "--dataset",
+                dataset,
+                "--samples",
+                "20000",
+                "--cull",
+                "frustum",
+                "--json",
+            ])
+            .success(),
+        )
+        .unwrap();
+        let kept = json["ground_truth"]["kept"].as_u64().unwrap();
+        assert!(
+            kept > 100 && kept < 19_000,
+            "{dataset}: a few frames see part of the room: {json}"
+        );
+        assert_eq!(json["options"]["culling"], "frustum");
+        assert_eq!(json["views"], views);
+    }
 }

@@ -4,8 +4,8 @@
 //! renderer; it hands back [`RgbImage`] / [`DepthImage`] pairs, which the `dataset` writers encode
 //! into the Replica or TUM layout, manifest last. `trajectory_io` reads and writes the trajectory
 //! file formats that SLAM systems and `rslam eval` use; `mesh_io` reads meshes and point clouds,
-//! and [`SurfaceBvh`] answers nearest-surface queries on them (ray casting, reconstruction
-//! metrics).
+//! and [`SurfaceBvh`] answers nearest-surface and first-hit queries on them (ray casting,
+//! reconstruction metrics and their visibility culling).
 //!
 //! For inertial sensors, a [`SplineSe3`] (a C² cubic B-spline on SE(3) through a trajectory's
 //! poses) gives the body's pose, velocity and acceleration at any instant, and [`imu`] turns it
@@ -41,5 +41,5 @@ pub use limited_read::{read_limited, read_text_file};
 pub use nearest_time::nearest_time;
 pub use pose::Pose;
 pub use spline_se3::{SplineSe3, SplineState, TimeRange};
-pub use surface_bvh::{SurfaceBvh, SurfacePoint};
+pub use surface_bvh::{RaySurfaceHit, SurfaceBvh, SurfacePoint};
 pub use trajectory::Trajectory;

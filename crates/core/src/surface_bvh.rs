@@ -1,5 +1,8 @@
-//! Triangles in a BVH (obvhs BVH2) and the nearest-surface query over it: branch-and-bound,
-//! children visited nearest box first. The renderer's ray caster traverses the same BVH.
+//! Triangles in a BVH (obvhs BVH2) and the two queries over it: the nearest surface point
+//! (branch-and-bound, children visited nearest box first) and the first hit along a ray
+//! (Möller–Trumbore, its barycentric bounds widened by [`EDGE_EPS`] so that a ray through an edge
+//! two triangles share never slips between them). The renderer's ray-cast oracle and the mapping
+//! metrics' visibility test both cast through it.
 
 use std::time::Duration;
 
@@ -7,10 +10,22 @@ use glam::{Vec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2_from_tris;
 use obvhs::bvh2::Bvh2;
+use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
 use crate::mesh_io::MeshGeometry;
+
+/// Barycentric slack so rays through shared edges hit one of the two triangles.
+const EDGE_EPS: f32 = 1e-6;
+
+/// The first triangle a ray meets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RaySurfaceHit {
+    /// Along the ray, in units of its direction vector.
+    pub t: f32,
+    pub triangle: u32,
+}
 
 /// The closest point of the surface to a query point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -72,6 +87,24 @@ impl SurfaceBvh {
         &self.triangles
     }
 
+    /// The first hit of the ray `origin + t·dir` with `0 < t ≤ max_t` (`dir` need not be unit
+    /// length); triangles are hit from either side.
+    pub fn first_hit(&self, origin: Vec3, dir: Vec3, max_t: f32) -> Option<RaySurfaceHit> {
+        if self.triangles.is_empty() || dir == Vec3::ZERO {
+            return None;
+        }
+        let bvh = &self.bvh;
+        let ray = Ray::new(origin.into(), dir.into(), 0.0, max_t);
+        let mut hit = RayHit::none();
+        let found = bvh.ray_traverse(ray, &mut hit, |ray, id| {
+            intersect(&self.triangles[bvh.primitive_indices[id] as usize], ray)
+        });
+        found.then(|| RaySurfaceHit {
+            t: hit.t,
+            triangle: bvh.primitive_indices[hit.primitive_id as usize],
+        })
+    }
+
     /// The surface point nearest to `query` (`None` for an empty surface).
     pub fn nearest(&self, query: Vec3) -> Option<SurfacePoint> {
         if self.triangles.is_empty() {
@@ -115,6 +148,31 @@ impl SurfaceBvh {
             stack.push(near);
         }
         best
+    }
+}
+
+/// The ray's parameter where it meets the triangle, or infinity where it does not.
+fn intersect(tri: &Triangle, ray: &Ray) -> f32 {
+    let e1 = tri.v1 - tri.v0;
+    let e2 = tri.v2 - tri.v0;
+    let p = ray.direction.cross(e2);
+    let det = e1.dot(p);
+    if det == 0.0 || !det.is_finite() {
+        return f32::INFINITY;
+    }
+    let inv = 1.0 / det;
+    let s = ray.origin - tri.v0;
+    let u = s.dot(p) * inv;
+    let q = s.cross(e1);
+    let v = ray.direction.dot(q) * inv;
+    if u < -EDGE_EPS || v < -EDGE_EPS || u + v > 1.0 + EDGE_EPS {
+        return f32::INFINITY;
+    }
+    let t = e2.dot(q) * inv;
+    if t > ray.tmin && t <= ray.tmax {
+        t
+    } else {
+        f32::INFINITY
     }
 }
 
@@ -195,6 +253,37 @@ mod tests {
             single.nearest(Vec3::new(1.0, 2.0, 5.0)).unwrap().distance,
             2.0
         );
+    }
+
+    #[test]
+    fn first_hit_is_the_nearer_of_two_planes_from_either_side_within_max_t() {
+        let square = |z: f32| {
+            let corner = |x: f32, y: f32| Vec3A::new(x, y, z);
+            [
+                Triangle {
+                    v0: corner(-1.0, -1.0),
+                    v1: corner(1.0, -1.0),
+                    v2: corner(1.0, 1.0),
+                },
+                Triangle {
+                    v0: corner(-1.0, -1.0),
+                    v1: corner(1.0, 1.0),
+                    v2: corner(-1.0, 1.0),
+                },
+            ]
+        };
+        let surface = SurfaceBvh::new([square(2.0), square(4.0)].concat());
+        let dir = Vec3::new(0.1, 0.1, 2.0);
+        let hit = surface.first_hit(Vec3::ZERO, dir, f32::INFINITY).unwrap();
+        assert!((hit.t - 1.0).abs() < 1e-6 && hit.triangle < 2, "{hit:?}");
+        // Through the diagonal the two triangles share.
+        let diagonal = surface.first_hit(Vec3::ZERO, Vec3::new(0.5, 0.5, 2.0), 10.0);
+        assert!(diagonal.is_some_and(|h| h.triangle < 2));
+        assert!(surface.first_hit(Vec3::ZERO, dir, 0.99).is_none());
+        let back = surface.first_hit(Vec3::new(0.0, 0.0, 6.0), -dir, f32::INFINITY);
+        assert!(back.is_some_and(|h| (h.t - 1.0).abs() < 1e-6 && h.triangle >= 2));
+        assert!(surface.first_hit(Vec3::ZERO, -dir, f32::INFINITY).is_none());
+        assert!(surface.first_hit(Vec3::ZERO, Vec3::ZERO, 1.0).is_none());
     }
 
     #[test]

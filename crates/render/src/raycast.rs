@@ -1,13 +1,11 @@
 //! CPU ray-cast oracle: the reference the rasterizer's depth (and colour) is tested against, and
 //! the tool the built-in scenes' checks use to look through their default trajectories.
 //!
-//! Rays are traced through an obvhs BVH2 with a Möller–Trumbore test whose barycentric bounds are
-//! widened by [`EDGE_EPS`], so a ray through a shared edge never slips between two triangles.
+//! Rays are traced through the scene's [`SurfaceBvh`] (its first-hit query).
 
 mod shading;
 
 use glam::{DVec3, Vec3, Vec3A};
-use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use rayon::prelude::*;
 pub use rslam_core::SurfacePoint;
@@ -17,8 +15,6 @@ use crate::{Mesh, Scene, Texture};
 use shading::Shading;
 pub use shading::UvDerivatives;
 
-/// Barycentric slack so rays through shared edges hit one of the two triangles.
-const EDGE_EPS: f32 = 1e-6;
 /// Two triangles lie in one plane when their unit normals' dot product is at least this
 /// (about 0.8°) ...
 const SAME_PLANE_COS: f32 = 1.0 - 1e-4;
@@ -94,24 +90,12 @@ impl RayCaster {
 
     /// Closest hit with `0 < t ≤ max_distance` (in units of `dir`).
     pub fn cast_within(&self, origin: Vec3, dir: Vec3, max_distance: f32) -> Option<Hit> {
-        let (bvh, triangles) = (self.surface.bvh(), self.triangles());
-        if triangles.is_empty() || dir == Vec3::ZERO {
-            return None;
-        }
-        let ray = Ray::new(origin.into(), dir.into(), 0.0, max_distance);
-        let mut hit = RayHit::none();
-        let found = bvh.ray_traverse(ray, &mut hit, |ray, id| {
-            intersect(&triangles[bvh.primitive_indices[id] as usize], ray)
-        });
-        if !found {
-            return None;
-        }
-        let triangle = bvh.primitive_indices[hit.primitive_id as usize];
-        let tri = &triangles[triangle as usize];
+        let hit = self.surface.first_hit(origin, dir, max_distance)?;
+        let tri = &self.triangles()[hit.triangle as usize];
         let point = Vec3A::from(origin) + Vec3A::from(dir) * hit.t;
         Some(Hit {
             distance: hit.t,
-            triangle,
+            triangle: hit.triangle,
             barycentrics: barycentrics(tri, point),
         })
     }
@@ -275,33 +259,8 @@ pub fn camera_ray(world_from_camera: &Pose, k: &Intrinsics, x: usize, y: usize) 
     )
 }
 
-/// Möller–Trumbore with [`EDGE_EPS`] slack; `f32::INFINITY` on a miss, as obvhs expects.
-fn intersect(tri: &Triangle, ray: &Ray) -> f32 {
-    let e1 = tri.v1 - tri.v0;
-    let e2 = tri.v2 - tri.v0;
-    let p = ray.direction.cross(e2);
-    let det = e1.dot(p);
-    if det == 0.0 || !det.is_finite() {
-        return f32::INFINITY;
-    }
-    let inv = 1.0 / det;
-    let s = ray.origin - tri.v0;
-    let u = s.dot(p) * inv;
-    let q = s.cross(e1);
-    let v = ray.direction.dot(q) * inv;
-    if u < -EDGE_EPS || v < -EDGE_EPS || u + v > 1.0 + EDGE_EPS {
-        return f32::INFINITY;
-    }
-    let t = e2.dot(q) * inv;
-    if t > ray.tmin && t <= ray.tmax {
-        t
-    } else {
-        f32::INFINITY
-    }
-}
-
-/// Barycentric weights of a point inside the triangle (clamped onto it: hits may lie up to
-/// [`EDGE_EPS`] outside).
+/// Barycentric weights of a point inside the triangle (clamped onto it: hits may lie a little
+/// outside, see [`SurfaceBvh::first_hit`]).
 fn barycentrics(tri: &Triangle, p: Vec3A) -> [f32; 3] {
     let [_, b1, b2] = plane_barycentrics(tri, p);
     if !(b1.is_finite() && b2.is_finite()) {

@@ -15,6 +15,7 @@ mod orbslam3;
 mod reader;
 pub mod ros2;
 mod verify;
+mod viewpoints;
 mod writer;
 
 pub use atomic_write::write_atomically;
@@ -34,4 +35,5 @@ pub use no_symlinks::refuse_symlinks;
 pub use orbslam3::rgbd_inertial_settings;
 pub use reader::{read_dataset, DatasetFrame, DatasetOverrides, SourceDataset};
 pub use verify::{verify_output, Verification};
+pub use viewpoints::{read_views, DatasetViews, View, ViewCamera};
 pub use writer::{DatasetWriter, FrameFiles, OutputFrame};

@@ -9,21 +9,30 @@
 //! and the number does not carry the sampling spacing of the other side. A reconstruction that is
 //! a point cloud is measured to its nearest point (all of its points) and its accuracy is taken
 //! over its points, subsampled to the sample count.
+//!
+//! Both sides are culled to what the ground-truth cameras saw before the means are taken
+//! ([`Culling`], by default Co-SLAM's frustum and occlusion culling); the distances still go to
+//! the other side's whole surface.
 
+mod culling;
 mod sampling;
 mod surface;
 mod text_report;
 
+#[cfg(test)]
+mod culling_tests;
 #[cfg(test)]
 mod tests;
 
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
+use rslam_core::dataset::DatasetViews;
 use rslam_core::SurfaceBvh;
 use serde::Serialize;
 
 use crate::EvalError;
+pub use culling::{Culling, OCCLUSION_TOLERANCE_M};
 use surface::{load_surface, Role};
 pub use text_report::recon_text_report;
 
@@ -40,6 +49,8 @@ pub struct ReconOptions {
     pub seed: u64,
     /// A ground-truth point counts as completed when closer than this to the reconstruction, cm.
     pub threshold_cm: f64,
+    /// The part of both surfaces measured.
+    pub culling: Culling,
 }
 
 impl Default for ReconOptions {
@@ -48,6 +59,7 @@ impl Default for ReconOptions {
             samples: DEFAULT_RECON_SAMPLES,
             seed: 0,
             threshold_cm: DEFAULT_THRESHOLD_CM,
+            culling: Culling::default(),
         }
     }
 }
@@ -67,6 +79,14 @@ pub struct SurfaceSummary {
     pub vertices: usize,
     pub triangles: usize,
     pub samples: usize,
+    /// The samples the culling kept: the metrics are means over these.
+    pub kept: usize,
+}
+
+impl SurfaceSummary {
+    pub fn kept_percent(&self) -> f64 {
+        self.kept as f64 / self.samples as f64 * 100.0
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -78,20 +98,42 @@ pub struct ReconMetrics {
     /// Ground-truth points closer than `options.threshold_cm` to the reconstruction, %.
     pub completion_ratio_percent: f64,
     pub options: ReconOptions,
+    /// The ground-truth camera poses culled to (0 without culling).
+    pub views: usize,
     pub reconstruction: SurfaceSummary,
     pub ground_truth: SurfaceSummary,
 }
 
 /// Reads the reconstruction (PLY mesh or point cloud) and the ground-truth mesh (PLY), both in
-/// metres, and measures one against the other.
+/// metres and in the scene's world frame, and measures one against the other over what the
+/// dataset's `views` saw (needed unless the culling is [`Culling::None`]).
 pub fn evaluate_reconstruction(
     reconstruction: &Path,
     ground_truth: &Path,
     options: &ReconOptions,
+    views: Option<&DatasetViews>,
 ) -> Result<ReconMetrics, EvalError> {
     check(options)?;
-    let rec = load_surface(reconstruction, Role::Reconstruction, options)?;
-    let gt = load_surface(ground_truth, Role::GroundTruth, options)?;
+    let views = match (options.culling, views) {
+        (Culling::None, _) => None,
+        (_, Some(views)) if !views.views.is_empty() => Some(views),
+        (culling, _) => {
+            return Err(EvalError::BadOption {
+                name: "culling",
+                value: culling.to_string(),
+                expected:
+                    "the ground-truth cameras of the dataset (--dataset DIR), or culling none",
+            })
+        }
+    };
+    let mut rec = load_surface(reconstruction, Role::Reconstruction, options)?;
+    let mut gt = load_surface(ground_truth, Role::GroundTruth, options)?;
+    if let Some(views) = views {
+        let rec_kept = culling::kept(&rec.samples, options.culling, views, &gt.bvh);
+        let gt_kept = culling::kept(&gt.samples, options.culling, views, &gt.bvh);
+        rec.keep(&rec_kept, options.culling)?;
+        gt.keep(&gt_kept, options.culling)?;
+    }
     let to_gt = distances(&rec.samples, &gt.bvh);
     let to_rec = distances(&gt.samples, &rec.bvh);
     let threshold_m = options.threshold_cm / 100.0;
@@ -101,6 +143,7 @@ pub fn evaluate_reconstruction(
         completion_cm: mean(&to_rec) * 100.0,
         completion_ratio_percent: completed as f64 / to_rec.len() as f64 * 100.0,
         options: options.clone(),
+        views: views.map_or(0, |v| v.views.len()),
         reconstruction: rec.summary,
         ground_truth: gt.summary,
     })

@@ -8,7 +8,7 @@ use rslam_core::mesh_io::{read_ply, MeshGeometry};
 use rslam_core::SurfaceBvh;
 
 use super::sampling::{sample_points, sample_triangles};
-use super::{ReconOptions, SurfaceKind, SurfaceSummary};
+use super::{Culling, ReconOptions, SurfaceKind, SurfaceSummary};
 use crate::EvalError;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,6 +33,24 @@ pub(super) struct Surface {
     pub summary: SurfaceSummary,
     pub bvh: SurfaceBvh,
     pub samples: Vec<Vec3>,
+}
+
+impl Surface {
+    /// Keeps the samples whose flag is set; an error when none is left.
+    pub fn keep(&mut self, kept: &[bool], culling: Culling) -> Result<(), EvalError> {
+        let mut flags = kept.iter();
+        self.samples.retain(|_| *flags.next().unwrap_or(&false));
+        self.summary.kept = self.samples.len();
+        if self.samples.is_empty() {
+            return Err(EvalError::BadMesh {
+                path: self.summary.path.clone(),
+                message: format!(
+                    "no point of it lies in what the ground-truth cameras saw (culling {culling}): expected it in the scene's world frame, where the dataset's ground truth is"
+                ),
+            });
+        }
+        Ok(())
+    }
 }
 
 pub(super) fn load_surface(
@@ -90,5 +108,6 @@ fn summary(path: &Path, geometry: &MeshGeometry, samples: usize) -> SurfaceSumma
         vertices: geometry.positions.len(),
         triangles: geometry.triangle_count(),
         samples,
+        kept: samples,
     }
 }

@@ -6,24 +6,32 @@ use std::path::PathBuf;
 use super::*;
 
 /// Fewer than the default: debug-build tests, and the answers below are exact or bounded.
-const SAMPLES: usize = 20_000;
+pub(super) const SAMPLES: usize = 20_000;
 
-fn options() -> ReconOptions {
+/// Without culling: these answers are about the distances.
+pub(super) fn options() -> ReconOptions {
     ReconOptions {
         samples: SAMPLES,
+        culling: Culling::None,
         ..ReconOptions::default()
     }
 }
 
-struct Files(tempfile::TempDir);
+pub(super) struct Files(tempfile::TempDir);
 
 impl Files {
-    fn new() -> Self {
+    pub(super) fn new() -> Self {
         Self(tempfile::tempdir().unwrap())
     }
 
     /// Binary little-endian PLY (ASCII with `ascii`); no faces makes a point cloud.
-    fn ply(&self, name: &str, positions: &[[f32; 3]], faces: &[[u32; 3]], ascii: bool) -> PathBuf {
+    pub(super) fn ply(
+        &self,
+        name: &str,
+        positions: &[[f32; 3]],
+        faces: &[[u32; 3]],
+        ascii: bool,
+    ) -> PathBuf {
         let format = if ascii {
             "ascii"
         } else {
@@ -125,7 +133,7 @@ fn a_plane_against_a_shifted_plane_is_off_by_the_shift() {
     for (shift_m, ratio) in [(0.02, 100.0), (0.08, 0.0)] {
         let (v, f) = square(shift_m as f32);
         let rec = files.ply("rec.ply", &v, &f, false);
-        let m = evaluate_reconstruction(&rec, &gt, &options()).unwrap();
+        let m = evaluate_reconstruction(&rec, &gt, &options(), None).unwrap();
         let shift_cm = shift_m * 100.0;
         assert!((m.accuracy_cm - shift_cm).abs() < 1e-4, "{m:?}");
         assert!((m.completion_cm - shift_cm).abs() < 1e-4, "{m:?}");
@@ -140,7 +148,7 @@ fn a_mesh_against_itself_gives_zero_and_full_completion() {
     let files = Files::new();
     let (v, f) = sphere(24);
     let path = files.ply("sphere.ply", &v, &f, false);
-    let m = evaluate_reconstruction(&path, &path, &options()).unwrap();
+    let m = evaluate_reconstruction(&path, &path, &options(), None).unwrap();
     assert!(m.accuracy_cm < 1e-4, "{m:?}");
     assert!(m.completion_cm < 1e-4, "{m:?}");
     assert_eq!(m.completion_ratio_percent, 100.0);
@@ -157,7 +165,7 @@ fn a_coarser_sphere_is_off_by_less_than_its_deepest_chord() {
     // centre they are at most that far apart.
     let bound_cm = deepest_chord(&coarse_v, &coarse_f).max(deepest_chord(&fine_v, &fine_f)) * 100.0;
     assert!(bound_cm > 1.0 && bound_cm < 5.0, "{bound_cm}");
-    let m = evaluate_reconstruction(&rec, &gt, &options()).unwrap();
+    let m = evaluate_reconstruction(&rec, &gt, &options(), None).unwrap();
     for value in [m.accuracy_cm, m.completion_cm] {
         assert!(
             value > 0.1 && value < bound_cm,
@@ -166,7 +174,7 @@ fn a_coarser_sphere_is_off_by_less_than_its_deepest_chord() {
     }
     assert_eq!(m.completion_ratio_percent, 100.0);
     // The roles swapped: the same distances, measured from the other side.
-    let swapped = evaluate_reconstruction(&gt, &rec, &options()).unwrap();
+    let swapped = evaluate_reconstruction(&gt, &rec, &options(), None).unwrap();
     assert!((swapped.accuracy_cm - m.completion_cm).abs() < 0.02 * m.completion_cm);
     assert!((swapped.completion_cm - m.accuracy_cm).abs() < 0.02 * m.accuracy_cm);
 }
@@ -183,7 +191,7 @@ fn a_point_cloud_is_measured_by_its_points() {
         .map(|[x, y, _]| [x, y, shift])
         .collect();
     let rec = files.ply("cloud.ply", &cloud, &[], true);
-    let m = evaluate_reconstruction(&rec, &gt, &options()).unwrap();
+    let m = evaluate_reconstruction(&rec, &gt, &options(), None).unwrap();
     assert_eq!(m.reconstruction.kind, SurfaceKind::PointCloud);
     assert_eq!(m.reconstruction.samples, cloud.len());
     assert!((m.accuracy_cm - 1.0).abs() < 1e-4, "{m:?}");
@@ -199,7 +207,7 @@ fn a_point_cloud_is_measured_by_its_points() {
         samples: 500,
         ..options()
     };
-    let subsampled = evaluate_reconstruction(&rec, &gt, &few).unwrap();
+    let subsampled = evaluate_reconstruction(&rec, &gt, &few, None).unwrap();
     assert_eq!(subsampled.reconstruction.samples, 500);
     assert!((subsampled.accuracy_cm - 1.0).abs() < 1e-4);
 }
@@ -217,7 +225,7 @@ fn the_seed_alone_fixes_the_numbers_whatever_the_thread_count() {
             .build()
             .unwrap();
         pool.install(|| {
-            evaluate_reconstruction(&rec, &gt, &ReconOptions { seed, ..options() }).unwrap()
+            evaluate_reconstruction(&rec, &gt, &ReconOptions { seed, ..options() }, None).unwrap()
         })
     };
     assert_eq!(run(1, 7), run(3, 7));
@@ -253,7 +261,7 @@ fn bad_input_is_a_one_line_error_naming_the_file() {
         (files.0.path().join("missing.ply"), "missing.ply"),
     ];
     for (rec, expected) in cases {
-        let err = evaluate_reconstruction(&rec, &gt, &options())
+        let err = evaluate_reconstruction(&rec, &gt, &options(), None)
             .unwrap_err()
             .to_string();
         assert!(err.contains(expected), "expected '{expected}' in '{err}'");
@@ -261,7 +269,7 @@ fn bad_input_is_a_one_line_error_naming_the_file() {
         assert!(!err.contains('\n'), "one line: {err}");
     }
     let cloud = files.ply("cloud.ply", &v, &[], false);
-    let err = evaluate_reconstruction(&gt, &cloud, &options()).unwrap_err();
+    let err = evaluate_reconstruction(&gt, &cloud, &options(), None).unwrap_err();
     assert!(
         err.to_string()
             .contains("no faces: expected the ground-truth mesh"),
@@ -277,7 +285,7 @@ fn bad_input_is_a_one_line_error_naming_the_file() {
             ..options()
         },
     ] {
-        let err = evaluate_reconstruction(&gt, &gt, &bad).unwrap_err();
+        let err = evaluate_reconstruction(&gt, &gt, &bad, None).unwrap_err();
         assert!(matches!(err, EvalError::BadOption { .. }), "{err}");
     }
 }

@@ -2,11 +2,14 @@
 //! mesh (exported once per scene into the report folder). The reconstruction must be in the
 //! scene's world frame, as NICE-SLAM and Co-SLAM write theirs (they start from the ground-truth
 //! first pose); one in the method's own frame would need the trajectory alignment applied first.
+//! Both surfaces are culled to what the sequence's ground-truth cameras saw (its dataset's
+//! views), by default as Co-SLAM does ([`Culling`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use rslam_eval::recon::{evaluate_reconstruction, ReconMetrics, ReconOptions};
+use rslam_core::dataset::{read_views, DatasetViews};
+use rslam_eval::recon::{evaluate_reconstruction, Culling, ReconMetrics, ReconOptions};
 use serde::Serialize;
 
 use rslam_pipeline::PipelineError;
@@ -15,23 +18,31 @@ use super::record::RunFiles;
 use crate::sequence::Sequence;
 use crate::{Suite, SuiteError};
 
-/// One run's reconstruction metrics.
+/// One run's reconstruction metrics, or why its reconstruction could not be measured.
 #[derive(Clone, Debug, Serialize)]
 pub struct ReconRow {
     pub method: String,
     pub sequence: String,
     pub repeat: usize,
-    pub metrics: ReconMetrics,
+    pub metrics: Option<ReconMetrics>,
+    /// Why the reconstruction could not be measured (`metrics` is then `None`).
+    pub failure: Option<String>,
 }
 
-/// Evaluates the mesh of every finished run under `runs/` that wrote one and, when there is any,
-/// writes `out/reconstruction.csv` and `.json`; ground-truth meshes go to
-/// `out/ground_truth/<scene>.ply`. Returns the rows and the files written.
+/// Evaluates the mesh of every finished run under `runs/` that wrote one, culled by `culling`,
+/// and, when there is any, writes `out/reconstruction.csv` and `.json`; ground-truth meshes go
+/// to `out/ground_truth/<scene>.ply`. Returns the rows and the files written.
 pub fn report_reconstructions(
     suite: &Suite,
     out: &Path,
+    culling: Culling,
 ) -> Result<(Vec<ReconRow>, Vec<PathBuf>), SuiteError> {
     let mut ground_truth: BTreeMap<&str, PathBuf> = BTreeMap::new();
+    let mut views: BTreeMap<&str, DatasetViews> = BTreeMap::new();
+    let options = ReconOptions {
+        culling,
+        ..ReconOptions::default()
+    };
     let mut rows = Vec::new();
     for (method, sequence, repeat, mesh) in meshes(suite)? {
         let gt = match ground_truth.get(sequence.scene.as_str()) {
@@ -42,12 +53,24 @@ pub fn report_reconstructions(
                 path
             }
         };
-        let metrics = evaluate_reconstruction(&mesh, &gt, &ReconOptions::default())?;
+        if culling != Culling::None && !views.contains_key(sequence.name.as_str()) {
+            let dir = sequence.dir(&suite.dir);
+            let read = read_views(&dir).map_err(PipelineError::from)?;
+            views.insert(&sequence.name, read);
+        }
+        // The ground truth is rslam's own export: what fails here is the method's file.
+        let measured =
+            evaluate_reconstruction(&mesh, &gt, &options, views.get(sequence.name.as_str()));
+        let (metrics, failure) = match measured {
+            Ok(metrics) => (Some(metrics), None),
+            Err(e) => (None, Some(e.to_string())),
+        };
         rows.push(ReconRow {
             method,
             sequence: sequence.name.clone(),
             repeat,
             metrics,
+            failure,
         });
     }
     if rows.is_empty() {
@@ -111,17 +134,29 @@ fn export_ground_truth(
 
 /// `reconstruction.csv`: one row per run with a mesh.
 fn reconstruction_csv(rows: &[ReconRow]) -> String {
-    let mut text =
-        String::from("method,sequence,repeat,accuracy_cm,completion_cm,completion_ratio_percent\n");
+    let mut text = String::from(
+        "method,sequence,repeat,accuracy_cm,completion_cm,completion_ratio_percent,\
+         culling,reconstruction_kept_percent,ground_truth_kept_percent,failure\n",
+    );
     for r in rows {
+        let values = match (&r.metrics, &r.failure) {
+            (Some(m), _) => format!(
+                "{:.4},{:.4},{:.2},{},{:.2},{:.2},",
+                m.accuracy_cm,
+                m.completion_cm,
+                m.completion_ratio_percent,
+                m.options.culling,
+                m.reconstruction.kept_percent(),
+                m.ground_truth.kept_percent()
+            ),
+            (None, failure) => format!(
+                ",,,,,,\"{}\"",
+                failure.as_deref().unwrap_or_default().replace('"', "\"\"")
+            ),
+        };
         text.push_str(&format!(
-            "{},{},{},{:.4},{:.4},{:.2}\n",
-            r.method,
-            r.sequence,
-            r.repeat,
-            r.metrics.accuracy_cm,
-            r.metrics.completion_cm,
-            r.metrics.completion_ratio_percent
+            "{},{},{},{values}\n",
+            r.method, r.sequence, r.repeat
         ));
     }
     text

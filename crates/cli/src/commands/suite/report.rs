@@ -3,6 +3,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use rslam_core::trajectory_io::ReadOptions;
+use rslam_eval::recon::Culling;
 use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
 use rslam_eval::EvalOptions;
 use rslam_suite::bench::{report_reconstructions, RUNS_DIR};
@@ -18,6 +19,10 @@ pub struct ReportArgs {
     /// ATE counted for a failed run, metres.
     #[arg(long, default_value_t = DEFAULT_FAILURE_ATE)]
     failure_ate: f64,
+    /// What of each surface the mapping metrics measure: none, frustum or visible (what the
+    /// sequence's ground-truth cameras saw; see `rslam eval recon --help`).
+    #[arg(long, default_value_t = Culling::default())]
+    cull: Culling,
 }
 
 pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
@@ -37,23 +42,24 @@ pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
     let (report, written) = evaluate_runs_into(&options, &out)
         .with_context(|| format!("evaluating the runs of {}", args.dir.display()))?;
     print!("{}", summary_text(&report));
-    let (reconstructions, recon_files) = report_reconstructions(&suite, &out)?;
+    let (reconstructions, recon_files) = report_reconstructions(&suite, &out, args.cull)?;
     if !reconstructions.is_empty() {
         println!(
-            "\n{} reconstruction(s) against the ground-truth meshes (cm, cm, %):",
-            reconstructions.len()
+            "\n{} reconstruction(s) against the ground-truth meshes, culling {} (cm, cm, %):",
+            reconstructions.len(),
+            args.cull
         );
         for r in &reconstructions {
-            let m = &r.metrics;
-            println!(
-                "{} {} #{}: accuracy {:.2}, completion {:.2}, ratio {:.1}",
-                r.method,
-                r.sequence,
-                r.repeat,
-                m.accuracy_cm,
-                m.completion_cm,
-                m.completion_ratio_percent
-            );
+            let what = match (&r.metrics, &r.failure) {
+                (Some(m), _) => format!(
+                    "accuracy {:.2}, completion {:.2}, ratio {:.1}",
+                    m.accuracy_cm, m.completion_cm, m.completion_ratio_percent
+                ),
+                (None, failure) => {
+                    format!("not measured: {}", failure.as_deref().unwrap_or_default())
+                }
+            };
+            println!("{} {} #{}: {what}", r.method, r.sequence, r.repeat);
         }
     }
     println!("\nwritten:");
