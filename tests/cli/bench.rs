@@ -265,6 +265,97 @@ command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && {writes} > \"$3\"", 
     }
 }
 
+/// A "renderer" that hands back the dataset's own frames as its map's views: on the clean
+/// sequence they are the clean frames (PSNR infinite, SSIM 1, depth L1 0); under fog, colour
+/// differs and depth does not. One named like no frame is reported, not fatal.
+#[test]
+fn rendered_views_are_measured_against_the_clean_frames_of_the_same_job() {
+    let ws = Workspace::new();
+    suite(&ws);
+    let renderer = |name: &str, copy: &str| {
+        ws.write(
+            &format!("{name}.toml"),
+            &format!(
+                r#"name = "{name}"
+reads = "tum"
+timeout_s = 30
+renders = "{{work}}/renders"
+command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && mkdir \"$3\" && {copy}", "sh", "{{dataset}}", "{{estimate}}", "{{work}}/renders"]
+"#
+            ),
+        );
+    };
+    renderer("copies_frames", r#"cp -r \"$1/rgb\" \"$1/depth\" \"$3/\""#);
+    renderer(
+        "misnames",
+        r#"cp \"$(ls \"$1\"/rgb/*.png | head -1)\" \"$3/frame.png\""#,
+    );
+    ws.rslam(&[
+        "suite",
+        "bench",
+        "suite",
+        "--methods",
+        "copies_frames.toml",
+        "--methods",
+        "misnames.toml",
+    ])
+    .success();
+    let out = ws.rslam(&["suite", "report", "suite"]).success();
+    assert!(
+        out.contains("4 run(s) rendered their map at the ground-truth poses"),
+        "{out}"
+    );
+    assert!(out.contains("copies_frames room0__clean #0: PSNR inf dB, SSIM 1.0000 over 6 frame(s); depth L1 0.00 cm over 6"), "{out}");
+    assert!(
+        out.contains("misnames room0__fog-3 #0: not measured: ")
+            && out.contains(
+                "frame.png: named like no frame of the dataset (expected e.g. rgb/0.000000.png)"
+            ),
+        "{out}"
+    );
+    assert!(out.contains("psnr_db against ATE over "), "{out}");
+    assert!(ws
+        .path("suite/report/clean/room0__fog-3/rslam.json")
+        .is_file());
+
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(ws.path("suite/report/rendered_views.json")).unwrap(),
+    )
+    .unwrap();
+    let row = |method: &str, sequence: &str| {
+        json.as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["method"] == method && r["sequence"] == sequence)
+            .unwrap()
+            .clone()
+    };
+    let fog = &row("copies_frames", "room0__fog-3")["quality"];
+    let psnr = fog["psnr_db"].as_f64().unwrap();
+    let ssim = fog["ssim"].as_f64().unwrap();
+    assert!(
+        psnr > 5.0 && psnr < 30.0 && ssim < 0.99,
+        "fog changes colour: {fog}"
+    );
+    assert_eq!(fog["depth_l1_cm"], 0.0, "and not depth: {fog}");
+    assert_eq!(
+        row("copies_frames", "room0__clean")["quality"]["psnr_db"],
+        serde_json::Value::Null
+    );
+    // The clean frames are made once, then found complete.
+    let manifest = ws.path("suite/report/clean/room0__fog-3/rslam.json");
+    let made = std::fs::metadata(&manifest).unwrap().modified().unwrap();
+    let again = ws.rslam(&["suite", "report", "suite"]).success();
+    let measured = again
+        .lines()
+        .filter(|l| l.starts_with("copies_frames room0__"));
+    assert_eq!(measured.count(), 2, "{again}");
+    assert_eq!(
+        std::fs::metadata(&manifest).unwrap().modified().unwrap(),
+        made
+    );
+}
+
 /// A rig row is made in the EuRoC layout; a method that reads it gets the dataset and ORB-SLAM3's
 /// stereo settings as `{camera}`, and the report scores it against the body's ground truth.
 #[test]

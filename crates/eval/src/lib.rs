@@ -21,10 +21,13 @@
 //! frames beside real ones, and the band real indoor photographs give.
 //!
 //! For maps, [`recon`] measures a reconstructed mesh or point cloud against the ground-truth mesh
-//! (accuracy, completion, completion ratio; CO-SLAM's protocol, distances to surfaces).
+//! (accuracy, completion, completion ratio; CO-SLAM's protocol, distances to surfaces, culled to
+//! what the cameras saw), and [`view_quality`] a map's rendered views against the clean frames
+//! (PSNR, SSIM, depth L1).
 
 mod alignment;
 mod association;
+pub mod correlation;
 mod error;
 mod evaluate;
 pub mod image_stats;
@@ -38,6 +41,7 @@ mod statistics;
 mod success_rate;
 mod text_report;
 mod umeyama;
+pub mod view_quality;
 
 #[cfg(test)]
 mod test_support;

@@ -248,6 +248,19 @@ impl PerturbSpec {
         Ok(())
     }
 
+    /// The items that decide where and when frames are seen (trajectory deviations, `fast`, a
+    /// rig's calibration) without those that change what a frame shows: the spec of the clean
+    /// frames at a perturbed sequence's ground-truth poses.
+    pub fn poses_only(&self) -> PerturbSpec {
+        PerturbSpec {
+            rotation: self.rotation,
+            translation: self.translation,
+            fast: self.fast,
+            calibration: self.calibration.clone(),
+            ..PerturbSpec::default()
+        }
+    }
+
     /// True when nothing is perturbed.
     pub fn is_empty(&self) -> bool {
         *self == PerturbSpec::default()

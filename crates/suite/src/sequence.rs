@@ -84,6 +84,11 @@ impl Sequence {
     /// manifest records as the command, so that a reader can make the sequence again by hand.
     /// Whether a sequence is complete is the job's question ([`Sequence::job`]), not this.
     pub fn command(&self) -> Vec<String> {
+        self.command_to(&Path::new(DATASETS_DIR).join(&self.name))
+    }
+
+    /// [`Sequence::command`] writing to `out`.
+    fn command_to(&self, out: &Path) -> Vec<String> {
         let mut args: Vec<String> = ["rslam", "render", "--scene", &self.scene]
             .map(String::from)
             .to_vec();
@@ -119,13 +124,7 @@ impl Sequence {
         if !self.spec.is_empty() {
             push("--perturb", self.spec.to_string());
         }
-        push(
-            "--out",
-            Path::new(DATASETS_DIR)
-                .join(&self.name)
-                .display()
-                .to_string(),
-        );
+        push("--out", out.display().to_string());
         args
     }
 
@@ -149,6 +148,20 @@ impl Sequence {
             out: self.dir(suite_dir),
             force,
             command: self.command(),
+        }
+    }
+
+    /// The job of this sequence's clean frames in `out`: the same poses, nothing that changes
+    /// what a frame shows ([`PerturbSpec::poses_only`]).
+    pub fn clean_job(&self, suite_dir: &Path, out: PathBuf) -> Job {
+        let clean = Sequence {
+            spec: self.spec.poses_only(),
+            ..self.clone()
+        };
+        Job {
+            command: clean.command_to(&out),
+            out,
+            ..clean.job(suite_dir, false)
         }
     }
 

@@ -7,7 +7,12 @@
 //! timeout_s = 900                   # per run
 //! repeats = 3                       # runs per sequence (default 1)
 //! mesh = "{work}/mesh.ply"          # optional: the reconstruction it writes
+//! renders = "{work}/renders"        # optional: its map rendered at the ground-truth poses
 //! ```
+//!
+//! `renders` is a folder of frames named as the dataset's are (`results/frame000010.png` and
+//! `results/depth000010.png`, or `rgb/<t>.png` and `depth/<t>.png`), each the map's view at that
+//! frame's ground-truth pose, for any subset of the frames, colour and/or depth.
 //!
 //! Each argument may hold placeholders, replaced per run: `{dataset}` the dataset folder,
 //! `{estimate}` the TUM trajectory to write, `{camera}` the layout's camera file
@@ -46,6 +51,7 @@ struct MethodFile {
     #[serde(default = "one")]
     repeats: usize,
     mesh: Option<String>,
+    renders: Option<String>,
 }
 
 fn one() -> usize {
@@ -60,6 +66,8 @@ pub struct Method {
     pub timeout_s: f64,
     pub repeats: usize,
     pub mesh: Option<String>,
+    /// The folder of its rendered views (see the module's documentation).
+    pub renders: Option<String>,
     /// The folder of the method file (`{method_dir}`).
     pub dir: PathBuf,
 }
@@ -122,8 +130,10 @@ impl Method {
         for argument in &file.command {
             check_placeholders(argument).map_err(|m| bad(line_with("command"), m))?;
         }
-        if let Some(mesh) = &file.mesh {
-            check_placeholders(mesh).map_err(|m| bad(line_with("mesh"), m))?;
+        for (key, value) in [("mesh", &file.mesh), ("renders", &file.renders)] {
+            if let Some(value) = value {
+                check_placeholders(value).map_err(|m| bad(line_with(key), m))?;
+            }
         }
         if !(file.timeout_s.is_finite() && file.timeout_s > 0.0) {
             return Err(bad(
@@ -156,6 +166,7 @@ impl Method {
             timeout_s: file.timeout_s,
             repeats: file.repeats,
             mesh: file.mesh,
+            renders: file.renders,
             dir,
         })
     }
@@ -170,6 +181,13 @@ impl Method {
         self.mesh
             .as_ref()
             .map(|m| PathBuf::from(self.fill(m, places)))
+    }
+
+    /// Where this run's rendered views will be, if the method renders its map.
+    pub fn renders_for(&self, places: &RunPlaces) -> Option<PathBuf> {
+        self.renders
+            .as_ref()
+            .map(|r| PathBuf::from(self.fill(r, places)))
     }
 
     fn fill(&self, template: &str, places: &RunPlaces) -> String {

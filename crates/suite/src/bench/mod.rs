@@ -6,10 +6,15 @@ mod method;
 mod process;
 mod reconstruction;
 mod record;
+mod rendered_views;
 mod run_method;
 
 pub use method::{Method, RunPlaces, PLACEHOLDERS};
 pub use process::{run_process, Ending, ProcessReport};
 pub use reconstruction::{report_reconstructions, ReconRow};
-pub use record::{RunFiles, RunRecord, RUNS_DIR};
+pub use record::{succeeded_runs, RunFiles, RunRecord, RUNS_DIR};
+pub use rendered_views::{
+    ate_correlations, report_rendered_views, AteCorrelation, RenderedViewRow, ViewQuality,
+    CLEAN_DIR,
+};
 pub use run_method::{bench_suite, BenchOptions, BenchProgress, BenchSummary, RunId};

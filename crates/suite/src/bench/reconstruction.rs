@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use rslam_pipeline::PipelineError;
 
-use super::record::RunFiles;
+use super::record::succeeded_runs;
 use crate::sequence::Sequence;
 use crate::{Suite, SuiteError};
 
@@ -44,7 +44,11 @@ pub fn report_reconstructions(
         ..ReconOptions::default()
     };
     let mut rows = Vec::new();
-    for (method, sequence, repeat, mesh) in meshes(suite)? {
+    for (sequence, record) in succeeded_runs(suite) {
+        let Some(mesh) = record.mesh else {
+            continue;
+        };
+        let (method, repeat) = (record.method, record.repeat);
         let gt = match ground_truth.get(sequence.scene.as_str()) {
             Some(path) => path.clone(),
             None => {
@@ -84,35 +88,6 @@ pub fn report_reconstructions(
         std::fs::write(path, text).map_err(|e| SuiteError::io(path, e))?;
     }
     Ok((rows, vec![csv, json]))
-}
-
-/// (method, sequence, repeat, mesh) of every finished run whose record names a mesh.
-fn meshes(suite: &Suite) -> Result<Vec<(String, &Sequence, usize, PathBuf)>, SuiteError> {
-    let runs = suite.dir.join(super::RUNS_DIR);
-    let mut found = Vec::new();
-    let Ok(methods) = std::fs::read_dir(&runs) else {
-        return Ok(found);
-    };
-    let mut methods: Vec<String> = methods
-        .flatten()
-        .filter(|e| e.path().is_dir())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .collect();
-    methods.sort();
-    for method in methods {
-        for sequence in &suite.sequences {
-            for repeat in 0.. {
-                let files = RunFiles::new(&suite.dir, &method, &sequence.name, repeat);
-                let Some(record) = files.read_record() else {
-                    break;
-                };
-                if let (None, Some(mesh)) = (&record.failure, record.mesh) {
-                    found.push((method.clone(), sequence, repeat, mesh));
-                }
-            }
-        }
-    }
-    Ok(found)
 }
 
 fn export_ground_truth(

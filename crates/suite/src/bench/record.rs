@@ -1,6 +1,7 @@
 //! What one run left in `runs/<method>/<sequence>/`: `<repeat>.txt` (the estimate) or
 //! `<repeat>.failed` (the reason, which `rslam eval --runs` counts as a failure), `<repeat>.log`,
-//! `<repeat>.mesh.ply` when the method writes one, and `<repeat>.json`, this record, written
+//! `<repeat>.mesh.ply` and `<repeat>.renders/` when the method writes them, and `<repeat>.json`,
+//! this record, written
 //! last: a run without it did not finish and is run again.
 
 use std::path::{Path, PathBuf};
@@ -8,7 +9,8 @@ use std::path::{Path, PathBuf};
 use rslam_core::dataset::write_atomically;
 use serde::{Deserialize, Serialize};
 
-use crate::SuiteError;
+use crate::sequence::Sequence;
+use crate::{Suite, SuiteError};
 
 pub const RUNS_DIR: &str = "runs";
 
@@ -25,6 +27,38 @@ pub struct RunRecord {
     pub peak_rss_mb: Option<f64>,
     /// The reconstruction kept beside the estimate, if the method wrote one.
     pub mesh: Option<PathBuf>,
+    /// The folder of its map's rendered views kept beside the estimate, if it wrote one.
+    #[serde(default)]
+    pub renders: Option<PathBuf>,
+}
+
+/// The record of every run under `runs/` that finished without failure, by method (in name
+/// order), sequence (in the suite's order) and repeat.
+pub fn succeeded_runs(suite: &Suite) -> Vec<(&Sequence, RunRecord)> {
+    let Ok(methods) = std::fs::read_dir(suite.dir.join(RUNS_DIR)) else {
+        return Vec::new();
+    };
+    let mut methods: Vec<String> = methods
+        .flatten()
+        .filter(|e| e.path().is_dir())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    methods.sort();
+    let mut found = Vec::new();
+    for method in methods {
+        for sequence in &suite.sequences {
+            for repeat in 0.. {
+                let files = RunFiles::new(&suite.dir, &method, &sequence.name, repeat);
+                let Some(record) = files.read_record() else {
+                    break;
+                };
+                if record.failure.is_none() {
+                    found.push((sequence, record));
+                }
+            }
+        }
+    }
+    found
 }
 
 /// The files of one (method, sequence, repeat).
@@ -61,6 +95,10 @@ impl RunFiles {
         self.file(".mesh.ply")
     }
 
+    pub fn renders(&self) -> PathBuf {
+        self.file(".renders")
+    }
+
     pub fn record(&self) -> PathBuf {
         self.file(".json")
     }
@@ -91,9 +129,10 @@ impl RunFiles {
                 _ => {}
             }
         }
-        let work = self.work();
-        if work.exists() {
-            std::fs::remove_dir_all(&work).map_err(|e| SuiteError::io(&work, e))?;
+        for dir in [self.work(), self.renders()] {
+            if dir.exists() {
+                std::fs::remove_dir_all(&dir).map_err(|e| SuiteError::io(&dir, e))?;
+            }
         }
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! Runs methods over a suite: which runs are left, each in its own scratch folder, and what
 //! counts as a failure (a crash, a timeout, no estimate, an estimate that does not read).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
@@ -180,16 +180,19 @@ fn run_once(
         }
         Ending::TimedOut => Some(format!("timed out after {} s", method.timeout_s)),
     };
-    let mesh = method
-        .mesh_for(&places)
-        .filter(|m| m.is_file() && failure.is_none());
-    let kept_mesh = match mesh {
-        Some(mesh) => {
-            std::fs::rename(&mesh, files.mesh()).map_err(|e| SuiteError::io(&mesh, e))?;
-            Some(files.mesh())
-        }
-        None => None,
-    };
+    let succeeded = failure.is_none();
+    let kept_mesh = keep(
+        method
+            .mesh_for(&places)
+            .filter(|m| m.is_file() && succeeded),
+        files.mesh(),
+    )?;
+    let kept_renders = keep(
+        method
+            .renders_for(&places)
+            .filter(|r| r.is_dir() && succeeded),
+        files.renders(),
+    )?;
     if failure.is_none() {
         std::fs::rename(&estimate, files.estimate()).map_err(|e| SuiteError::io(&estimate, e))?;
     }
@@ -206,8 +209,18 @@ fn run_once(
         seconds: report.seconds,
         peak_rss_mb: report.peak_rss_bytes.map(|b| b as f64 / 1e6),
         mesh: kept_mesh,
+        renders: kept_renders,
     };
     finish(&files, record)
+}
+
+/// Moves what the run wrote (a file or a folder) to where the runs folder keeps it.
+fn keep(written: Option<PathBuf>, kept: PathBuf) -> Result<Option<PathBuf>, SuiteError> {
+    let Some(written) = written else {
+        return Ok(None);
+    };
+    std::fs::rename(&written, &kept).map_err(|e| SuiteError::io(&written, e))?;
+    Ok(Some(kept))
 }
 
 fn failed_record(
@@ -227,6 +240,7 @@ fn failed_record(
         seconds: 0.0,
         peak_rss_mb: None,
         mesh: None,
+        renders: None,
     }
 }
 

@@ -6,7 +6,10 @@ use rslam_core::trajectory_io::ReadOptions;
 use rslam_eval::recon::Culling;
 use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
 use rslam_eval::EvalOptions;
-use rslam_suite::bench::{report_reconstructions, RUNS_DIR};
+use rslam_gpu::{AdapterChoice, GpuContext};
+use rslam_suite::bench::{
+    ate_correlations, report_reconstructions, report_rendered_views, RUNS_DIR,
+};
 use rslam_suite::{Suite, DATASETS_DIR};
 
 #[derive(clap::Args)]
@@ -23,6 +26,10 @@ pub struct ReportArgs {
     /// sequence's ground-truth cameras saw; see `rslam eval recon --help`).
     #[arg(long, default_value_t = Culling::default())]
     cull: Culling,
+    /// For the clean frames that rendered views are compared with: use the GPU whose name
+    /// contains this text (default: a real GPU if any, else lavapipe).
+    #[arg(long)]
+    adapter: Option<String>,
 }
 
 pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
@@ -62,8 +69,60 @@ pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
             println!("{} {} #{}: {what}", r.method, r.sequence, r.repeat);
         }
     }
+    let ate_of = |method: &str, sequence: &str, repeat: usize| {
+        let repeat = repeat.to_string();
+        report
+            .runs
+            .iter()
+            .find(|r| {
+                r.method == method && r.sequence == sequence && r.repeat.as_deref() == Some(&repeat)
+            })
+            .filter(|r| !r.failed())
+            .map(|r| r.ate)
+    };
+    let gpu = || {
+        let choice = AdapterChoice {
+            name_contains: args.adapter.clone(),
+        };
+        GpuContext::new(&choice).map_err(|e| rslam_pipeline::PipelineError::from(e).into())
+    };
+    let (views, view_files) = report_rendered_views(&suite, &out, gpu, &ate_of)?;
+    if !views.is_empty() {
+        println!(
+            "\n{} run(s) rendered their map at the ground-truth poses (against the clean frames):",
+            views.len()
+        );
+        let number = |v: Option<f64>, decimals: usize| {
+            v.map_or("-".to_string(), |v| format!("{v:.decimals$}"))
+        };
+        for r in &views {
+            let what = match (&r.quality, &r.failure) {
+                (Some(q), _) => format!(
+                    "PSNR {} dB, SSIM {} over {} frame(s); depth L1 {} cm over {}",
+                    number(q.psnr_db, 2),
+                    number(q.ssim, 4),
+                    q.colour_frames,
+                    number(q.depth_l1_cm, 2),
+                    q.depth_frames
+                ),
+                (None, failure) => {
+                    format!("not measured: {}", failure.as_deref().unwrap_or_default())
+                }
+            };
+            println!("{} {} #{}: {what}", r.method, r.sequence, r.repeat);
+        }
+        for c in ate_correlations(&views) {
+            println!(
+                "{} against ATE over {} run(s): Spearman {}, Pearson {}",
+                c.measure,
+                c.runs,
+                number(c.spearman, 3),
+                number(c.pearson, 3)
+            );
+        }
+    }
     println!("\nwritten:");
-    for path in written.iter().chain(&recon_files) {
+    for path in written.iter().chain(&recon_files).chain(&view_files) {
         println!("  {}", path.display());
     }
     Ok(ExitCode::SUCCESS)
