@@ -42,6 +42,7 @@ mod success_rate;
 mod text_report;
 mod umeyama;
 pub mod view_quality;
+mod view_quality_plot;
 
 #[cfg(test)]
 mod test_support;
@@ -59,3 +60,4 @@ pub use statistics::ErrorStatistics;
 pub use success_rate::{success_rate, PathLengths, SuccessRate};
 pub use text_report::text_report;
 pub use umeyama::umeyama;
+pub use view_quality_plot::{plot_view_quality_against_ate, ViewQualityPoint};

@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use rslam_core::dataset::{decode_depth_png, read_dataset, read_rgb8, DatasetOverrides};
 use rslam_eval::correlation::{pearson, spearman};
 use rslam_eval::view_quality::{depth_l1_m, psnr_db, ssim};
+use rslam_eval::{plot_view_quality_against_ate, ViewQualityPoint};
 use rslam_gpu::GpuContext;
 use rslam_pipeline::{PipelineError, SceneCache, Silent};
 use serde::Serialize;
@@ -86,8 +87,9 @@ pub fn ate_correlations(rows: &[RenderedViewRow]) -> Vec<AteCorrelation> {
 
 /// Measures the renders of every finished run that kept some, making the clean frames first
 /// (on the GPU `gpu` gives, asked only when there is a run to measure), with each run's ATE from
-/// `ate_of(method, sequence, repeat)`, and writes `out/rendered_views.csv` and `.json`. Returns
-/// the rows and the files written.
+/// `ate_of(method, sequence, repeat)`, and writes `out/rendered_views.csv` and `.json`, and the
+/// measures against ATE as `rendered_views.png` and `.svg`. Returns the rows and the files
+/// written.
 pub fn report_rendered_views(
     suite: &Suite,
     out: &Path,
@@ -133,7 +135,25 @@ pub fn report_rendered_views(
     for (path, text) in [(&csv, rendered_views_csv(&rows)), (&json, json_text + "\n")] {
         std::fs::write(path, text).map_err(|e| SuiteError::io(path, e))?;
     }
-    Ok((rows, vec![csv, json]))
+    let points: Vec<ViewQualityPoint> = rows
+        .iter()
+        .filter_map(|r| {
+            let quality = r.quality.as_ref()?;
+            Some(ViewQualityPoint {
+                method: r.method.clone(),
+                ate_m: r.ate_m?,
+                psnr_db: quality.psnr_db,
+                depth_l1_cm: quality.depth_l1_cm,
+            })
+        })
+        .collect();
+    let mut written = vec![csv, json];
+    for figure in ["rendered_views.png", "rendered_views.svg"] {
+        let path = out.join(figure);
+        plot_view_quality_against_ate(&path, &points)?;
+        written.push(path);
+    }
+    Ok((rows, written))
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
