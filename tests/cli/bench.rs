@@ -165,6 +165,22 @@ fn a_method_for_another_layout_is_refused_before_any_run() {
         .fails_with(2, &["bad.toml:3:", "a lone '{'"]);
 }
 
+/// A method file `<name>.toml` whose run copies the ground truth as its estimate, then runs the
+/// shell `script` with `$1` the dataset, `$3` `{work}/<file>`, which the file declares as `key`.
+fn oracle_writing(ws: &Workspace, name: &str, (key, file): (&str, &str), script: &str) {
+    ws.write(
+        &format!("{name}.toml"),
+        &format!(
+            r#"name = "{name}"
+reads = "tum"
+timeout_s = 30
+{key} = "{{work}}/{file}"
+command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && {script}", "sh", "{{dataset}}", "{{estimate}}", "{{work}}/{file}"]
+"#
+        ),
+    );
+}
+
 /// Two mappers: one writes the scene's own mesh, one a triangle no camera of the sequence saw.
 /// Culled to what the cameras saw (the default), the first is perfect over a part of the room
 /// and the second is reported as not measured; without culling, both are measured over the whole
@@ -176,16 +192,11 @@ fn a_reconstruction_is_kept_and_measured_against_what_the_cameras_saw() {
     ws.rslam(&["scene", "export", "room0", "--out", "room0.ply"])
         .success();
     let mapper = |name: &str, writes: &str| {
-        ws.write(
-            &format!("{name}.toml"),
-            &format!(
-                r#"name = "{name}"
-reads = "tum"
-timeout_s = 30
-mesh = "{{work}}/mesh.ply"
-command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && {writes} > \"$3\"", "sh", "{{dataset}}", "{{estimate}}", "{{work}}/mesh.ply"]
-"#
-            ),
+        oracle_writing(
+            &ws,
+            name,
+            ("mesh", "mesh.ply"),
+            &format!(r#"{writes} > \"$3\""#),
         );
     };
     mapper(
@@ -273,16 +284,11 @@ fn rendered_views_are_measured_against_the_clean_frames_of_the_same_job() {
     let ws = Workspace::new();
     suite(&ws);
     let renderer = |name: &str, copy: &str| {
-        ws.write(
-            &format!("{name}.toml"),
-            &format!(
-                r#"name = "{name}"
-reads = "tum"
-timeout_s = 30
-renders = "{{work}}/renders"
-command = ["sh", "-c", "cp \"$1/groundtruth.txt\" \"$2\" && mkdir \"$3\" && {copy}", "sh", "{{dataset}}", "{{estimate}}", "{{work}}/renders"]
-"#
-            ),
+        oracle_writing(
+            &ws,
+            name,
+            ("renders", "renders"),
+            &format!(r#"mkdir \"$3\" && {copy}"#),
         );
     };
     renderer("copies_frames", r#"cp -r \"$1/rgb\" \"$1/depth\" \"$3/\""#);

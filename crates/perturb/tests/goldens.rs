@@ -20,6 +20,7 @@
 use std::path::{Path, PathBuf};
 
 use rslam_core::RgbImage;
+use rslam_eval::view_quality::psnr_db;
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
 use rslam_perturb::{PerturbSpec, Perturber};
 
@@ -81,18 +82,6 @@ fn save(image: &RgbImage, path: &Path) {
     if let Some(buffer) = image::RgbImage::from_raw(image.width, image.height, image.data.clone()) {
         let _ = buffer.save(path);
     }
-}
-
-/// PSNR in dB with peak 255; infinite for identical images.
-fn psnr(a: &RgbImage, b: &RgbImage) -> f64 {
-    let squared: f64 = a
-        .data
-        .iter()
-        .zip(&b.data)
-        .map(|(&x, &y)| (x as f64 - y as f64).powi(2))
-        .sum();
-    let mse = squared / a.data.len() as f64;
-    10.0 * (255.0f64 * 255.0 / mse).log10()
 }
 
 /// Runs `<name>:<severity>` on `clean` through the public API and reads the colour back.
@@ -159,7 +148,7 @@ fn gpu_corruptions_match_imagecorruptions_goldens() {
                         expected.width, expected.height, actual.width, actual.height
                     ));
                 }
-                Ok((psnr(&actual, &expected), actual, expected))
+                Ok((psnr_db(&actual, &expected), actual, expected))
             });
             match result {
                 Ok((value, actual, expected)) => {
