@@ -105,6 +105,20 @@ impl SurfaceBvh {
         })
     }
 
+    /// Whether the ray `origin + t·dir` meets the surface anywhere with `min_t < t < max_t`: an
+    /// occlusion test, which stops at the first triangle found instead of looking for the
+    /// nearest (so it is fastest when the ray starts where occluders are likely).
+    pub fn is_blocked(&self, origin: Vec3, dir: Vec3, min_t: f32, max_t: f32) -> bool {
+        if self.triangles.is_empty() || dir == Vec3::ZERO {
+            return false;
+        }
+        let bvh = &self.bvh;
+        let ray = Ray::new(origin.into(), dir.into(), min_t, max_t);
+        !bvh.ray_traverse_miss(ray, |ray, id| {
+            intersect(&self.triangles[bvh.primitive_indices[id] as usize], ray)
+        })
+    }
+
     /// The surface point nearest to `query` (`None` for an empty surface).
     pub fn nearest(&self, query: Vec3) -> Option<SurfacePoint> {
         if self.triangles.is_empty() {
@@ -284,6 +298,27 @@ mod tests {
         assert!(back.is_some_and(|h| (h.t - 1.0).abs() < 1e-6 && h.triangle >= 2));
         assert!(surface.first_hit(Vec3::ZERO, -dir, f32::INFINITY).is_none());
         assert!(surface.first_hit(Vec3::ZERO, Vec3::ZERO, 1.0).is_none());
+        // The occlusion test agrees with the first hit on either side of max_t, and min_t
+        // leaves out what lies before it.
+        for (origin, dir, max_t) in [
+            (Vec3::ZERO, dir, 1.01),
+            (Vec3::ZERO, dir, 0.99),
+            (Vec3::new(0.0, 0.0, 3.0), dir, 0.6),
+            (Vec3::new(0.0, 0.0, 3.0), -dir, 0.4),
+            (Vec3::ZERO, -dir, 100.0),
+        ] {
+            let first = surface.first_hit(origin, dir, max_t).is_some();
+            let blocked = surface.is_blocked(origin, dir, 0.0, max_t);
+            assert_eq!(blocked, first, "{origin} {dir} {max_t}");
+        }
+        assert!(
+            surface.is_blocked(Vec3::ZERO, dir, 1.5, 2.5),
+            "the far plane"
+        );
+        assert!(
+            !surface.is_blocked(Vec3::ZERO, dir, 1.01, 1.99),
+            "between the planes"
+        );
     }
 
     #[test]

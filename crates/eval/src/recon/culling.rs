@@ -88,13 +88,14 @@ impl ViewTest {
         ((0.0..=self.max_u).contains(&u) && (0.0..=self.max_v).contains(&v)).then_some(c.z)
     }
 
+    /// Cast from the point towards the camera (t = 1 at the camera centre): occluders near the
+    /// point (the front of the object whose back it is on) end the search soonest. At t, the
+    /// segment is (1 − t)·depth from the camera, so t > tolerance / depth is nearer than the
+    /// point by more than the tolerance.
     fn sees(&self, p: DVec3, depth: f64, occluders: &SurfaceBvh) -> bool {
-        let dir = p - self.centre;
-        let max_t = 1.0 - OCCLUSION_TOLERANCE_M / depth;
-        max_t <= 0.0
-            || occluders
-                .first_hit(self.centre.as_vec3(), dir.as_vec3(), max_t as f32)
-                .is_none()
+        let min_t = OCCLUSION_TOLERANCE_M / depth;
+        min_t >= 1.0
+            || !occluders.is_blocked(p.as_vec3(), (self.centre - p).as_vec3(), min_t as f32, 1.0)
     }
 }
 

@@ -33,7 +33,7 @@ use serde::Serialize;
 
 use crate::EvalError;
 pub use culling::{Culling, OCCLUSION_TOLERANCE_M};
-use surface::{load_surface, Role};
+use surface::{load_surface, Role, Surface};
 pub use text_report::recon_text_report;
 
 /// The CO-SLAM protocol's sample count on each side.
@@ -113,40 +113,71 @@ pub fn evaluate_reconstruction(
     options: &ReconOptions,
     views: Option<&DatasetViews>,
 ) -> Result<ReconMetrics, EvalError> {
-    check(options)?;
-    let views = match (options.culling, views) {
-        (Culling::None, _) => None,
-        (_, Some(views)) if !views.views.is_empty() => Some(views),
-        (culling, _) => {
-            return Err(EvalError::BadOption {
-                name: "culling",
-                value: culling.to_string(),
-                expected:
-                    "the ground-truth cameras of the dataset (--dataset DIR), or culling none",
-            })
+    GroundTruthSurface::prepare(ground_truth, options, views)?.evaluate(reconstruction)
+}
+
+/// The ground-truth side read, sampled and culled once, for measuring many reconstructions of
+/// one sequence against it.
+pub struct GroundTruthSurface<'a> {
+    surface: Surface,
+    options: ReconOptions,
+    views: Option<&'a DatasetViews>,
+}
+
+impl<'a> GroundTruthSurface<'a> {
+    /// Reads the ground-truth mesh and culls its samples to what `views` saw (see
+    /// [`evaluate_reconstruction`]).
+    pub fn prepare(
+        ground_truth: &Path,
+        options: &ReconOptions,
+        views: Option<&'a DatasetViews>,
+    ) -> Result<Self, EvalError> {
+        check(options)?;
+        let views =
+            match (options.culling, views) {
+                (Culling::None, _) => None,
+                (_, Some(views)) if !views.views.is_empty() => Some(views),
+                (culling, _) => return Err(EvalError::BadOption {
+                    name: "culling",
+                    value: culling.to_string(),
+                    expected:
+                        "the ground-truth cameras of the dataset (--dataset DIR), or culling none",
+                }),
+            };
+        let mut surface = load_surface(ground_truth, Role::GroundTruth, options)?;
+        if let Some(views) = views {
+            let kept = culling::kept(&surface.samples, options.culling, views, &surface.bvh);
+            surface.keep(&kept, options.culling)?;
         }
-    };
-    let mut rec = load_surface(reconstruction, Role::Reconstruction, options)?;
-    let mut gt = load_surface(ground_truth, Role::GroundTruth, options)?;
-    if let Some(views) = views {
-        let rec_kept = culling::kept(&rec.samples, options.culling, views, &gt.bvh);
-        let gt_kept = culling::kept(&gt.samples, options.culling, views, &gt.bvh);
-        rec.keep(&rec_kept, options.culling)?;
-        gt.keep(&gt_kept, options.culling)?;
+        Ok(Self {
+            surface,
+            options: options.clone(),
+            views,
+        })
     }
-    let to_gt = distances(&rec.samples, &gt.bvh);
-    let to_rec = distances(&gt.samples, &rec.bvh);
-    let threshold_m = options.threshold_cm / 100.0;
-    let completed = to_rec.iter().filter(|&&d| (d as f64) < threshold_m).count();
-    Ok(ReconMetrics {
-        accuracy_cm: mean(&to_gt) * 100.0,
-        completion_cm: mean(&to_rec) * 100.0,
-        completion_ratio_percent: completed as f64 / to_rec.len() as f64 * 100.0,
-        options: options.clone(),
-        views: views.map_or(0, |v| v.views.len()),
-        reconstruction: rec.summary,
-        ground_truth: gt.summary,
-    })
+
+    /// Measures the reconstruction (PLY mesh or point cloud) against this ground truth.
+    pub fn evaluate(&self, reconstruction: &Path) -> Result<ReconMetrics, EvalError> {
+        let (options, gt) = (&self.options, &self.surface);
+        let mut rec = load_surface(reconstruction, Role::Reconstruction, options)?;
+        if let Some(views) = self.views {
+            let kept = culling::kept(&rec.samples, options.culling, views, &gt.bvh);
+            rec.keep(&kept, options.culling)?;
+        }
+        let to_gt = distances(&rec.samples, &gt.bvh);
+        let to_rec = distances(&gt.samples, &rec.bvh);
+        let threshold_m = options.threshold_cm / 100.0;
+        let completed = to_rec.iter().filter(|&&d| (d as f64) < threshold_m).count();
+        Ok(ReconMetrics {
+            accuracy_cm: mean(&to_gt) * 100.0,
+            completion_cm: mean(&to_rec) * 100.0,
+            completion_ratio_percent: completed as f64 / to_rec.len() as f64 * 100.0,
+            options: options.clone(),
+            views: self.views.map_or(0, |v| v.views.len()),
+            reconstruction: rec.summary,
+            ground_truth: gt.summary.clone(),
+        })
+    }
 }
 
 fn check(options: &ReconOptions) -> Result<(), EvalError> {

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rslam_core::dataset::{read_views, DatasetViews};
-use rslam_eval::recon::{evaluate_reconstruction, Culling, ReconMetrics, ReconOptions};
+use rslam_eval::recon::{Culling, GroundTruthSurface, ReconMetrics, ReconOptions};
 use serde::Serialize;
 
 use rslam_pipeline::PipelineError;
@@ -37,37 +37,52 @@ pub fn report_reconstructions(
     out: &Path,
     culling: Culling,
 ) -> Result<(Vec<ReconRow>, Vec<PathBuf>), SuiteError> {
-    let mut ground_truth: BTreeMap<&str, PathBuf> = BTreeMap::new();
-    let mut views: BTreeMap<&str, DatasetViews> = BTreeMap::new();
     let options = ReconOptions {
         culling,
         ..ReconOptions::default()
     };
-    let mut rows = Vec::new();
-    for (sequence, record) in succeeded_runs(suite) {
-        let Some(mesh) = record.mesh else {
-            continue;
-        };
-        let (method, repeat) = (record.method, record.repeat);
-        let gt = match ground_truth.get(sequence.scene.as_str()) {
-            Some(path) => path.clone(),
-            None => {
-                let path = export_ground_truth(suite, sequence, out)?;
-                ground_truth.insert(&sequence.scene, path.clone());
-                path
+    let runs: Vec<_> = succeeded_runs(suite)
+        .into_iter()
+        .filter_map(|(sequence, record)| {
+            let mesh = record.mesh?;
+            Some((sequence, record.method, record.repeat, mesh))
+        })
+        .collect();
+    let mut views: BTreeMap<&str, DatasetViews> = BTreeMap::new();
+    if culling != Culling::None {
+        for (sequence, ..) in &runs {
+            if !views.contains_key(sequence.name.as_str()) {
+                let read = read_views(&sequence.dir(&suite.dir)).map_err(PipelineError::from)?;
+                views.insert(&sequence.name, read);
             }
-        };
-        if culling != Culling::None && !views.contains_key(sequence.name.as_str()) {
-            let dir = sequence.dir(&suite.dir);
-            let read = read_views(&dir).map_err(PipelineError::from)?;
-            views.insert(&sequence.name, read);
+        }
+    }
+    let mut meshes: BTreeMap<&str, PathBuf> = BTreeMap::new();
+    // The ground truth of a sequence is sampled and culled once for all its runs.
+    let mut ground_truths: BTreeMap<&str, Result<GroundTruthSurface, String>> = BTreeMap::new();
+    let mut rows = Vec::new();
+    for (sequence, method, repeat, mesh) in runs {
+        if !ground_truths.contains_key(sequence.name.as_str()) {
+            let path = match meshes.get(sequence.scene.as_str()) {
+                Some(path) => path.clone(),
+                None => {
+                    let path = export_ground_truth(suite, sequence, out)?;
+                    meshes.insert(&sequence.scene, path.clone());
+                    path
+                }
+            };
+            let prepared =
+                GroundTruthSurface::prepare(&path, &options, views.get(sequence.name.as_str()));
+            ground_truths.insert(&sequence.name, prepared.map_err(|e| e.to_string()));
         }
         // The ground truth is rslam's own export: what fails here is the method's file.
-        let measured =
-            evaluate_reconstruction(&mesh, &gt, &options, views.get(sequence.name.as_str()));
+        let measured = match &ground_truths[sequence.name.as_str()] {
+            Ok(ground_truth) => ground_truth.evaluate(&mesh).map_err(|e| e.to_string()),
+            Err(failure) => Err(failure.clone()),
+        };
         let (metrics, failure) = match measured {
             Ok(metrics) => (Some(metrics), None),
-            Err(e) => (None, Some(e.to_string())),
+            Err(e) => (None, Some(e)),
         };
         rows.push(ReconRow {
             method,
