@@ -196,20 +196,23 @@ fn culls_to_the_views_of_a_dataset_a_rig_and_agents() {
     };
     let rig_views = frames_of("cam0") + frames_of("cam1");
     assert!(rig_views >= 4, "{rig_views}");
+    let recon = |dataset: &str, extra: &[&str]| {
+        let mut args = vec![
+            "eval",
+            "recon",
+            "room0.ply",
+            "--gt",
+            "room0.ply",
+            "--dataset",
+            dataset,
+            "--samples",
+            "20000",
+        ];
+        args.extend_from_slice(extra);
+        ws.rslam(&args).success()
+    };
     for (dataset, views) in [("tum", 4), ("rig", rig_views), ("agents", 8)] {
-        let out = ws
-            .rslam(&[
-                "eval",
-                "recon",
-                "room0.ply",
-                "--gt",
-                "room0.ply",
-                "--dataset",
-                dataset,
-                "--samples",
-                "20000",
-            ])
-            .success();
+        let out = recon(dataset, &[]);
         for fragment in [
             format!("culling\tvisible: points a ground-truth camera saw past the ground-truth mesh (2 cm tolerance), {views} views; kept "),
             "accuracy (cm)\t0.0000".into(),
@@ -218,24 +221,8 @@ fn culls_to_the_views_of_a_dataset_a_rig_and_agents() {
         ] {
             assert!(out.contains(&fragment), "{dataset}: missing '{fragment}' in:\n{out}");
         }
-        let json: serde_json::Value = serde_json::from_str(
-            &ws.rslam(&[
-                "eval",
-                "recon",
-                "room0.ply",
-                "--gt",
-                "room0.ply",
-                "--dataset",
-                dataset,
-                "--samples",
-                "20000",
-                "--cull",
-                "frustum",
-                "--json",
-            ])
-            .success(),
-        )
-        .unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&recon(dataset, &["--cull", "frustum", "--json"])).unwrap();
         let kept = json["ground_truth"]["kept"].as_u64().unwrap();
         assert!(
             kept > 100 && kept < 19_000,
