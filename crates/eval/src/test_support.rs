@@ -2,6 +2,7 @@
 
 use glam::{DMat3, DQuat, DVec3};
 use rslam_core::hash::{splitmix64, splitmix64_next};
+use rslam_core::RgbImage;
 
 pub struct TestRng(u64);
 
@@ -43,4 +44,16 @@ pub fn random_quat(rng: &mut TestRng) -> DQuat {
 /// Uniform noise in [-amplitude, amplitude)³.
 pub fn noise(rng: &mut TestRng, amplitude: f64) -> DVec3 {
     rng.vec3() * amplitude
+}
+
+/// A `w`×`h` image whose pixel (x, y) is `pixel(x, y)`.
+pub fn image(w: u32, h: u32, pixel: impl Fn(u32, u32) -> [u8; 3]) -> RgbImage {
+    let mut image = RgbImage::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            let i = ((y * w + x) * 3) as usize;
+            image.data[i..i + 3].copy_from_slice(&pixel(x, y));
+        }
+    }
+    image
 }

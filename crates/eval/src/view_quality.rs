@@ -120,17 +120,7 @@ fn blur_valid(plane: &[f64], w: usize, h: usize, weights: &[f64; WINDOW]) -> Vec
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn image(w: u32, h: u32, pixel: impl Fn(u32, u32) -> [u8; 3]) -> RgbImage {
-        let mut image = RgbImage::new(w, h);
-        for y in 0..h {
-            for x in 0..w {
-                let i = ((y * w + x) * 3) as usize;
-                image.data[i..i + 3].copy_from_slice(&pixel(x, y));
-            }
-        }
-        image
-    }
+    use crate::test_support::image;
 
     #[test]
     fn psnr_of_a_known_error_and_of_identical_images() {

@@ -261,6 +261,15 @@ impl PerturbSpec {
         }
     }
 
+    /// The spec of a camera without depth: no depth items, no `misalign`.
+    pub fn without_depth(&self) -> PerturbSpec {
+        PerturbSpec {
+            depth: Vec::new(),
+            misalign: None,
+            ..self.clone()
+        }
+    }
+
     /// True when nothing is perturbed.
     pub fn is_empty(&self) -> bool {
         *self == PerturbSpec::default()

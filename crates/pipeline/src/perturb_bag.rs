@@ -91,11 +91,7 @@ pub(crate) fn plan(
 fn camera_run(camera: &RecordedBagCamera, spec: &PerturbSpec, seed: u64) -> CameraRun {
     let spec = match camera.depth {
         Some(_) => spec.clone(),
-        None => PerturbSpec {
-            depth: Vec::new(),
-            misalign: None,
-            ..spec.clone()
-        },
+        None => spec.without_depth(),
     };
     let recorded_times: Vec<(f64, f64)> = camera
         .colour

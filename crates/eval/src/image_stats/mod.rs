@@ -211,17 +211,7 @@ impl SequenceStats {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn image(w: u32, h: u32, f: impl Fn(u32, u32) -> [u8; 3]) -> RgbImage {
-        let mut im = RgbImage::new(w, h);
-        for y in 0..h {
-            for x in 0..w {
-                let i = ((y * w + x) * 3) as usize;
-                im.data[i..i + 3].copy_from_slice(&f(x, y));
-            }
-        }
-        im
-    }
+    use crate::test_support::image;
 
     #[test]
     fn a_flat_grey_image_is_all_low_texture_with_no_corners_or_saturation() {

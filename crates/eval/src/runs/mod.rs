@@ -38,7 +38,7 @@ pub use summary::{
     SettingTest, SurvivalBound, CSR_THRESHOLDS,
 };
 pub use welch::{welch_t_test, WelchTest};
-pub use write::{summary_text, write_report};
+pub use write::{csv_field, summary_text, write_report};
 
 use crate::{EvalError, EvalOptions};
 

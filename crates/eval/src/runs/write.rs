@@ -359,7 +359,9 @@ fn number(v: Option<f64>) -> String {
         .map_or(String::new(), |v| v.to_string())
 }
 
-fn csv_field(text: &str) -> String {
+/// `text` as one CSV field: quoted (quotes doubled) where it holds a comma, a quote or a line
+/// break.
+pub fn csv_field(text: &str) -> String {
     if text.contains([',', '"', '\n']) {
         format!("\"{}\"", text.replace('"', "\"\""))
     } else {

@@ -2,6 +2,7 @@
 //! resumably; results where `rslam eval --runs` reads them (`runs/<method>/<sequence>/<repeat>.txt`,
 //! failures as `<repeat>.failed`).
 
+mod measured_csv;
 mod method;
 mod process;
 mod reconstruction;

@@ -14,6 +14,7 @@ use serde::Serialize;
 
 use rslam_pipeline::PipelineError;
 
+use super::measured_csv::measures_or_failure;
 use super::record::succeeded_runs;
 use crate::sequence::Sequence;
 use crate::{Suite, SuiteError};
@@ -129,21 +130,18 @@ fn reconstruction_csv(rows: &[ReconRow]) -> String {
          culling,reconstruction_kept_percent,ground_truth_kept_percent,failure\n",
     );
     for r in rows {
-        let values = match (&r.metrics, &r.failure) {
-            (Some(m), _) => format!(
-                "{:.4},{:.4},{:.2},{},{:.2},{:.2},",
+        let measures = r.metrics.as_ref().map(|m| {
+            format!(
+                "{:.4},{:.4},{:.2},{},{:.2},{:.2}",
                 m.accuracy_cm,
                 m.completion_cm,
                 m.completion_ratio_percent,
                 m.options.culling,
                 m.reconstruction.kept_percent(),
                 m.ground_truth.kept_percent()
-            ),
-            (None, failure) => format!(
-                ",,,,,,\"{}\"",
-                failure.as_deref().unwrap_or_default().replace('"', "\"\"")
-            ),
-        };
+            )
+        });
+        let values = measures_or_failure(measures, 6, r.failure.as_deref());
         text.push_str(&format!(
             "{},{},{},{values}\n",
             r.method, r.sequence, r.repeat

@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
-use rslam_core::dataset::{decode_depth_png, read_dataset, read_rgb8, DatasetOverrides};
+use rslam_core::dataset::{decode_depth_png, read_dataset, read_rgb8, DatasetOverrides, Layout};
 use rslam_eval::correlation::{pearson, spearman};
 use rslam_eval::view_quality::{depth_l1_m, psnr_db, ssim};
 use rslam_eval::{plot_view_quality_against_ate, ViewQualityPoint};
@@ -16,6 +16,7 @@ use rslam_gpu::GpuContext;
 use rslam_pipeline::{PipelineError, SceneCache, Silent};
 use serde::Serialize;
 
+use super::measured_csv::measures_or_failure;
 use super::record::succeeded_runs;
 use crate::sequence::Sequence;
 use crate::{Suite, SuiteError};
@@ -108,14 +109,25 @@ pub fn report_rendered_views(
     }
     let ctx = gpu()?;
     let scenes = SceneCache::default();
-    let mut clean: BTreeMap<&str, CleanFrames> = BTreeMap::new();
+    // Per sequence, its clean frames, or why its renders cannot be compared.
+    let mut clean: BTreeMap<&str, Result<CleanFrames, String>> = BTreeMap::new();
     let mut rows = Vec::new();
     for (sequence, method, repeat, renders) in runs {
         if !clean.contains_key(sequence.name.as_str()) {
-            let frames = make_clean_frames(&ctx, &scenes, suite, sequence, out)?;
+            let frames = match sequence.layout() {
+                Layout::Camera(_) => Ok(make_clean_frames(&ctx, &scenes, suite, sequence, out)?),
+                layout => Err(format!(
+                    "{}: rendered views are compared in the replica and tum layouts, not {layout}",
+                    sequence.name
+                )),
+            };
             clean.insert(&sequence.name, frames);
         }
-        let (quality, failure) = match clean[sequence.name.as_str()].compare(&renders) {
+        let compared = match &clean[sequence.name.as_str()] {
+            Ok(frames) => frames.compare(&renders),
+            Err(failure) => Err(failure.clone()),
+        };
+        let (quality, failure) = match compared {
             Ok(quality) => (Some(quality), None),
             Err(failure) => (None, Some(failure)),
         };
@@ -178,12 +190,6 @@ fn make_clean_frames(
     out: &Path,
 ) -> Result<CleanFrames, SuiteError> {
     let dir = out.join(CLEAN_DIR).join(&sequence.name);
-    if !matches!(sequence.layout(), rslam_core::dataset::Layout::Camera(_)) {
-        return Err(SuiteError::from(PipelineError::output(
-            &dir,
-            "rendered views are compared in the replica and tum layouts; this sequence is a rig's",
-        )));
-    }
     sequence
         .clean_job(&suite.dir, dir.clone())
         .plan_with(scenes)?
@@ -344,20 +350,17 @@ fn rendered_views_csv(rows: &[RenderedViewRow]) -> String {
     let number =
         |v: Option<f64>, decimals: usize| v.map_or(String::new(), |v| format!("{v:.decimals$}"));
     for r in rows {
-        let values = match (&r.quality, &r.failure) {
-            (Some(q), _) => format!(
-                "{},{},{},{},{},",
+        let measures = r.quality.as_ref().map(|q| {
+            format!(
+                "{},{},{},{},{}",
                 q.colour_frames,
                 number(q.psnr_db, 4),
                 number(q.ssim, 6),
                 q.depth_frames,
                 number(q.depth_l1_cm, 4)
-            ),
-            (None, failure) => format!(
-                ",,,,,\"{}\"",
-                failure.as_deref().unwrap_or_default().replace('"', "\"\"")
-            ),
-        };
+            )
+        });
+        let values = measures_or_failure(measures, 5, r.failure.as_deref());
         text.push_str(&format!(
             "{},{},{},{},{values}\n",
             r.method,

@@ -57,15 +57,13 @@ pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
             args.cull
         );
         for r in &reconstructions {
-            let what = match (&r.metrics, &r.failure) {
-                (Some(m), _) => format!(
+            let measures = r.metrics.as_ref().map(|m| {
+                format!(
                     "accuracy {:.2}, completion {:.2}, ratio {:.1}",
                     m.accuracy_cm, m.completion_cm, m.completion_ratio_percent
-                ),
-                (None, failure) => {
-                    format!("not measured: {}", failure.as_deref().unwrap_or_default())
-                }
-            };
+                )
+            });
+            let what = measures_or_failure(measures, r.failure.as_deref());
             println!("{} {} #{}: {what}", r.method, r.sequence, r.repeat);
         }
     }
@@ -96,19 +94,17 @@ pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
             v.map_or("-".to_string(), |v| format!("{v:.decimals$}"))
         };
         for r in &views {
-            let what = match (&r.quality, &r.failure) {
-                (Some(q), _) => format!(
+            let measures = r.quality.as_ref().map(|q| {
+                format!(
                     "PSNR {} dB, SSIM {} over {} frame(s); depth L1 {} cm over {}",
                     number(q.psnr_db, 2),
                     number(q.ssim, 4),
                     q.colour_frames,
                     number(q.depth_l1_cm, 2),
                     q.depth_frames
-                ),
-                (None, failure) => {
-                    format!("not measured: {}", failure.as_deref().unwrap_or_default())
-                }
-            };
+                )
+            });
+            let what = measures_or_failure(measures, r.failure.as_deref());
             println!("{} {} #{}: {what}", r.method, r.sequence, r.repeat);
         }
         for c in ate_correlations(&views) {
@@ -126,4 +122,9 @@ pub fn run(args: ReportArgs) -> anyhow::Result<ExitCode> {
         println!("  {}", path.display());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// A run's measures as printed, or why it was not measured.
+fn measures_or_failure(measures: Option<String>, failure: Option<&str>) -> String {
+    measures.unwrap_or_else(|| format!("not measured: {}", failure.unwrap_or_default()))
 }
