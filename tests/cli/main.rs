@@ -5,6 +5,7 @@ mod auto_exposure;
 mod bench;
 mod dataset_check;
 mod depth_png;
+mod ephemeral;
 mod eval;
 mod eval_agents;
 mod eval_recon;

@@ -6,6 +6,7 @@ use std::sync::{Arc, Mutex};
 
 use indicatif::{MultiProgress, ProgressBar as Bar, ProgressStyle};
 use rslam_pipeline::{FolderState, PipelineError, Progress};
+use rslam_suite::bench::{BenchProgress, RunId, RunRecord};
 use rslam_suite::{SequenceOutcome, SuiteProgress};
 
 use crate::interrupt::interrupt_flag;
@@ -143,5 +144,29 @@ impl Progress for SequenceBar<'_> {
             bar.finish_and_clear();
             self.suite.bars.remove(&bar);
         }
+    }
+}
+
+/// One line per finished run.
+pub fn run_line(run: &RunId, record: &RunRecord) -> String {
+    let outcome = match &record.failure {
+        None => format!("ok in {:.1} s", record.seconds),
+        Some(reason) => format!("F: {reason}"),
+    };
+    format!("{} {} #{}: {outcome}", run.method, run.sequence, run.repeat)
+}
+
+/// An ephemeral bench's runs: a line each above the bars.
+impl BenchProgress for SuiteBars {
+    fn begin(&self, runs: usize) {
+        self.line(&format!("{runs} run(s) to go"));
+    }
+
+    fn run_done(&self, run: &RunId, record: &RunRecord) {
+        self.line(&run_line(run, record));
+    }
+
+    fn interrupted(&self) -> &AtomicBool {
+        &self.interrupted
     }
 }

@@ -290,15 +290,24 @@ impl Job {
     ) -> Result<Holding, PipelineError> {
         output_folder::holding(&self.out, |earlier| {
             let recorded = earlier.extra.get("adapter").and_then(|a| a.as_str());
-            let adapter = adapter.or(recorded).unwrap_or_default();
-            match &self.plan_with(scenes)?.plan {
-                Plan::Folder(planned) => Ok(PlannedJob::manifest_on(planned.as_ref(), adapter)),
-                Plan::Image { .. } => Err(PipelineError::output(
-                    &self.out,
-                    "one image is written as a file, not into an output folder",
-                )),
-            }
+            self.manifest_on(adapter.or(recorded).unwrap_or_default(), scenes)
         })
+    }
+
+    /// The manifest (without its content digest) this job writes on the GPU described as
+    /// `adapter`, its scene taken from `scenes`.
+    pub fn manifest_on(
+        &self,
+        adapter: &str,
+        scenes: &SceneCache,
+    ) -> Result<Manifest, PipelineError> {
+        match &self.plan_with(scenes)?.plan {
+            Plan::Folder(planned) => Ok(PlannedJob::manifest_on(planned.as_ref(), adapter)),
+            Plan::Image { .. } => Err(PipelineError::output(
+                &self.out,
+                "one image is written as a file, not into an output folder",
+            )),
+        }
     }
 
     /// The input folder a perturbing job reads, which its output may not be.

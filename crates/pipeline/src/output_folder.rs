@@ -9,7 +9,8 @@
 use std::path::Path;
 
 use rslam_core::dataset::{
-    refuse_symlinks, Checksums, Manifest, CHECKSUM_FILE, MANIFEST_FILE, PARTIAL_SUFFIX, RUN_FILE,
+    refuse_symlinks, Checksums, Manifest, CHECKSUM_FILE, FRAMES_DELETED_FILE, MANIFEST_FILE,
+    PARTIAL_SUFFIX, RUN_FILE,
 };
 use rslam_core::CoreError;
 
@@ -95,6 +96,9 @@ pub enum Holding {
     /// This job finished here once, but `why` (files it listed are gone, its checksum list was
     /// changed): a run makes what is missing and seals it again.
     Broken(String),
+    /// This job finished here once and its frames were deleted after use, the rest kept
+    /// ([`rslam_core::dataset::delete_frames`]): a run makes them again and seals it again.
+    FramesDeleted,
     /// Another job's output: `finished` or an unfinished run, `what` it is and how it differs
     /// from this job.
     OtherJob { finished: bool, what: String },
@@ -132,6 +136,7 @@ pub fn holding(
             what: describe_other(&earlier, &job, finished),
         },
         (true, false) => Holding::Unfinished,
+        (true, true) if root.join(FRAMES_DELETED_FILE).is_file() => Holding::FramesDeleted,
         (true, true) => match sealed_files(root, &earlier) {
             Ok(()) => Holding::Complete,
             Err(why) => Holding::Broken(why),
@@ -153,9 +158,18 @@ fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, Pipe
         _ if force => clear(root)?,
         Holding::Complete => return Ok(FolderState::Complete),
         Holding::Unfinished => FolderState::Resume,
-        Holding::Broken(_) => {
-            std::fs::remove_file(root.join(MANIFEST_FILE))
-                .map_err(|e| CoreError::io(root.join(MANIFEST_FILE), e))?;
+        Holding::Broken(_) | Holding::FramesDeleted => {
+            // The run record first: killed at any point after it, the folder is an unfinished
+            // run of this job, never a folder without a record.
+            job.job().write_as(root, RUN_FILE)?;
+            for name in [FRAMES_DELETED_FILE, MANIFEST_FILE] {
+                match std::fs::remove_file(root.join(name)) {
+                    Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                        return Err(CoreError::io(root.join(name), e).into())
+                    }
+                    _ => {}
+                }
+            }
             FolderState::Resume
         }
         Holding::OtherJob { what, .. } => {
@@ -208,7 +222,7 @@ fn describe_other(earlier: &Manifest, job: &Manifest, finished: bool) -> String 
 
 /// The manifest fields (`extra.adapter` and the like one level down) in which two jobs differ,
 /// fields only one of them has included (a job of an older rslam lacks the newer ones).
-fn differing_fields(a: &Manifest, b: &Manifest) -> Vec<String> {
+pub fn differing_fields(a: &Manifest, b: &Manifest) -> Vec<String> {
     let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
         (serde_json::to_value(a), serde_json::to_value(b))
     else {

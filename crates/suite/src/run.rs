@@ -59,6 +59,8 @@ pub enum SequenceOutcome {
 pub struct RunSummary {
     pub in_shard: usize,
     pub already_complete: usize,
+    /// Left alone: their frames were deleted after their runs (`suite regen` remakes one).
+    pub frames_deleted: Vec<String>,
     pub made: Vec<String>,
     pub busy: Vec<String>,
     /// Left alone: (name, why).
@@ -78,6 +80,7 @@ pub fn run_suite(
         summary.in_shard += 1;
         match state {
             SequenceState::Complete => summary.already_complete += 1,
+            SequenceState::FramesDeleted => summary.frames_deleted.push(sequence.name.clone()),
             SequenceState::Conflict(reason) if !options.force => {
                 summary.conflicts.push((sequence.name.clone(), reason))
             }
@@ -147,13 +150,43 @@ fn make_one(
             seconds: 0.0,
         });
     }
+    let replace = match state {
+        SequenceState::Conflict(_) => Replace::Anything,
+        // An unfinished run of another job (another GPU, an edited row) was never usable.
+        SequenceState::Partial => Replace::OtherJob,
+        _ => Replace::Nothing,
+    };
+    let out = sequence.dir(&suite.dir);
+    make_sequence(ctx, suite, sequence, &out, replace, &scenes, progress)
+}
+
+/// What of an output folder's earlier content a sequence being made replaces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Replace {
+    /// Nothing: another job's output is an error.
+    Nothing,
+    /// Another job's output; this job's is resumed or kept.
+    OtherJob,
+    /// Whatever is there: it starts over.
+    Anything,
+}
+
+/// Makes `sequence` into `out`, replacing what `replace` says, and records how long it took.
+pub(crate) fn make_sequence(
+    ctx: &GpuContext,
+    suite: &Suite,
+    sequence: &Sequence,
+    out: &Path,
+    replace: Replace,
+    scenes: &SceneCache,
+    progress: &dyn SuiteProgress,
+) -> Result<SequenceOutcome, SuiteError> {
     let started = Instant::now();
     let sequence_progress = progress.sequence(&sequence.name);
-    let force = matches!(state, SequenceState::Conflict(_));
-    let render = |force| sequence.render(ctx, &suite.dir, force, &scenes, &*sequence_progress);
-    let (made, found) = match render(force) {
-        // An unfinished run of another job (another GPU, an edited row) was never usable.
-        Err(PipelineError::OtherJob { .. }) if *state == SequenceState::Partial => render(true)?,
+    let render =
+        |force| sequence.render_into(ctx, &suite.dir, out, force, scenes, &*sequence_progress);
+    let (made, found) = match render(replace == Replace::Anything) {
+        Err(PipelineError::OtherJob { .. }) if replace == Replace::OtherJob => render(true)?,
         report => report?,
     };
     let seconds = started.elapsed().as_secs_f64();
@@ -177,7 +210,7 @@ fn make_one(
 
 /// An exclusive lock on the sequence, held until the returned file is dropped; `None` when
 /// another process holds it.
-fn lock(suite_dir: &Path, name: &str) -> Result<Option<File>, SuiteError> {
+pub(crate) fn lock(suite_dir: &Path, name: &str) -> Result<Option<File>, SuiteError> {
     let dir: PathBuf = suite_dir.join(DATASETS_DIR).join(LOCKS_DIR);
     std::fs::create_dir_all(&dir).map_err(|e| SuiteError::io(&dir, e))?;
     let path = dir.join(format!("{name}.lock"));

@@ -175,7 +175,31 @@ impl Sequence {
         scenes: &SceneCache,
         progress: &dyn Progress,
     ) -> Result<(usize, FolderState), PipelineError> {
-        let job = self.job(suite_dir, force);
+        self.render_into(
+            ctx,
+            suite_dir,
+            &self.dir(suite_dir),
+            force,
+            scenes,
+            progress,
+        )
+    }
+
+    /// [`Sequence::render`] into `out` (node-local scratch) instead of the suite's folder; the
+    /// manifest is the same, naming the suite's folder in its command.
+    pub fn render_into(
+        &self,
+        ctx: &GpuContext,
+        suite_dir: &Path,
+        out: &Path,
+        force: bool,
+        scenes: &SceneCache,
+        progress: &dyn Progress,
+    ) -> Result<(usize, FolderState), PipelineError> {
+        let job = Job {
+            out: out.to_path_buf(),
+            ..self.job(suite_dir, force)
+        };
         let report = job.plan_with(scenes)?.run(ctx, progress)?;
         Ok((report.made, report.found))
     }

@@ -16,17 +16,36 @@ pub enum SequenceState {
     /// A run started it and did not finish; the next run resumes it.
     Partial,
     Missing,
+    /// Made, used by its runs and its frames deleted (`suite bench --ephemeral`); its manifest,
+    /// checksums and ground truth kept. `suite run` leaves it; `suite regen` remakes its frames.
+    #[serde(rename = "frames-deleted")]
+    FramesDeleted,
     /// Something other than this sequence's finished dataset: made from another definition of
     /// the row, damaged, or not rslam's. `suite run` leaves it alone unless `--force`.
     Conflict(String),
 }
 
 impl SequenceState {
+    /// The labels, in the order tables print them.
+    pub const LABELS: [&'static str; 5] = [
+        "complete",
+        "frames-deleted",
+        "partial",
+        "missing",
+        "conflict",
+    ];
+
+    /// Made and finished: its frames there, or deleted after its runs.
+    pub fn is_finished(&self) -> bool {
+        matches!(self, Self::Complete | Self::FramesDeleted)
+    }
+
     pub fn label(&self) -> &'static str {
         match self {
             Self::Complete => "complete",
             Self::Partial => "partial",
             Self::Missing => "missing",
+            Self::FramesDeleted => "frames-deleted",
             Self::Conflict(_) => "conflict",
         }
     }
@@ -39,6 +58,7 @@ pub fn inspect(sequence: &Sequence, suite_dir: &Path, scenes: &SceneCache) -> Se
     match sequence.job(suite_dir, false).holding(None, scenes) {
         Ok(Holding::Nothing) => SequenceState::Missing,
         Ok(Holding::Complete) => SequenceState::Complete,
+        Ok(Holding::FramesDeleted) => SequenceState::FramesDeleted,
         // A run resumes it: it finishes what is missing and seals the folder again. An unfinished
         // run of another job (another GPU, an edited row) is never usable: a run starts it over.
         Ok(

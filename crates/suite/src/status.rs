@@ -40,7 +40,7 @@ impl SuiteStatus {
             })
             .collect();
         let mut counts = BTreeMap::new();
-        for label in ["complete", "partial", "missing", "conflict"] {
+        for label in SequenceState::LABELS {
             counts.insert(label, 0);
         }
         for s in &sequences {
@@ -54,13 +54,11 @@ impl SuiteStatus {
     }
 
     pub fn is_complete(&self) -> bool {
-        self.sequences
-            .iter()
-            .all(|s| s.state == SequenceState::Complete)
+        self.sequences.iter().all(|s| s.state.is_finished())
     }
 
     /// Settings (rows, in suite order) × scenes (columns) with one mark per sequence:
-    /// `✓` complete, `~` partial, `·` missing, `!` conflict.
+    /// `✓` complete, `○` frames deleted after its runs, `~` partial, `·` missing, `!` conflict.
     pub fn table(&self) -> String {
         let mut scenes: Vec<&str> = Vec::new();
         let mut settings: Vec<&str> = Vec::new();
@@ -100,6 +98,7 @@ impl SuiteStatus {
 fn mark(state: &SequenceState) -> &'static str {
     match state {
         SequenceState::Complete => "✓",
+        SequenceState::FramesDeleted => "○",
         SequenceState::Partial => "~",
         SequenceState::Missing => "·",
         SequenceState::Conflict(_) => "!",

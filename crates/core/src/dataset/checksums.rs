@@ -9,18 +9,20 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
-use crate::dataset::{write_atomically, Manifest, MANIFEST_FILE};
+use crate::dataset::{write_atomically, Manifest, FRAMES_DELETED_FILE, MANIFEST_FILE};
 use crate::{read_text_file, CoreError};
 
 /// The checksum list beside the manifest.
 pub const CHECKSUM_FILE: &str = "rslam.b3sum";
 
 /// Files of an output folder that no checksum covers: the manifest and the checksum list name
-/// the content, the run record marks a run in progress, partial files are never content.
+/// the content, the run record marks a run in progress, the frames-deleted record a folder
+/// whose frames went after use, partial files are never content.
 pub fn is_bookkeeping(relative: &str) -> bool {
     relative == MANIFEST_FILE
         || relative == CHECKSUM_FILE
         || relative == RUN_FILE
+        || relative == FRAMES_DELETED_FILE
         || relative.ends_with(PARTIAL_SUFFIX)
 }
 

@@ -8,6 +8,7 @@ mod checksums;
 mod codec;
 mod depth_png;
 pub mod euroc;
+mod frames_deleted;
 mod layout;
 mod manifest;
 mod no_symlinks;
@@ -29,6 +30,10 @@ pub use codec::{
     read_image_size, read_rgb, read_rgb8, write_rgb_like,
 };
 pub use depth_png::DepthPng;
+pub use frames_deleted::{
+    copy_without_frames, delete_frames, is_frame_file, read_frames_deleted, FramesDeleted,
+    FRAMES_DELETED_FILE,
+};
 pub use layout::{DatasetFormat, Layout};
 pub use manifest::{ItemSeverities, Manifest, MANIFEST_FILE};
 pub use no_symlinks::refuse_symlinks;

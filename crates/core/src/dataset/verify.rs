@@ -2,7 +2,10 @@
 
 use std::path::Path;
 
-use crate::dataset::{ChecksumDifferences, Checksums, Manifest, CHECKSUM_FILE, MANIFEST_FILE};
+use crate::dataset::{
+    read_frames_deleted, ChecksumDifferences, Checksums, Manifest, CHECKSUM_FILE,
+    FRAMES_DELETED_FILE, MANIFEST_FILE,
+};
 use crate::CoreError;
 
 /// The outcome of checking one output folder.
@@ -48,6 +51,15 @@ pub fn verify_output(root: &Path) -> Result<Verification, CoreError> {
         return Err(CoreError::bad_file(
             root,
             "no rslam.json: not a finished rslam output (an interrupted run resumes when run again)",
+        ));
+    }
+    if let Some(deleted) = read_frames_deleted(root) {
+        return Err(CoreError::bad_file(
+            root.join(FRAMES_DELETED_FILE),
+            format!(
+                "its {} frames were deleted after use (`rslam suite bench --ephemeral`); `rslam suite regen SUITE NAME` remakes them, then verify",
+                deleted.files
+            ),
         ));
     }
     let manifest = Manifest::read(root)?;

@@ -35,6 +35,14 @@ pub struct RunRecord {
 /// The record of every run under `runs/` that finished without failure, by method (in name
 /// order), sequence (in the suite's order) and repeat.
 pub fn succeeded_runs(suite: &Suite) -> Vec<(&Sequence, RunRecord)> {
+    let mut runs = recorded_runs(suite);
+    runs.retain(|(_, record)| record.failure.is_none());
+    runs
+}
+
+/// The record of every finished run under `runs/`, failed or not, in the order of
+/// [`succeeded_runs`].
+pub fn recorded_runs(suite: &Suite) -> Vec<(&Sequence, RunRecord)> {
     let Ok(methods) = std::fs::read_dir(suite.dir.join(RUNS_DIR)) else {
         return Vec::new();
     };
@@ -52,9 +60,7 @@ pub fn succeeded_runs(suite: &Suite) -> Vec<(&Sequence, RunRecord)> {
                 let Some(record) = files.read_record() else {
                     break;
                 };
-                if record.failure.is_none() {
-                    found.push((sequence, record));
-                }
+                found.push((sequence, record));
             }
         }
     }

@@ -48,6 +48,8 @@ pub struct BenchSummary {
     pub failed: Vec<(RunId, String)>,
     /// Sequences of the shard not complete yet (make them with `rslam suite run`).
     pub sequences_not_made: Vec<String>,
+    /// Sequences whose frames were deleted after their runs (`--ephemeral` runs them again).
+    pub sequences_frames_deleted: Vec<String>,
 }
 
 pub fn bench_suite(
@@ -61,6 +63,9 @@ pub fn bench_suite(
     for (sequence, state) in suite.shard_states(options.shard) {
         match state {
             SequenceState::Complete => sequences.push(sequence),
+            SequenceState::FramesDeleted => {
+                summary.sequences_frames_deleted.push(sequence.name.clone())
+            }
             _ => summary.sequences_not_made.push(sequence.name.clone()),
         }
     }
@@ -68,15 +73,17 @@ pub fn bench_suite(
     let mut to_run = Vec::new();
     for method in methods {
         for sequence in &sequences {
-            for repeat in 0..method.repeats {
-                let files = RunFiles::new(&suite.dir, &method.name, &sequence.name, repeat);
-                match files.read_record() {
-                    Some(r) if r.failure.is_none() || !options.retry_failed => {
-                        summary.already_done += 1
-                    }
-                    _ => to_run.push((method, *sequence, repeat)),
-                }
-            }
+            let left = runs_left(
+                suite,
+                std::slice::from_ref(method),
+                sequence,
+                options.retry_failed,
+            );
+            summary.already_done += method.repeats - left.len();
+            to_run.extend(
+                left.into_iter()
+                    .map(|(method, repeat)| (method, *sequence, repeat)),
+            );
         }
     }
     progress.begin(to_run.len());
@@ -86,7 +93,15 @@ pub fn bench_suite(
             sequence: sequence.name.clone(),
             repeat,
         };
-        let record = run_once(suite, method, sequence, repeat, progress.interrupted())?;
+        let dataset = sequence.dir(&suite.dir);
+        let record = run_once(
+            suite,
+            method,
+            sequence,
+            repeat,
+            &dataset,
+            progress.interrupted(),
+        )?;
         progress.run_done(&id, &record);
         Ok((id, record))
     });
@@ -102,8 +117,29 @@ pub fn bench_suite(
     Ok(summary)
 }
 
+/// The (method, repeat) runs of `methods` on `sequence` without a record (or, `retry_failed`,
+/// with a failed one), in method order.
+pub(crate) fn runs_left<'m>(
+    suite: &Suite,
+    methods: &'m [Method],
+    sequence: &Sequence,
+    retry_failed: bool,
+) -> Vec<(&'m Method, usize)> {
+    let mut left = Vec::new();
+    for method in methods {
+        for repeat in 0..method.repeats {
+            let files = RunFiles::new(&suite.dir, &method.name, &sequence.name, repeat);
+            match files.read_record() {
+                Some(r) if r.failure.is_none() || !retry_failed => {}
+                _ => left.push((method, repeat)),
+            }
+        }
+    }
+    left
+}
+
 /// A method reads one layout; every sequence it runs on must be in it.
-fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Result<(), SuiteError> {
+pub(crate) fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Result<(), SuiteError> {
     for method in methods {
         let other: Vec<&&Sequence> = sequences
             .iter()
@@ -122,12 +158,14 @@ fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Result<(), Suit
     Ok(())
 }
 
-/// One run, recorded; interrupted, it records nothing and runs again next time.
-fn run_once(
+/// One run on the sequence's frames in `dataset`, recorded; interrupted, it records nothing and
+/// runs again next time.
+pub(crate) fn run_once(
     suite: &Suite,
     method: &Method,
     sequence: &Sequence,
     repeat: usize,
+    dataset: &Path,
     interrupted: &AtomicBool,
 ) -> Result<RunRecord, SuiteError> {
     let files = RunFiles::new(&suite.dir, &method.name, &sequence.name, repeat);
@@ -135,10 +173,9 @@ fn run_once(
     files.clear()?;
     let work = files.work();
     std::fs::create_dir_all(&work).map_err(|e| SuiteError::io(&work, e))?;
-    let dataset = sequence
-        .dir(&suite.dir)
+    let dataset = dataset
         .canonicalize()
-        .map_err(|e| SuiteError::io(sequence.dir(&suite.dir), e))?;
+        .map_err(|e| SuiteError::io(dataset, e))?;
     let work = work.canonicalize().map_err(|e| SuiteError::io(&work, e))?;
     let estimate = work.join("estimate.txt");
     let log = files.log();

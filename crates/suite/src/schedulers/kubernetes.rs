@@ -1,6 +1,7 @@
 //! `rslam suite k8s`: a Kubernetes Indexed Job, pod i making shard i of N
 //! (`suite run` reads `JOB_COMPLETION_INDEX`; `--shard-count` gives N). The suite folder lives on
-//! a PersistentVolumeClaim every pod mounts. Written as JSON, which `kubectl apply -f` reads
+//! a PersistentVolumeClaim every pod mounts; an ephemeral bench makes its frames in the pod's
+//! `emptyDir`. Written as JSON, which `kubectl apply -f` reads
 //! like YAML.
 
 use std::path::{Path, PathBuf};
@@ -12,6 +13,8 @@ use crate::SuiteError;
 
 pub const KUBERNETES_DIR: &str = "k8s";
 const MANIFEST_FILE: &str = "suite-job.json";
+/// Where an ephemeral pod's node-local scratch (an `emptyDir`) is mounted.
+const SCRATCH_MOUNT: &str = "/scratch";
 
 #[derive(Clone, Debug)]
 pub struct KubernetesOptions {
@@ -59,17 +62,29 @@ fn job(options: &KubernetesOptions) -> serde_json::Value {
     let mut command = vec![
         "rslam".to_string(),
         "suite".into(),
-        "run".into(),
+        options.task.subcommand().into(),
         options.mount.clone(),
         "--shard-count".into(),
         options.tasks.to_string(),
     ];
-    command.extend(options.task.run_arguments());
+    let mut task = options.task.clone();
+    let mut mounts = vec![json!({ "name": "suite", "mountPath": options.mount })];
+    let mut volumes = vec![json!({
+        "name": "suite",
+        "persistentVolumeClaim": { "claimName": options.claim },
+    })];
+    // Ephemeral frames go to the pod's node-local emptyDir unless told otherwise.
+    if let Some(ephemeral) = task.ephemeral.as_mut().filter(|e| e.scratch.is_none()) {
+        ephemeral.scratch = Some(SCRATCH_MOUNT.into());
+        mounts.push(json!({ "name": "scratch", "mountPath": SCRATCH_MOUNT }));
+        volumes.push(json!({ "name": "scratch", "emptyDir": {} }));
+    }
+    command.extend(task.run_arguments());
     let mut container = json!({
         "name": "rslam",
         "image": options.image,
         "command": command,
-        "volumeMounts": [{ "name": "suite", "mountPath": options.mount }],
+        "volumeMounts": mounts,
     });
     if options.gpus > 0 {
         container["resources"] = json!({ "limits": { "nvidia.com/gpu": options.gpus } });
@@ -88,10 +103,7 @@ fn job(options: &KubernetesOptions) -> serde_json::Value {
                 "spec": {
                     "restartPolicy": "OnFailure",
                     "containers": [container],
-                    "volumes": [{
-                        "name": "suite",
-                        "persistentVolumeClaim": { "claimName": options.claim },
-                    }],
+                    "volumes": volumes,
                 },
             },
         },
@@ -101,6 +113,41 @@ fn job(options: &KubernetesOptions) -> serde_json::Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_ephemeral_pod_makes_its_frames_in_its_empty_dir() {
+        let options = KubernetesOptions {
+            tasks: 2,
+            parallelism: None,
+            image: "rslam".into(),
+            claim: "suite".into(),
+            mount: "/suite".into(),
+            gpus: 1,
+            task: TaskOptions {
+                jobs: 1,
+                adapter: None,
+                ephemeral: Some(super::super::EphemeralTask {
+                    methods: vec!["/suite/methods/orb.toml".into()],
+                    scratch: None,
+                }),
+            },
+        };
+        let job = job(&options);
+        let pod = &job["spec"]["template"]["spec"];
+        let command = pod["containers"][0]["command"].to_string();
+        assert!(
+            command.contains(r#""suite","bench","/suite","--shard-count","2","--ephemeral","--methods","/suite/methods/orb.toml","--scratch","/scratch""#),
+            "{command}"
+        );
+        assert_eq!(
+            pod["volumes"][1],
+            json!({ "name": "scratch", "emptyDir": {} })
+        );
+        assert_eq!(
+            pod["containers"][0]["volumeMounts"][1]["mountPath"],
+            "/scratch"
+        );
+    }
 
     #[test]
     fn the_job_is_indexed_with_one_shard_per_completion() {
@@ -115,6 +162,7 @@ mod tests {
             task: TaskOptions {
                 jobs: 2,
                 adapter: None,
+                ephemeral: None,
             },
         };
         let path = write_kubernetes_job(dir.path(), &options).unwrap();

@@ -50,8 +50,12 @@ fn slurm_script(suite_dir: &Path, options: &SlurmOptions) -> String {
     let mut lines = vec![
         "#!/bin/bash".to_string(),
         format!(
-            "# Written by `rslam suite slurm`: {} array tasks, task i makes shard i of the suite",
-            options.tasks
+            "# Written by `rslam suite slurm`: {} array tasks, task i {} shard i of the suite",
+            options.tasks,
+            match options.task.ephemeral {
+                Some(_) => "benches (makes, runs, deletes the frames of)",
+                None => "makes",
+            }
         ),
         format!(
             "# in {}. Submit with `sbatch {}`;",
@@ -62,7 +66,8 @@ fn slurm_script(suite_dir: &Path, options: &SlurmOptions) -> String {
             "# follow with `rslam suite status {}`. A task that stops is resumed by",
             suite_dir.display()
         ),
-        "# submitting again: finished sequences are kept, unfinished ones resume.".to_string(),
+        "# submitting again: finished sequences and runs are kept, unfinished ones resume."
+            .to_string(),
         "#SBATCH --job-name=rslam-suite".to_string(),
         format!("#SBATCH --array=0-{}{throttle}", options.tasks - 1),
         format!(
@@ -84,7 +89,7 @@ fn slurm_script(suite_dir: &Path, options: &SlurmOptions) -> String {
     let mut command = vec![
         shell_quote(&options.rslam.display().to_string()),
         "suite".into(),
-        "run".into(),
+        options.task.subcommand().into(),
         shell_quote(&suite_dir.display().to_string()),
     ];
     command.extend(options.task.run_arguments().iter().map(|a| shell_quote(a)));
@@ -124,6 +129,7 @@ mod tests {
             task: TaskOptions {
                 jobs: 2,
                 adapter: Some("H100".into()),
+                ephemeral: None,
             },
         };
         let path = write_slurm_script(dir.path(), &options).unwrap();
@@ -146,6 +152,34 @@ mod tests {
             format!(
                 "exec '/opt/rslam it'\\''s/rslam' suite run {} --jobs 2 --adapter H100",
                 suite.display()
+            )
+        );
+    }
+
+    #[test]
+    fn with_method_files_each_task_benches_its_shard_ephemerally() {
+        let dir = tempfile::tempdir().unwrap();
+        let options = SlurmOptions {
+            tasks: 2,
+            throttle: None,
+            sbatch_args: vec![],
+            rslam: PathBuf::from("/usr/bin/rslam"),
+            task: TaskOptions {
+                jobs: 3,
+                adapter: None,
+                ephemeral: Some(super::super::EphemeralTask {
+                    methods: vec!["/m/orb.toml".into(), "/m/dense.toml".into()],
+                    scratch: Some("/local/scratch".into()),
+                }),
+            },
+        };
+        let text =
+            std::fs::read_to_string(write_slurm_script(dir.path(), &options).unwrap()).unwrap();
+        assert_eq!(
+            text.lines().last().unwrap(),
+            format!(
+                "exec /usr/bin/rslam suite bench {} --ephemeral --methods /m/orb.toml --methods /m/dense.toml --scratch /local/scratch --jobs 3",
+                dir.path().canonicalize().unwrap().display()
             )
         );
     }

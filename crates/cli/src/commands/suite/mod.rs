@@ -2,6 +2,7 @@
 
 mod bench;
 mod init;
+mod regen;
 mod report;
 mod run;
 mod schedulers;
@@ -25,12 +26,18 @@ enum SuiteCommand {
     /// Complete / partial / missing per setting and scene, disk used, and the plan (--plan).
     /// Exit code 1 while anything is not complete.
     Status(status::StatusArgs),
-    /// Write an sbatch array script, one `suite run` shard per array task.
+    /// Write an sbatch array script, one `suite run` (or `suite bench --ephemeral`) shard per
+    /// array task.
     Slurm(schedulers::SlurmArgs),
-    /// Write a Kubernetes Indexed Job, one `suite run` shard per completion index.
+    /// Write a Kubernetes Indexed Job, one `suite run` (or `suite bench --ephemeral`) shard per
+    /// completion index.
     K8s(schedulers::KubernetesArgs),
-    /// Run SLAM methods (method files) on every made sequence, each repeat once, resumably.
+    /// Run SLAM methods (method files) on every made sequence, each repeat once, resumably;
+    /// --ephemeral makes each sequence, runs it and deletes its frames.
     Bench(bench::BenchArgs),
+    /// Remake one sequence's frames from its kept manifest and check them against its kept
+    /// checksums.
+    Regen(regen::RegenArgs),
     /// The benchmark's tables, CSR curves, plots and an HTML page over the bench's runs.
     Report(report::ReportArgs),
 }
@@ -43,6 +50,7 @@ pub fn run(args: SuiteArgs) -> anyhow::Result<ExitCode> {
         SuiteCommand::Slurm(args) => schedulers::run_slurm(args),
         SuiteCommand::K8s(args) => schedulers::run_kubernetes(args),
         SuiteCommand::Bench(args) => bench::run(args),
+        SuiteCommand::Regen(args) => regen::run(args),
         SuiteCommand::Report(args) => report::run(args),
     }
 }

@@ -61,6 +61,13 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         summary.made.len(),
         summary.busy.len()
     );
+    if let Some(first) = summary.frames_deleted.first() {
+        eprintln!(
+            "left alone: {} sequence(s) whose frames were deleted after their runs (`rslam suite regen {} {first}` remakes one)",
+            summary.frames_deleted.len(),
+            args.dir.display()
+        );
+    }
     for (name, why) in &summary.conflicts {
         eprintln!("left alone: {name}: {why} (--force remakes it)");
     }

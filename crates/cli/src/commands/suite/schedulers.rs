@@ -4,17 +4,28 @@ use std::process::ExitCode;
 use anyhow::Context;
 use rslam_suite::schedulers::kubernetes::{write_kubernetes_job, KubernetesOptions};
 use rslam_suite::schedulers::slurm::{write_slurm_script, SlurmOptions};
-use rslam_suite::schedulers::TaskOptions;
+use rslam_suite::schedulers::{EphemeralTask, TaskOptions};
 use rslam_suite::Suite;
 
 #[derive(clap::Args)]
 pub struct TaskArgs {
-    /// Sequences each task makes at once on its GPU.
+    /// Sequences each task makes at once on its GPU (with --ephemeral: in flight).
     #[arg(long, default_value_t = 1)]
     jobs: usize,
     /// `--adapter` for every task (a GPU name fragment).
     #[arg(long)]
     adapter: Option<String>,
+    /// Each task runs `suite bench --ephemeral` with --methods instead of `suite run`: no
+    /// frames kept.
+    #[arg(long, requires = "methods")]
+    ephemeral: bool,
+    /// A method file for the ephemeral tasks, repeatable.
+    #[arg(long = "methods", requires = "ephemeral")]
+    methods: Vec<PathBuf>,
+    /// Node-local scratch for the ephemeral tasks' frames (default: each task's $TMPDIR, else in
+    /// place; Kubernetes: the pod's emptyDir).
+    #[arg(long, requires = "ephemeral", value_name = "DIR")]
+    scratch: Option<String>,
 }
 
 #[derive(clap::Args)]
@@ -64,11 +75,35 @@ pub struct KubernetesArgs {
 }
 
 impl TaskArgs {
-    fn options(self) -> TaskOptions {
-        TaskOptions {
+    /// The task options; `absolute`: method files as absolute paths (they are read where the
+    /// task runs, in another working folder).
+    fn options(self, absolute: bool) -> anyhow::Result<TaskOptions> {
+        let ephemeral = if self.ephemeral {
+            let methods = self
+                .methods
+                .iter()
+                .map(|path| {
+                    let path = match absolute {
+                        true => path
+                            .canonicalize()
+                            .with_context(|| format!("--methods {}", path.display()))?,
+                        false => path.clone(),
+                    };
+                    Ok(path.display().to_string())
+                })
+                .collect::<anyhow::Result<_>>()?;
+            Some(EphemeralTask {
+                methods,
+                scratch: self.scratch,
+            })
+        } else {
+            None
+        };
+        Ok(TaskOptions {
             jobs: self.jobs,
             adapter: self.adapter,
-        }
+            ephemeral,
+        })
     }
 }
 
@@ -85,7 +120,7 @@ pub fn run_slurm(args: SlurmArgs) -> anyhow::Result<ExitCode> {
         throttle: args.throttle,
         sbatch_args: args.sbatch_args,
         rslam,
-        task: args.task.options(),
+        task: args.task.options(true)?,
     };
     let path = write_slurm_script(&args.dir, &options)?;
     eprintln!("submit with: sbatch {}", path.display());
@@ -102,7 +137,7 @@ pub fn run_kubernetes(args: KubernetesArgs) -> anyhow::Result<ExitCode> {
         claim: args.claim,
         mount: args.mount,
         gpus: args.gpus,
-        task: args.task.options(),
+        task: args.task.options(false)?,
     };
     let path = write_kubernetes_job(&args.dir, &options)?;
     eprintln!(

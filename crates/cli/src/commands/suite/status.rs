@@ -2,7 +2,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use rslam_suite::{
-    available_bytes, format_bytes, plan, Shard, Suite, SuitePlan, SuiteStatus, DATASETS_DIR,
+    available_bytes, format_bytes, plan, plan_ephemeral, EphemeralPlan, SequenceState, Shard,
+    Suite, SuitePlan, SuiteStatus, DATASETS_DIR,
 };
 
 #[derive(clap::Args)]
@@ -12,6 +13,9 @@ pub struct StatusArgs {
     /// Also the plan: frames and bytes per sequence and in all, free space, time to go.
     #[arg(long)]
     plan: bool,
+    /// With --plan: sequences in flight in `suite bench --ephemeral`, for its disk need.
+    #[arg(long, default_value_t = 1, requires = "plan")]
+    jobs: usize,
     /// Print JSON instead of tables.
     #[arg(long)]
     json: bool,
@@ -22,19 +26,27 @@ pub fn run(args: StatusArgs) -> anyhow::Result<ExitCode> {
     let states = suite.shard_states(Shard::WHOLE);
     let status = SuiteStatus::read(&suite, &states)?;
     let planned = if args.plan {
-        Some(plan(&suite.dir, &states)?)
+        let planned = plan(&suite.dir, &states)?;
+        let ephemeral = plan_ephemeral(&suite, &planned, args.jobs)?;
+        Some((planned, ephemeral))
     } else {
         None
     };
     let free = available_bytes(&suite.dir.join(DATASETS_DIR))?;
     if args.json {
-        let json = serde_json::json!({ "status": status, "plan": planned, "bytes_free": free });
+        let (plan, ephemeral) = planned.unzip();
+        let json = serde_json::json!({
+            "status": status, "plan": plan, "ephemeral": ephemeral, "bytes_free": free
+        });
         println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
         print!("{}", status.table());
-        let counts: Vec<String> = ["complete", "partial", "missing", "conflict"]
+        let count = |label: &str| status.counts.get(label).copied().unwrap_or(0);
+        // Frames deleted only where an ephemeral bench deleted some.
+        let counts: Vec<String> = SequenceState::LABELS
             .iter()
-            .map(|k| format!("{} {k}", status.counts.get(k).copied().unwrap_or(0)))
+            .filter(|k| **k != SequenceState::FramesDeleted.label() || count(k) > 0)
+            .map(|k| format!("{} {k}", count(k)))
             .collect();
         println!(
             "{} sequences: {}; {} on disk, {} free",
@@ -44,12 +56,13 @@ pub fn run(args: StatusArgs) -> anyhow::Result<ExitCode> {
             format_bytes(free)
         );
         for s in &status.sequences {
-            if let rslam_suite::SequenceState::Conflict(why) = &s.state {
+            if let SequenceState::Conflict(why) = &s.state {
                 println!("conflict: {}: {why}", s.name);
             }
         }
-        if let Some(planned) = &planned {
+        if let Some((planned, ephemeral)) = &planned {
             print_plan(planned, free);
+            print_ephemeral(ephemeral, free);
         }
     }
     Ok(if status.is_complete() {
@@ -86,6 +99,36 @@ fn print_plan(plan: &SuitePlan, free: u64) {
         plan.frames_per_second,
         plan.rate_source
     );
+}
+
+fn print_ephemeral(plan: &EphemeralPlan, free: u64) {
+    println!(
+        "ephemeral (suite bench --ephemeral --jobs {}): {} at most — the frames of the {} largest sequence(s) {}, what every sequence keeps {}, what the runs keep {}{}",
+        plan.jobs,
+        format_bytes(plan.bytes_total),
+        plan.jobs,
+        format_bytes(plan.bytes_in_flight),
+        format_bytes(plan.bytes_kept),
+        format_bytes(plan.bytes_runs),
+        if plan.bytes_total > free {
+            " — NOT ENOUGH SPACE"
+        } else {
+            ""
+        }
+    );
+    println!("      runs: {}", plan.runs_source);
+    match plan.run_seconds_to_go {
+        Some(runs) => println!(
+            "      about {} to go: the frames above and {} of runs, {} at once",
+            duration(plan.seconds_to_go),
+            duration(runs),
+            plan.jobs
+        ),
+        None => println!(
+            "      about {} to go for the frames, and the methods' own time",
+            duration(plan.seconds_to_go)
+        ),
+    }
 }
 
 fn duration(seconds: f64) -> String {
