@@ -202,7 +202,7 @@ fn an_ephemeral_bench_gives_the_runs_of_a_kept_one_within_the_disk_of_its_jobs()
 #[test]
 fn a_killed_ephemeral_bench_goes_on_without_making_or_running_twice_what_was_finished() {
     let ws = Workspace::new();
-    let method = frame_digest_method(&ws, 0.4);
+    let method = frame_digest_method(&ws, 0.2);
     suite(&ws, "suite");
     let scratch = ws.path("scratch");
     let args = [
@@ -276,6 +276,10 @@ fn a_killed_ephemeral_bench_goes_on_without_making_or_running_twice_what_was_fin
         "every run finished"
     );
     assert!(frame_files(&ws.path("suite")).is_empty() && frame_files(&scratch).is_empty());
+    assert!(
+        !ws.path("suite/datasets/.kept-partial").exists(),
+        "the kept files' gathering folder goes"
+    );
     assert_eq!(
         std::fs::read_dir(&scratch).unwrap().count(),
         0,

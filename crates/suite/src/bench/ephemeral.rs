@@ -290,6 +290,10 @@ fn keep_from_scratch(
     let kept = sequence.dir(&suite.dir);
     remove_folder(&kept)?;
     std::fs::rename(&gathering, &kept).map_err(|e| SuiteError::io(&gathering, e))?;
+    if let Some(parent) = gathering.parent() {
+        // Fails, harmlessly, while another sequence is being gathered.
+        let _ = std::fs::remove_dir(parent);
+    }
     remove_folder(frames)?;
     Ok(deleted)
 }
