@@ -4,7 +4,6 @@
 //! without making or running again what was finished, and leaves no frames behind.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
@@ -215,12 +214,7 @@ fn a_killed_ephemeral_bench_goes_on_without_making_or_running_twice_what_was_fin
         "--scratch",
         "scratch",
     ];
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rslam"))
-        .args(args)
-        .current_dir(ws.path(""))
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    let mut child = ws.spawn_rslam(&args);
     let third = ws.path("suite/runs/digest/room0__noise-2/0.json");
     for _ in 0..2400 {
         if third.is_file() {

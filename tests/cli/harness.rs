@@ -49,6 +49,19 @@ impl Workspace {
     }
 }
 
+impl Workspace {
+    /// Starts `rslam ARGS` inside the workspace without waiting, its stderr thrown away (to be
+    /// killed part-way).
+    pub fn spawn_rslam(&self, args: &[&str]) -> std::process::Child {
+        Command::new(env!("CARGO_BIN_EXE_rslam"))
+            .args(args)
+            .current_dir(self.dir.path())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("spawn rslam")
+    }
+}
+
 pub struct Run {
     args: String,
     pub output: Output,

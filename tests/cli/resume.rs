@@ -2,7 +2,6 @@
 //! of an uninterrupted run; another job on that folder is refused; `--force` starts over;
 //! `rslam verify` catches a changed file.
 
-use std::process::{Command, Stdio};
 use std::time::Duration;
 
 use crate::dataset_check::{assert_same_tree, files, tree};
@@ -36,12 +35,7 @@ fn render_args(format: &str) -> Vec<&str> {
 /// Starts `rslam ARGS` in `ws` and SIGKILLs it once the dataset `out` holds more than 40 files
 /// starting with `prefix` in its folder `watch`.
 pub fn kill_mid_run(ws: &Workspace, args: &[&str], out: &str, watch: &str, prefix: &str) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rslam"))
-        .args(args)
-        .current_dir(ws.path(""))
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
+    let mut child = ws.spawn_rslam(args);
     let watched = ws.path(out).join(watch);
     for _ in 0..1200 {
         if watched.is_dir() && files(&watched, prefix).len() > 40 {
