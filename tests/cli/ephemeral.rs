@@ -300,3 +300,65 @@ fn regen_refuses_a_row_that_no_longer_defines_the_kept_job() {
         &["the row of 'room0__fog' in suite.toml no longer defines the job its kept manifest records (they differ in perturbation"],
     );
 }
+
+/// Culling reads a dataset's cameras; with its frames deleted they come from what it keeps, and
+/// must be the same views in every layout.
+#[test]
+fn a_dataset_whose_frames_were_deleted_culls_to_the_same_views() {
+    let ws = Workspace::new();
+    ws.rslam(&["scene", "export", "room0", "--out", "room0.ply"])
+        .success();
+    for (layout, row, reads) in [
+        (
+            "replica",
+            format!("camera = \"{SMALL_CAMERA}\"\n"),
+            "replica",
+        ),
+        (
+            "tum",
+            format!("format = \"tum\"\ncamera = \"{SMALL_CAMERA}\"\n"),
+            "tum",
+        ),
+        (
+            "euroc",
+            "format = \"euroc\"\nrig = \"stereo\"\n".to_string(),
+            "euroc",
+        ),
+    ] {
+        let text = format!(
+            "[[sequence]]\nname = \"room0__{layout}\"\nscene = \"room0\"\nframes = 8\n{row}"
+        );
+        ws.write(&format!("kept-{layout}/suite.toml"), &text);
+        ws.write(&format!("used-{layout}/suite.toml"), &text);
+        let method = ws.write(
+            &format!("methods/{layout}.toml"),
+            &format!(
+                "name = \"none\"\nreads = \"{reads}\"\ncommand = [\"true\"]\ntimeout_s = 30\n"
+            ),
+        );
+        ws.rslam(&["suite", "run", &format!("kept-{layout}")])
+            .success();
+        let used = format!("used-{layout}");
+        let method = method.display().to_string();
+        ws.rslam(&["suite", "bench", &used, "--ephemeral", "--methods", &method])
+            .success();
+        let views = |suite: &str| {
+            let dataset = format!("{suite}/datasets/room0__{layout}");
+            let args = [
+                "eval",
+                "recon",
+                "room0.ply",
+                "--gt",
+                "room0.ply",
+                "--samples",
+                "2000",
+            ];
+            ws.rslam(&[&args[..], &["--dataset", &dataset, "--json"]].concat())
+                .success()
+        };
+        let kept = views(&format!("kept-{layout}"));
+        assert!(kept.contains("\"views\""), "{kept}");
+        assert_eq!(kept, views(&used), "{layout}");
+        assert!(frame_files(&ws.path(&used)).is_empty(), "{layout}");
+    }
+}

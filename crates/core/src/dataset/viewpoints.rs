@@ -4,8 +4,11 @@
 
 use std::path::Path;
 
-use crate::dataset::euroc::read_euroc;
-use crate::dataset::{read_dataset, DatasetOverrides, MANIFEST_FILE};
+use crate::dataset::euroc::{read_euroc, read_euroc_without_frames};
+use crate::dataset::{
+    read_dataset, read_frames_deleted, DatasetFormat, DatasetOverrides, Manifest, MANIFEST_FILE,
+};
+use crate::trajectory_io::{read_trajectory, TrajectoryFormat};
 use crate::{nearest_time, CoreError, Intrinsics, Pose};
 
 /// One camera of a dataset (of one of its agents, for several agents).
@@ -83,29 +86,61 @@ fn add_views(root: &Path, prefix: &str, out: &mut DatasetViews) -> Result<(), Co
             "a rosbag2: its cameras are not read for culling; render the same job in the tum or replica layout",
         ));
     }
-    let dataset = read_dataset(root, &DatasetOverrides::default())?;
-    let ground_truth = dataset.ground_truth.ok_or_else(|| {
-        CoreError::bad_file(
-            root,
-            "no ground-truth trajectory (traj.txt or groundtruth.txt): the cameras' poses are needed",
-        )
-    })?;
+    let (intrinsics, format, poses) = match read_frames_deleted(root) {
+        Some(_) => kept_camera_and_poses(root)?,
+        None => {
+            let dataset = read_dataset(root, &DatasetOverrides::default())?;
+            let ground_truth = dataset.ground_truth.ok_or_else(|| {
+                CoreError::bad_file(
+                    root,
+                    "no ground-truth trajectory (traj.txt or groundtruth.txt): the cameras' poses are needed",
+                )
+            })?;
+            (dataset.intrinsics, dataset.format, ground_truth.poses)
+        }
+    };
     let camera = out.cameras.len();
     out.cameras.push(ViewCamera {
         name: format!("{prefix}rgb"),
-        intrinsics: dataset.intrinsics,
-        max_depth_m: Some(u16::MAX as f64 / dataset.format.depth_scale()),
+        intrinsics,
+        max_depth_m: Some(u16::MAX as f64 / format.depth_scale()),
     });
     out.views
-        .extend(ground_truth.poses.iter().map(|&world_from_camera| View {
+        .extend(poses.into_iter().map(|world_from_camera| View {
             camera,
             world_from_camera,
         }));
     Ok(())
 }
 
+/// The camera, layout and ground-truth poses of a dataset whose frames were deleted after use,
+/// from what it keeps: the manifest and the ground-truth file.
+fn kept_camera_and_poses(root: &Path) -> Result<(Intrinsics, DatasetFormat, Vec<Pose>), CoreError> {
+    let manifest = Manifest::read(root)?;
+    let missing = |what: &str| {
+        CoreError::bad_file(
+            root.join(MANIFEST_FILE),
+            format!("no {what}: the cameras of a dataset whose frames were deleted come from its manifest"),
+        )
+    };
+    let camera = manifest.camera.ok_or_else(|| missing("camera"))?;
+    let format = manifest.format.ok_or_else(|| missing("format"))?;
+    let (file, file_format) = match format {
+        DatasetFormat::Replica => ("traj.txt", TrajectoryFormat::Replica),
+        DatasetFormat::Tum => ("groundtruth.txt", TrajectoryFormat::Tum),
+        DatasetFormat::Ros2 => return Err(missing("ground-truth file beside a bag")),
+    };
+    let poses = read_trajectory(&root.join(file), Some(file_format))?
+        .trajectory
+        .poses;
+    Ok((camera, format, poses))
+}
+
 fn add_euroc_views(root: &Path, prefix: &str, out: &mut DatasetViews) -> Result<(), CoreError> {
-    let dataset = read_euroc(root)?;
+    let dataset = match read_frames_deleted(root) {
+        Some(_) => read_euroc_without_frames(root)?,
+        None => read_euroc(root)?,
+    };
     let states = dataset.ground_truth.ok_or_else(|| {
         CoreError::bad_file(
             &dataset.mav_dir,

@@ -123,8 +123,13 @@ fn row<const N: usize>(
     Ok((at.nanoseconds(1, parts[0], layout)?, values))
 }
 
-/// `camN/data.csv`: its frames, each image in `data_dir`, which must be there.
-pub fn read_camera_csv(path: &Path, data_dir: &Path) -> Result<Vec<EurocFrame>, CoreError> {
+/// `camN/data.csv`: its frames, each image in `data_dir`, which must be there unless
+/// `images_deleted` (frames deleted after use: only their times are read).
+pub fn read_camera_csv(
+    path: &Path,
+    data_dir: &Path,
+    images_deleted: bool,
+) -> Result<Vec<EurocFrame>, CoreError> {
     let text = read_checked(path, CAMERA_HEADER, "a EuRoC camera data.csv")?;
     let mut frames: Vec<EurocFrame> = Vec::new();
     for (line, content) in data_lines(&text) {
@@ -152,7 +157,7 @@ pub fn read_camera_csv(path: &Path, data_dir: &Path) -> Result<Vec<EurocFrame>, 
             )));
         }
         let image: PathBuf = data_dir.join(name);
-        if !image.is_file() {
+        if !images_deleted && !image.is_file() {
             return Err(at.error(format!(
                 "names {}, which is missing; expected an image there",
                 printable(&image.display().to_string())

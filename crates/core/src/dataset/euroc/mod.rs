@@ -35,7 +35,10 @@ mod tests;
 
 pub use camchain::{read_camchain, Camchain, CamchainCamera};
 pub use csv::{ground_truth_csv, imu_csv, CAMERA_HEADER, GROUND_TRUTH_HEADER, IMU_HEADER};
-pub use reader::{read_euroc, read_inertial, EurocCameraFrames, EurocDataset, EurocImuSamples};
+pub use reader::{
+    read_euroc, read_euroc_without_frames, read_inertial, EurocCameraFrames, EurocDataset,
+    EurocImuSamples,
+};
 pub use samples::{nanoseconds_from_seconds, EurocFrame, GroundTruthState, ImuSample};
 pub use sensor_yaml::{CAMERA_YAML_FIRST_LINE, IMU_YAML_FIRST_LINE};
 pub use sensors::{CameraColour, EurocCamera, EurocImu, RadialTangential};

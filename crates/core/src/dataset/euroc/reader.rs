@@ -57,6 +57,17 @@ fn camera_number(name: &str) -> Option<usize> {
 /// `cam<N>` folder with its sensor.yaml and data.csv (each listed image must exist), `imu0` and
 /// the ground truth where present. A camera's colour is told from its first frame's header.
 pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
+    read_euroc_with(root, false)
+}
+
+/// [`read_euroc`] of a dataset whose frames were deleted after use: the frames' times without
+/// their images, each camera's colour unknown (grey, as for a camera without frames). For what
+/// needs no image, such as culling to the cameras' views.
+pub fn read_euroc_without_frames(root: &Path) -> Result<EurocDataset, CoreError> {
+    read_euroc_with(root, true)
+}
+
+fn read_euroc_with(root: &Path, images_deleted: bool) -> Result<EurocDataset, CoreError> {
     let mav_dir = if root.join(MAV_DIR).is_dir() {
         root.join(MAV_DIR)
     } else if root.file_name().is_some_and(|n| n == MAV_DIR) && root.is_dir() {
@@ -93,7 +104,7 @@ pub fn read_euroc(root: &Path) -> Result<EurocDataset, CoreError> {
     };
     let cameras = numbered
         .iter()
-        .map(|(_, name)| read_camera(&mav_dir, name, tum_vi.as_ref()))
+        .map(|(_, name)| read_camera(&mav_dir, name, tum_vi.as_ref(), images_deleted))
         .collect::<Result<Vec<_>, _>>()?;
     let (imu, ground_truth) = read_inertial_calibrated(&mav_dir, |imu_dir| match &tum_vi {
         None => read_imu_yaml(&imu_dir.join("sensor.yaml")),
@@ -151,20 +162,22 @@ fn read_camera(
     mav_dir: &Path,
     name: &str,
     tum_vi: Option<&TumViCalibration>,
+    images_deleted: bool,
 ) -> Result<EurocCameraFrames, CoreError> {
     let dir = mav_dir.join(name);
     let csv = dir.join("data.csv");
     let (mut camera, frames) = match tum_vi {
         None => {
             let camera = read_camera_yaml(&dir.join("sensor.yaml"), name)?;
-            (camera, read_camera_csv(&csv, &dir.join("data"))?)
+            let frames = read_camera_csv(&csv, &dir.join("data"), images_deleted)?;
+            (camera, frames)
         }
         Some(calibration) => {
-            let frames = read_camera_csv(&csv, &dir.join("data"))?;
+            let frames = read_camera_csv(&csv, &dir.join("data"), images_deleted)?;
             (tum_vi::camera(calibration, name, &csv, &frames)?, frames)
         }
     };
-    if let Some(first) = frames.first() {
+    if let Some(first) = frames.first().filter(|_| !images_deleted) {
         let colour_type = read_image_colour_type(&first.path)?;
         camera.colour = if colour_type.has_color() {
             CameraColour::Rgb
