@@ -91,18 +91,19 @@ pub fn bench_ephemeral(
         summary.runs_done_before += all - left;
         if left == 0 && state == SequenceState::FramesDeleted {
             summary.sequences_done_before += 1;
-        } else {
-            work.push((sequence, left));
+            continue;
         }
+        let to_draw = match state {
+            SequenceState::Complete => 0,
+            _ => sequence.frame_counts(&suite.dir)?.rendered,
+        };
+        work.push((sequence, left, to_draw));
     }
-    let sequences_to_use: Vec<&Sequence> = work.iter().map(|(s, _)| *s).collect();
+    let sequences_to_use: Vec<&Sequence> = work.iter().map(|(s, ..)| *s).collect();
     check_layouts(methods, &sequences_to_use)?;
-    runs.begin(work.iter().map(|(_, left)| left).sum());
-    let frames = work
-        .iter()
-        .map(|(s, _)| s.frame_counts(&suite.dir).map(|c| c.rendered))
-        .sum::<Result<usize, _>>()?;
-    sequences.begin(work.len(), frames);
+    runs.begin(work.iter().map(|(_, left, _)| left).sum());
+    let to_make = work.iter().filter(|(.., to_draw)| *to_draw > 0).count();
+    sequences.begin(to_make, work.iter().map(|(.., to_draw)| to_draw).sum());
     let scratch = match &options.scratch {
         Some(dir) => Some(suite_scratch(suite, dir)?),
         None => None,
@@ -114,7 +115,7 @@ pub fn bench_ephemeral(
         retry_failed: options.bench.retry_failed,
         scratch: scratch.as_deref(),
     };
-    let (outcomes, interrupted) = run_queue(&work, options.bench.jobs, |(sequence, _)| {
+    let (outcomes, interrupted) = run_queue(&work, options.bench.jobs, |(sequence, ..)| {
         let used = bench.use_sequence(sequence, sequences, runs);
         let outcome = match used {
             Ok(outcome) => outcome,
@@ -131,7 +132,7 @@ pub fn bench_ephemeral(
     if let Some(error) = interrupted {
         return Err(error);
     }
-    for ((sequence, _), outcome) in work.iter().zip(outcomes) {
+    for ((sequence, ..), outcome) in work.iter().zip(outcomes) {
         let Some((outcome, records)) = outcome else {
             continue;
         };
