@@ -9,10 +9,10 @@
 use std::path::Path;
 
 use rslam_core::dataset::{
-    refuse_symlinks, Checksums, Manifest, CHECKSUM_FILE, FRAMES_DELETED_FILE, MANIFEST_FILE,
-    PARTIAL_SUFFIX, RUN_FILE,
+    read_frames_deleted, refuse_symlinks, Checksums, Manifest, CHECKSUM_FILE, FRAMES_DELETED_FILE,
+    MANIFEST_FILE, PARTIAL_SUFFIX, RUN_FILE,
 };
-use rslam_core::CoreError;
+use rslam_core::{remove_if_present, CoreError};
 
 use crate::PipelineError;
 
@@ -136,10 +136,13 @@ pub fn holding(
             what: describe_other(&earlier, &job, finished),
         },
         (true, false) => Holding::Unfinished,
-        (true, true) if root.join(FRAMES_DELETED_FILE).is_file() => Holding::FramesDeleted,
-        (true, true) => match sealed_files(root, &earlier) {
-            Ok(()) => Holding::Complete,
-            Err(why) => Holding::Broken(why),
+        (true, true) => match read_frames_deleted(root) {
+            Err(e) => Holding::Unreadable(e),
+            Ok(Some(_)) => Holding::FramesDeleted,
+            Ok(None) => match sealed_files(root, &earlier) {
+                Ok(()) => Holding::Complete,
+                Err(why) => Holding::Broken(why),
+            },
         },
     })
 }
@@ -163,12 +166,7 @@ fn prepare(root: &Path, job: &Manifest, force: bool) -> Result<FolderState, Pipe
             // run of this job, never a folder without a record.
             job.job().write_as(root, RUN_FILE)?;
             for name in [FRAMES_DELETED_FILE, MANIFEST_FILE] {
-                match std::fs::remove_file(root.join(name)) {
-                    Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                        return Err(CoreError::io(root.join(name), e).into())
-                    }
-                    _ => {}
-                }
+                remove_if_present(&root.join(name))?;
             }
             FolderState::Resume
         }

@@ -62,9 +62,8 @@ pub fn plan(
         };
         let whole = match state {
             SequenceState::Complete => Some(on_disk),
-            SequenceState::FramesDeleted => {
-                read_frames_deleted(&sequence.dir(suite_dir)).map(|deleted| on_disk + deleted.bytes)
-            }
+            SequenceState::FramesDeleted => read_frames_deleted(&sequence.dir(suite_dir))?
+                .map(|deleted| on_disk + deleted.bytes),
             _ => None,
         };
         if let Some(whole) = whole {

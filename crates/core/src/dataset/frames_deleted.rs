@@ -9,7 +9,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::dataset::{write_atomically, Checksums, Manifest, CHECKSUM_FILE, MANIFEST_FILE};
-use crate::CoreError;
+use crate::{remove_if_present, CoreError};
 
 /// Written before the first frame is deleted: a folder holding it is missing its frames on
 /// purpose.
@@ -31,32 +31,28 @@ pub fn is_frame_file(relative: &str) -> bool {
     matches!(extension.as_deref(), Some("png" | "jpg" | "jpeg" | "exr"))
 }
 
-/// The record of a folder whose frames were deleted, `None` when it has none.
-pub fn read_frames_deleted(root: &Path) -> Option<FramesDeleted> {
-    let text = std::fs::read_to_string(root.join(FRAMES_DELETED_FILE)).ok()?;
-    serde_json::from_str(&text).ok()
+/// The record of a folder whose frames were deleted: `None` when it has none, an error naming
+/// the file when it cannot be read.
+pub fn read_frames_deleted(root: &Path) -> Result<Option<FramesDeleted>, CoreError> {
+    let path = root.join(FRAMES_DELETED_FILE);
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(&path).map_err(|e| CoreError::io(&path, e))?;
+    serde_json::from_str(&text).map(Some).map_err(|e| {
+        CoreError::bad_file(
+            &path,
+            format!("expected {{\"files\": N, \"bytes\": N}}: {e}"),
+        )
+    })
 }
 
 /// Deletes the frames of the finished output `root`, keeping everything else.
 pub fn delete_frames(root: &Path) -> Result<FramesDeleted, CoreError> {
-    let listed = finished_list(root)?;
-    let frames: Vec<&str> = listed.paths().filter(|p| is_frame_file(p)).collect();
-    let mut deleted = FramesDeleted { files: 0, bytes: 0 };
-    for relative in &frames {
-        if let Ok(meta) = std::fs::metadata(root.join(relative)) {
-            deleted.files += 1;
-            deleted.bytes += meta.len();
-        }
-    }
+    let (listed, deleted) = finished_list(root)?;
     write_record(root, &deleted)?;
-    for relative in frames {
-        let path = root.join(relative);
-        match std::fs::remove_file(&path) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                return Err(CoreError::io(&path, e))
-            }
-            _ => {}
-        }
+    for relative in listed.paths().filter(|p| is_frame_file(p)) {
+        remove_if_present(&root.join(relative))?;
     }
     remove_empty_folders(root)?;
     Ok(deleted)
@@ -65,27 +61,18 @@ pub fn delete_frames(root: &Path) -> Result<FramesDeleted, CoreError> {
 /// Copies the finished output `from` without its frames to `to` (which must not exist), as a
 /// folder whose frames were deleted.
 pub fn copy_without_frames(from: &Path, to: &Path) -> Result<FramesDeleted, CoreError> {
-    let listed = finished_list(from)?;
-    let mut deleted = FramesDeleted { files: 0, bytes: 0 };
-    for relative in listed.paths() {
-        let source = from.join(relative);
-        if is_frame_file(relative) {
-            let meta = std::fs::metadata(&source).map_err(|e| CoreError::io(&source, e))?;
-            deleted.files += 1;
-            deleted.bytes += meta.len();
-            continue;
-        }
-        copy(&source, &to.join(relative))?;
-    }
-    for name in [CHECKSUM_FILE, MANIFEST_FILE] {
-        copy(&from.join(name), &to.join(name))?;
+    let (listed, deleted) = finished_list(from)?;
+    let kept = listed.paths().filter(|p| !is_frame_file(p));
+    for relative in kept.chain([CHECKSUM_FILE, MANIFEST_FILE]) {
+        copy(&from.join(relative), &to.join(relative))?;
     }
     write_record(to, &deleted)?;
     Ok(deleted)
 }
 
-/// The checksum list of a finished output: the one its manifest sealed.
-fn finished_list(root: &Path) -> Result<Checksums, CoreError> {
+/// The checksum list of the finished output `root` (the one its manifest sealed), and the count
+/// and size of the frames it names.
+fn finished_list(root: &Path) -> Result<(Checksums, FramesDeleted), CoreError> {
     let manifest = Manifest::read(root)?;
     let listed = Checksums::read(root)?;
     if manifest.content_digest.is_empty() || listed.digest() != manifest.content_digest {
@@ -94,7 +81,14 @@ fn finished_list(root: &Path) -> Result<Checksums, CoreError> {
             "is not the list the manifest sealed: only a finished output's frames are deleted",
         ));
     }
-    Ok(listed)
+    let mut frames = FramesDeleted { files: 0, bytes: 0 };
+    for relative in listed.paths().filter(|p| is_frame_file(p)) {
+        let path = root.join(relative);
+        let meta = std::fs::metadata(&path).map_err(|e| CoreError::io(&path, e))?;
+        frames.files += 1;
+        frames.bytes += meta.len();
+    }
+    Ok((listed, frames))
 }
 
 fn write_record(root: &Path, deleted: &FramesDeleted) -> Result<(), CoreError> {
@@ -166,7 +160,7 @@ mod tests {
                 bytes: 150
             }
         );
-        assert_eq!(read_frames_deleted(dir.path()), Some(deleted));
+        assert_eq!(read_frames_deleted(dir.path()).unwrap(), Some(deleted));
         assert!(
             !dir.path().join("results").exists(),
             "its emptied folder goes too"
@@ -202,6 +196,18 @@ mod tests {
                 "{name}"
             );
         }
+    }
+
+    #[test]
+    fn a_damaged_record_is_an_error_naming_it_and_none_is_none() {
+        let dir = tempfile::tempdir().unwrap();
+        assert_eq!(read_frames_deleted(dir.path()).unwrap(), None);
+        std::fs::write(dir.path().join(FRAMES_DELETED_FILE), "{\"files\": 2").unwrap();
+        let err = read_frames_deleted(dir.path()).unwrap_err().to_string();
+        assert!(
+            err.contains("rslam.frames-deleted.json: expected {\"files\""),
+            "{err}"
+        );
     }
 
     #[test]

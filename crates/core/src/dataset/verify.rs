@@ -53,7 +53,7 @@ pub fn verify_output(root: &Path) -> Result<Verification, CoreError> {
             "no rslam.json: not a finished rslam output (an interrupted run resumes when run again)",
         ));
     }
-    if let Some(deleted) = read_frames_deleted(root) {
+    if let Some(deleted) = read_frames_deleted(root)? {
         return Err(CoreError::bad_file(
             root.join(FRAMES_DELETED_FILE),
             format!(

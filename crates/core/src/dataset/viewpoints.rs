@@ -86,7 +86,7 @@ fn add_views(root: &Path, prefix: &str, out: &mut DatasetViews) -> Result<(), Co
             "a rosbag2: its cameras are not read for culling; render the same job in the tum or replica layout",
         ));
     }
-    let (intrinsics, format, poses) = match read_frames_deleted(root) {
+    let (intrinsics, format, poses) = match read_frames_deleted(root)? {
         Some(_) => kept_camera_and_poses(root)?,
         None => {
             let dataset = read_dataset(root, &DatasetOverrides::default())?;
@@ -137,7 +137,7 @@ fn kept_camera_and_poses(root: &Path) -> Result<(Intrinsics, DatasetFormat, Vec<
 }
 
 fn add_euroc_views(root: &Path, prefix: &str, out: &mut DatasetViews) -> Result<(), CoreError> {
-    let dataset = match read_frames_deleted(root) {
+    let dataset = match read_frames_deleted(root)? {
         Some(_) => read_euroc_without_frames(root)?,
         None => read_euroc(root)?,
     };

@@ -15,11 +15,14 @@ use rslam_core::dataset::{
     blake3_hex, copy_without_frames, delete_frames, read_frames_deleted, refuse_symlinks,
     DatasetFormat, FramesDeleted, Layout,
 };
+use rslam_core::remove_if_present;
 use rslam_gpu::GpuContext;
 use rslam_pipeline::{PipelineError, SceneCache};
 
 use super::method::Method;
-use super::run_method::{check_layouts, run_once, runs_left, BenchOptions, BenchProgress, RunId};
+use super::run_method::{
+    check_layouts, run_reported, runs_left, BenchOptions, BenchProgress, RunId,
+};
 use crate::run::{lock, make_sequence, Replace, SequenceOutcome, SuiteProgress};
 use crate::sequence::{Sequence, DATASETS_DIR};
 use crate::state::{inspect, SequenceState};
@@ -41,12 +44,8 @@ pub struct EphemeralOptions {
 /// What happened to one sequence.
 #[derive(Clone, Debug, PartialEq)]
 pub enum EphemeralOutcome {
-    /// Made (or found complete), run, and its frames deleted.
-    Used {
-        made: Option<SequenceOutcome>,
-        runs: usize,
-        deleted: FramesDeleted,
-    },
+    /// Made (or found complete), run, and its frames deleted: how many and how large.
+    Used(FramesDeleted),
     /// Another process holds its lock.
     Busy,
     /// It could not be made: its runs did not run.
@@ -143,9 +142,7 @@ pub fn bench_ephemeral(
             }
         }
         match outcome {
-            EphemeralOutcome::Used { deleted, .. } => {
-                summary.used.push((sequence.name.clone(), deleted))
-            }
+            EphemeralOutcome::Used(deleted) => summary.used.push((sequence.name.clone(), deleted)),
             EphemeralOutcome::Busy => summary.busy.push(sequence.name.clone()),
             EphemeralOutcome::Failed(why) => summary.failed.push((sequence.name.clone(), why)),
         }
@@ -214,63 +211,36 @@ impl Bench<'_> {
         let state = inspect(sequence, &suite.dir, &scenes);
         let left = runs_left(suite, self.methods, sequence, self.retry_failed);
         if left.is_empty() && state == SequenceState::FramesDeleted {
-            let deleted =
-                read_frames_deleted(&kept).unwrap_or(FramesDeleted { files: 0, bytes: 0 });
-            let used = EphemeralOutcome::Used {
-                made: None,
-                runs: 0,
-                deleted,
-            };
-            return Ok((used, Vec::new()));
+            if let Some(deleted) = read_frames_deleted(&kept)? {
+                return Ok((EphemeralOutcome::Used(deleted), Vec::new()));
+            }
         }
         let frames = match (self.scratch, &state) {
             (_, SequenceState::Complete) | (None, _) => kept.clone(),
             (Some(scratch), _) => scratch.join(&sequence.name),
         };
-        let made = match state {
-            SequenceState::Complete => None,
-            _ => {
-                // In scratch, another job's output is a leftover of an edited row.
-                let replace = match state == SequenceState::Partial || frames != kept {
-                    true => Replace::OtherJob,
-                    false => Replace::Nothing,
-                };
-                std::fs::create_dir_all(&frames).map_err(|e| SuiteError::io(&frames, e))?;
-                let made = make_sequence(
-                    self.ctx, suite, sequence, &frames, replace, &scenes, sequences,
-                )?;
-                sequences.sequence_done(&sequence.name, &made);
-                Some(made)
-            }
-        };
+        if state != SequenceState::Complete {
+            // In scratch, another job's output is a leftover of an edited row.
+            let replace = match state == SequenceState::Partial || frames != kept {
+                true => Replace::OtherJob,
+                false => Replace::Nothing,
+            };
+            std::fs::create_dir_all(&frames).map_err(|e| SuiteError::io(&frames, e))?;
+            let made = make_sequence(
+                self.ctx, suite, sequence, &frames, replace, &scenes, sequences,
+            )?;
+            sequences.sequence_done(&sequence.name, &made);
+        }
         let mut outcomes = Vec::with_capacity(left.len());
         for (method, repeat) in &left {
-            let record = run_once(
-                suite,
-                method,
-                sequence,
-                *repeat,
-                &frames,
-                runs.interrupted(),
-            )?;
-            let id = RunId {
-                method: method.name.clone(),
-                sequence: sequence.name.clone(),
-                repeat: *repeat,
-            };
-            runs.run_done(&id, &record);
+            let (id, record) = run_reported(suite, method, sequence, *repeat, &frames, runs)?;
             outcomes.push((id, record.failure));
         }
         let deleted = match frames == kept {
             true => delete_frames(&kept)?,
             false => keep_from_scratch(suite, sequence, &frames)?,
         };
-        let used = EphemeralOutcome::Used {
-            made,
-            runs: outcomes.len(),
-            deleted,
-        };
-        Ok((used, outcomes))
+        Ok((EphemeralOutcome::Used(deleted), outcomes))
     }
 }
 
@@ -286,22 +256,15 @@ fn keep_from_scratch(
         .join(DATASETS_DIR)
         .join(KEPT_PARTIAL_DIR)
         .join(&sequence.name);
-    remove_folder(&gathering)?;
+    remove_if_present(&gathering)?;
     let deleted = copy_without_frames(frames, &gathering)?;
     let kept = sequence.dir(&suite.dir);
-    remove_folder(&kept)?;
+    remove_if_present(&kept)?;
     std::fs::rename(&gathering, &kept).map_err(|e| SuiteError::io(&gathering, e))?;
     if let Some(parent) = gathering.parent() {
         // Fails, harmlessly, while another sequence is being gathered.
         let _ = std::fs::remove_dir(parent);
     }
-    remove_folder(frames)?;
+    remove_if_present(frames)?;
     Ok(deleted)
-}
-
-fn remove_folder(dir: &Path) -> Result<(), SuiteError> {
-    match std::fs::remove_dir_all(dir) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(SuiteError::io(dir, e)),
-        _ => Ok(()),
-    }
 }

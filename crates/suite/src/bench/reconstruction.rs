@@ -15,7 +15,7 @@ use serde::Serialize;
 use rslam_pipeline::PipelineError;
 
 use super::measured_csv::measures_or_failure;
-use super::record::succeeded_runs;
+use super::record::succeeded_runs_keeping;
 use crate::sequence::Sequence;
 use crate::{Suite, SuiteError};
 
@@ -42,13 +42,7 @@ pub fn report_reconstructions(
         culling,
         ..ReconOptions::default()
     };
-    let runs: Vec<_> = succeeded_runs(suite)
-        .into_iter()
-        .filter_map(|(sequence, record)| {
-            let mesh = record.mesh?;
-            Some((sequence, record.method, record.repeat, mesh))
-        })
-        .collect();
+    let runs = succeeded_runs_keeping(suite, |record| record.mesh.clone());
     let mut views: BTreeMap<&str, DatasetViews> = BTreeMap::new();
     if culling != Culling::None {
         for (sequence, ..) in &runs {

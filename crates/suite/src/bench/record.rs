@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use rslam_core::dataset::write_atomically;
+use rslam_core::remove_if_present;
 use serde::{Deserialize, Serialize};
 
 use crate::sequence::Sequence;
@@ -38,6 +39,21 @@ pub fn succeeded_runs(suite: &Suite) -> Vec<(&Sequence, RunRecord)> {
     let mut runs = recorded_runs(suite);
     runs.retain(|(_, record)| record.failure.is_none());
     runs
+}
+
+/// Every run that succeeded and kept what `kept` takes from its record (its mesh, its
+/// renders), as (sequence, method, repeat, what it kept), in the order of [`succeeded_runs`].
+pub fn succeeded_runs_keeping<T>(
+    suite: &Suite,
+    kept: impl Fn(&RunRecord) -> Option<T>,
+) -> Vec<(&Sequence, String, usize, T)> {
+    succeeded_runs(suite)
+        .into_iter()
+        .filter_map(|(sequence, record)| {
+            let what = kept(&record)?;
+            Some((sequence, record.method, record.repeat, what))
+        })
+        .collect()
 }
 
 /// The record of every finished run under `runs/`, failed or not, in the order of
@@ -128,17 +144,10 @@ impl RunFiles {
             self.mesh(),
             self.record(),
         ] {
-            match std::fs::remove_file(&path) {
-                Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                    return Err(SuiteError::io(&path, e))
-                }
-                _ => {}
-            }
+            remove_if_present(&path)?;
         }
         for dir in [self.work(), self.renders()] {
-            if dir.exists() {
-                std::fs::remove_dir_all(&dir).map_err(|e| SuiteError::io(&dir, e))?;
-            }
+            remove_if_present(&dir)?;
         }
         Ok(())
     }

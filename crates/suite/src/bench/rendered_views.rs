@@ -17,7 +17,7 @@ use rslam_pipeline::{PipelineError, SceneCache, Silent};
 use serde::Serialize;
 
 use super::measured_csv::measures_or_failure;
-use super::record::succeeded_runs;
+use super::record::succeeded_runs_keeping;
 use crate::sequence::Sequence;
 use crate::{Suite, SuiteError};
 
@@ -97,13 +97,7 @@ pub fn report_rendered_views(
     gpu: impl FnOnce() -> Result<GpuContext, SuiteError>,
     ate_of: &dyn Fn(&str, &str, usize) -> Option<f64>,
 ) -> Result<(Vec<RenderedViewRow>, Vec<PathBuf>), SuiteError> {
-    let runs: Vec<_> = succeeded_runs(suite)
-        .into_iter()
-        .filter_map(|(sequence, record)| {
-            let renders = record.renders?;
-            Some((sequence, record.method, record.repeat, renders))
-        })
-        .collect();
+    let runs = succeeded_runs_keeping(suite, |record| record.renders.clone());
     if runs.is_empty() {
         return Ok((Vec::new(), Vec::new()));
     }

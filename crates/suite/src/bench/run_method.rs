@@ -88,22 +88,8 @@ pub fn bench_suite(
     }
     progress.begin(to_run.len());
     let (records, interrupted) = run_queue(&to_run, options.jobs, |&(method, sequence, repeat)| {
-        let id = RunId {
-            method: method.name.clone(),
-            sequence: sequence.name.clone(),
-            repeat,
-        };
         let dataset = sequence.dir(&suite.dir);
-        let record = run_once(
-            suite,
-            method,
-            sequence,
-            repeat,
-            &dataset,
-            progress.interrupted(),
-        )?;
-        progress.run_done(&id, &record);
-        Ok((id, record))
+        run_reported(suite, method, sequence, repeat, &dataset, progress)
     });
     if let Some(error) = interrupted {
         return Err(error);
@@ -158,9 +144,35 @@ pub(crate) fn check_layouts(methods: &[Method], sequences: &[&Sequence]) -> Resu
     Ok(())
 }
 
+/// [`run_once`], reported to `progress` once recorded.
+pub(crate) fn run_reported(
+    suite: &Suite,
+    method: &Method,
+    sequence: &Sequence,
+    repeat: usize,
+    dataset: &Path,
+    progress: &dyn BenchProgress,
+) -> Result<(RunId, RunRecord), SuiteError> {
+    let record = run_once(
+        suite,
+        method,
+        sequence,
+        repeat,
+        dataset,
+        progress.interrupted(),
+    )?;
+    let id = RunId {
+        method: method.name.clone(),
+        sequence: sequence.name.clone(),
+        repeat,
+    };
+    progress.run_done(&id, &record);
+    Ok((id, record))
+}
+
 /// One run on the sequence's frames in `dataset`, recorded; interrupted, it records nothing and
 /// runs again next time.
-pub(crate) fn run_once(
+fn run_once(
     suite: &Suite,
     method: &Method,
     sequence: &Sequence,

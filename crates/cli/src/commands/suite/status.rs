@@ -86,11 +86,7 @@ fn print_plan(plan: &SuitePlan, free: u64) {
         format_bytes(plan.bytes_total),
         format_bytes(plan.bytes_to_write),
         format_bytes(free),
-        if plan.bytes_to_write > free {
-            " — NOT ENOUGH SPACE"
-        } else {
-            ""
-        }
+        space_warning(plan.bytes_to_write, free)
     );
     println!(
         "      {} frames still to draw: about {} at {:.1} frames/s ({})",
@@ -110,11 +106,7 @@ fn print_ephemeral(plan: &EphemeralPlan, free: u64) {
         format_bytes(plan.bytes_in_flight),
         format_bytes(plan.bytes_kept),
         format_bytes(plan.bytes_runs),
-        if plan.bytes_total > free {
-            " — NOT ENOUGH SPACE"
-        } else {
-            ""
-        }
+        space_warning(plan.bytes_total, free)
     );
     println!("      runs: {}", plan.runs_source);
     match plan.run_seconds_to_go {
@@ -128,6 +120,14 @@ fn print_ephemeral(plan: &EphemeralPlan, free: u64) {
             "      about {} to go for the frames, and the methods' own time",
             duration(plan.seconds_to_go)
         ),
+    }
+}
+
+/// What follows a disk figure that does not fit.
+fn space_warning(needed: u64, free: u64) -> &'static str {
+    match needed > free {
+        true => " — NOT ENOUGH SPACE",
+        false => "",
     }
 }
 
