@@ -18,6 +18,7 @@ fn flag(part: JobPart) -> String {
         JobPart::Rig => "--rig".into(),
         JobPart::Trajectory => "--traj".into(),
         JobPart::Agents => "--agents".into(),
+        JobPart::Bag => "--bag-depth/--bag-tf/--bag-compression".into(),
         JobPart::Frame | JobPart::FrameIndices | JobPart::Poses => part.to_string(),
     }
 }

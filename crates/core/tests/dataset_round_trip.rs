@@ -62,6 +62,7 @@ fn manifest(format: DatasetFormat, depth_png: DepthPng) -> Manifest {
         camera: Some(CAMERA),
         distortion: None,
         depth_png,
+        bag: Default::default(),
         rate_hz: RATE_HZ,
         frame_count: FRAMES,
         seed: 0,

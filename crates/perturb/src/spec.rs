@@ -270,6 +270,14 @@ impl PerturbSpec {
         }
     }
 
+    /// This spec without its image items: for a camera that sees only depth.
+    pub fn without_image(&self) -> PerturbSpec {
+        PerturbSpec {
+            image: Vec::new(),
+            ..self.clone()
+        }
+    }
+
     /// True when nothing is perturbed.
     pub fn is_empty(&self) -> bool {
         *self == PerturbSpec::default()

@@ -66,6 +66,8 @@ pub enum JobPart {
     Poses,
     /// How many agents share the scene.
     Agents,
+    /// How a ROS 2 bag is written (its depth encoding, `/tf`, compression).
+    Bag,
 }
 
 impl fmt::Display for JobPart {
@@ -81,6 +83,7 @@ impl fmt::Display for JobPart {
             Self::Trajectory => "trajectory",
             Self::Poses => "poses",
             Self::Agents => "agents",
+            Self::Bag => "bag options",
         })
     }
 }

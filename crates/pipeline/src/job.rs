@@ -11,6 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rslam_core::dataset::ros2::{BagDepth, BagOptions};
 use rslam_core::dataset::{DatasetFormat, DatasetOverrides, DepthPng, Layout, Manifest};
 use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Setting};
@@ -21,7 +22,7 @@ use crate::progress::Progress;
 use crate::rig::{CameraFrames, Rig, RigPreset};
 use crate::scene_job::{SceneCache, SceneJob};
 use crate::settings;
-use crate::{perturb_bag, perturb_dataset, perturb_images, render, rig, PipelineError};
+use crate::{perturb_bag, perturb_dataset, perturb_images, render, rig, JobPart, PipelineError};
 
 /// What to make, and where.
 #[derive(Clone, Debug)]
@@ -62,9 +63,10 @@ pub enum Source {
         seed: u64,
     },
     /// A recorded ROS 2 bag (a rosbag2 folder), copied into a bag with its camera's images
-    /// perturbed.
+    /// perturbed; each topic keeps its encoding, so only `bag.compression` applies.
     Bag {
         input: PathBuf,
+        bag: BagOptions,
         spec: PerturbSpec,
         seed: u64,
     },
@@ -83,42 +85,69 @@ pub enum Source {
 }
 
 /// What sees a scene, which decides the layout it is written in.
+// One per job: the size of the rig variant does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum Sensors {
     /// One RGB-D camera (the scene job's) in a core layout.
     Camera {
         format: DatasetFormat,
         depth_png: DepthPng,
+        bag: BagOptions,
     },
     /// `rgbd-imu`: that camera on a RealSense D435i-like body with its IMU, in the TUM layout
     /// with `imu0/` and the body's ground truth beside it, or in a ROS 2 bag with `/imu0`.
     CameraImu {
         format: DatasetFormat,
         depth_png: DepthPng,
+        bag: BagOptions,
     },
-    /// A rig of cameras and an IMU, in the EuRoC layout.
     /// A rig of cameras and an IMU, in the EuRoC layout or a ROS 2 bag (`Layout::Camera(Ros2)`).
-    Rig(Rig, Layout),
+    Rig(Rig, Layout, BagOptions),
 }
 
 impl Sensors {
     /// What `preset` is when written in `layout`: the one place where rigs meet layouts.
-    /// `depth_png` applies to the layouts with depth.
+    /// `depth_png` applies to the layouts with depth, `bag` to a ROS 2 bag (its depth option to
+    /// one with depth).
     pub fn new(
         preset: RigPreset,
         layout: Layout,
         depth_png: DepthPng,
+        bag: BagOptions,
     ) -> Result<Self, PipelineError> {
+        if !bag.is_default() && layout != Layout::Camera(DatasetFormat::Ros2) {
+            return Err(PipelineError::option(
+                JobPart::Bag,
+                format!("applies to a ROS 2 bag, not the {layout} layout"),
+            ));
+        }
         let rig = match (preset, layout) {
             (RigPreset::Rgbd, Layout::Camera(format)) => {
-                return Ok(Self::Camera { format, depth_png })
+                return Ok(Self::Camera {
+                    format,
+                    depth_png,
+                    bag,
+                })
             }
             (
                 RigPreset::RgbdImu,
                 Layout::Camera(format @ (DatasetFormat::Tum | DatasetFormat::Ros2)),
-            ) => return Ok(Self::CameraImu { format, depth_png }),
+            ) => {
+                return Ok(Self::CameraImu {
+                    format,
+                    depth_png,
+                    bag,
+                })
+            }
+            (RigPreset::Euroc(_), _) if bag.depth != BagDepth::default() => {
+                return Err(PipelineError::option(
+                    JobPart::Bag,
+                    format!("{} depth: a rig of cameras has no depth", bag.depth),
+                ))
+            }
             (RigPreset::Euroc(rig), Layout::Euroc | Layout::Camera(DatasetFormat::Ros2)) => {
-                return Ok(Self::Rig(rig, layout))
+                return Ok(Self::Rig(rig, layout, bag))
             }
             (RigPreset::Rgbd, _) => "rgbd".to_string(),
             (RigPreset::RgbdImu, _) => "rgbd-imu".to_string(),
@@ -132,7 +161,7 @@ impl Sensors {
         match self {
             Self::Camera { .. } => settings::one_camera_render("a one-camera render"),
             Self::CameraImu { .. } => settings::rgbd_imu_render(),
-            Self::Rig(rig, _) => settings::euroc_rig_render(rig),
+            Self::Rig(rig, ..) => settings::euroc_rig_render(rig),
         }
     }
 
@@ -145,7 +174,7 @@ impl Sensors {
         match self {
             Self::Camera { format, .. } => Layout::Camera(*format),
             Self::CameraImu { format, .. } => Layout::Camera(*format),
-            Self::Rig(_, layout) => *layout,
+            Self::Rig(_, layout, _) => *layout,
         }
     }
 }
@@ -236,14 +265,22 @@ impl Job {
             Source::Scene { scene, sensors } => {
                 sensors.check_spec(&scene.spec)?;
                 match sensors {
-                    Sensors::Camera { format, depth_png } => {
-                        Box::new(render::plan(scene, *format, *depth_png, command, scenes)?)
-                    }
-                    Sensors::CameraImu { format, depth_png } => Box::new(
-                        rig::rgbd_imu_render::plan(scene, *format, *depth_png, command, scenes)?,
-                    ),
-                    Sensors::Rig(rig, layout) => Box::new(rig::euroc_render::plan(
-                        scene, rig, *layout, command, scenes,
+                    Sensors::Camera {
+                        format,
+                        depth_png,
+                        bag,
+                    } => Box::new(render::plan(
+                        scene, *format, *depth_png, *bag, command, scenes,
+                    )?),
+                    Sensors::CameraImu {
+                        format,
+                        depth_png,
+                        bag,
+                    } => Box::new(rig::rgbd_imu_render::plan(
+                        scene, *format, *depth_png, *bag, command, scenes,
+                    )?),
+                    Sensors::Rig(rig, layout, bag) => Box::new(rig::euroc_render::plan(
+                        scene, rig, *layout, *bag, command, scenes,
                     )?),
                 }
             }
@@ -266,9 +303,12 @@ impl Job {
             Source::Euroc { input, spec, seed } => {
                 Box::new(rig::euroc_perturb::plan(input, spec, *seed, command)?)
             }
-            Source::Bag { input, spec, seed } => {
-                Box::new(perturb_bag::plan(input, spec, *seed, command)?)
-            }
+            Source::Bag {
+                input,
+                bag,
+                spec,
+                seed,
+            } => Box::new(perturb_bag::plan(input, *bag, spec, *seed, command)?),
             Source::Images { files, spec, seed } => {
                 Box::new(perturb_images::plan(files, spec, *seed, command)?)
             }

@@ -2,6 +2,7 @@
 //! lets someone regenerate the output bit for bit. No timings or dates: the same job writes the
 //! same bytes.
 
+use rslam_core::dataset::ros2::BagOptions;
 use rslam_core::dataset::{DatasetFormat, DepthPng, Manifest};
 use rslam_core::{Distortion, Intrinsics};
 use rslam_perturb::PerturbSpec;
@@ -19,6 +20,7 @@ pub struct ManifestParts<'a> {
     /// The lens the frames were seen through (written into the camera files too).
     pub distortion: Option<Distortion>,
     pub depth_png: DepthPng,
+    pub bag: BagOptions,
     pub rate_hz: f64,
     pub seed: u64,
     pub spec: &'a PerturbSpec,
@@ -40,6 +42,7 @@ impl ManifestParts<'_> {
             camera: self.camera,
             distortion: self.distortion,
             depth_png: self.depth_png,
+            bag: self.bag,
             rate_hz: self.rate_hz,
             frame_count: self.plan.len(),
             seed: self.seed,

@@ -1,33 +1,39 @@
 //! `rslam perturb` on a recorded ROS 2 bag: each camera's colour (and depth) messages decoded,
 //! perturbed and written back in their encodings into a bag of the same topics, every other
 //! message copied ([`rslam_core::dataset::ros2::RecordedBagCameras`]). The spec applies to every
-//! camera (its depth items to the cameras with depth); `misalign` moves the depth stamps; `fast`
-//! is refused, since the copied topics keep their times. Like a bag rslam renders, it is written
+//! camera (its depth items to the cameras with depth), its IMU items to every `sensor_msgs/Imu`
+//! topic ([`crate::rig::perturb_bag_imus`]); `misalign` moves the depth stamps; `fast` and
+//! `cam_imu_offset` are refused, since the copied topics keep their times. Like a bag rslam renders, it is written
 //! from its first message on every run.
 
 use std::path::Path;
 use std::sync::Arc;
 
-use rslam_core::dataset::ros2::{PerturbedBag, RecordedBag, RecordedBagCamera, RecordedBagCameras};
+use rslam_core::dataset::ros2::{
+    BagOptions, Imu, LogTimes, PerturbedBag, RecordedBag, RecordedBagCamera, RecordedBagCameras,
+};
 use rslam_core::dataset::{ContentWriter, DatasetFormat, DepthPng, Manifest};
 use rslam_gpu::GpuContext;
-use rslam_perturb::PerturbSpec;
+use rslam_perturb::{PerturbError, PerturbSpec};
 
 use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::output_folder::Written;
 use crate::pipeline::Pipeline;
 use crate::plan::{FramePlan, SourceTiming};
+use crate::rig::perturb_bag_imus;
 use crate::rig::CameraFrames;
 use crate::sink::{seal_bag, PerturbedBagSink};
 use crate::source::BagSource;
-use crate::{settings, PipelineError};
+use crate::{settings, JobPart, PipelineError};
 
 pub(crate) struct BagPerturb {
     seed: u64,
     recorded: Arc<RecordedBagCameras>,
     /// Per camera, in the order of `recorded.cameras`.
     runs: Vec<CameraRun>,
+    /// The IMU topics the spec changed: index among the bag's topics, messages.
+    imu_messages: Vec<(usize, Vec<(Imu, LogTimes)>)>,
     manifest: Manifest,
 }
 
@@ -40,12 +46,31 @@ struct CameraRun {
 
 pub(crate) fn plan(
     input: &Path,
+    bag: BagOptions,
     spec: &PerturbSpec,
     seed: u64,
     command: &[String],
 ) -> Result<BagPerturb, PipelineError> {
+    if bag.depth != BagOptions::default().depth || bag.tf {
+        return Err(PipelineError::option(
+            JobPart::Bag,
+            "a perturbed bag keeps each topic's encoding and its recorded /tf: only the compression applies",
+        ));
+    }
     let recorded = RecordedBagCameras::read(RecordedBag::open(input)?)?;
     settings::check(spec, &settings::recorded_bag(&recorded))?;
+    let has_colour = recorded.cameras.iter().any(|c| c.colour.is_some());
+    if let (Some(item), false) = (spec.image.first(), has_colour) {
+        return Err(PerturbError::spec(
+            item.to_string(),
+            format!(
+                "an image item, and the bag {} has no colour topic",
+                input.display()
+            ),
+        )
+        .into());
+    }
+    let imus = perturb_bag_imus(&recorded, spec, seed)?;
     let runs: Vec<CameraRun> = recorded
         .cameras
         .iter()
@@ -58,13 +83,13 @@ pub(crate) fn plan(
         .zip(&runs)
         .map(|(camera, run)| {
             serde_json::json!({
-                "colour_topic": camera.colour.name,
+                "colour_topic": camera.colour.as_ref().map(|c| c.name.clone()),
                 "depth_topic": camera.depth.as_ref().map(|d| d.name.clone()),
                 "frames": run.plan.len(),
             })
         })
         .collect();
-    let manifest = ManifestParts {
+    let mut manifest = ManifestParts {
         command,
         source: input.display().to_string(),
         source_hash: String::new(),
@@ -72,6 +97,7 @@ pub(crate) fn plan(
         camera: Some(cam0.intrinsics),
         distortion: cam0.distortion,
         depth_png: DepthPng::default(),
+        bag,
         rate_hz: cam0.rate_hz,
         seed,
         spec,
@@ -79,27 +105,33 @@ pub(crate) fn plan(
         extra: serde_json::json!({ "cameras": cameras }),
     }
     .build()?;
+    if let Some(report) = imus.report {
+        manifest.extra["imu_perturbation"] = report;
+    }
     Ok(BagPerturb {
         seed,
         recorded: Arc::new(recorded),
         runs,
+        imu_messages: imus.messages,
         manifest,
     })
 }
 
-/// A camera's run: the spec without its depth items where the camera has no depth.
+/// A camera's run: the spec without its depth items where the camera has no depth, without its
+/// image items where it has no colour (a depth camera of its own).
 fn camera_run(camera: &RecordedBagCamera, spec: &PerturbSpec, seed: u64) -> CameraRun {
-    let spec = match camera.depth {
-        Some(_) => spec.clone(),
-        None => spec.without_depth(),
+    let spec = match (&camera.colour, &camera.depth) {
+        (Some(_), Some(_)) => spec.clone(),
+        (Some(_), None) => spec.without_depth(),
+        (None, _) => spec.without_image(),
     };
     let recorded_times: Vec<(f64, f64)> = camera
-        .colour
+        .frames()
         .messages
         .iter()
         .enumerate()
-        .map(|(i, colour)| {
-            let rgb = colour.stamp.seconds();
+        .map(|(i, frame)| {
+            let rgb = frame.stamp.seconds();
             let depth = camera
                 .depth
                 .as_ref()
@@ -140,7 +172,7 @@ impl Planned for BagPerturb {
             .iter()
             .zip(&self.runs)
             .map(|(camera, run)| CameraFrames {
-                name: camera.colour.name.clone(),
+                name: camera.frames().name.clone(),
                 frames: run.plan.len(),
             })
             .collect();
@@ -161,7 +193,12 @@ impl Planned for BagPerturb {
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Box::new(move |out, _found, manifest, progress| {
-            let bag = Arc::new(PerturbedBag::create(out, self.recorded.clone())?);
+            let bag = Arc::new(PerturbedBag::create(
+                out,
+                self.recorded.clone(),
+                &self.imu_messages,
+                manifest.bag.compression,
+            )?);
             let made = self
                 .runs
                 .iter()

@@ -84,6 +84,7 @@ pub(crate) fn plan<'a>(
         camera: Some(dataset.intrinsics),
         distortion: dataset.distortion,
         depth_png: job.depth_png,
+        bag: Default::default(),
         rate_hz: dataset.rate_hz,
         seed: job.seed,
         spec: job.spec,

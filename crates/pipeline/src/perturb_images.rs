@@ -140,6 +140,7 @@ pub(crate) fn plan<'a>(
         camera: None,
         distortion: None,
         depth_png: DepthPng::default(),
+        bag: Default::default(),
         rate_hz: 0.0,
         seed,
         spec,

@@ -1,6 +1,7 @@
 //! A scene seen by one RGB-D camera along its path, perturbed, written as a Replica or TUM
 //! dataset.
 
+use rslam_core::dataset::ros2::BagOptions;
 use rslam_core::dataset::{DatasetFormat, DepthPng, Manifest};
 use rslam_core::Trajectory;
 use rslam_gpu::GpuContext;
@@ -27,6 +28,7 @@ pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
     format: DatasetFormat,
     depth_png: DepthPng,
+    bag: BagOptions,
     command: &[String],
     scenes: &SceneCache,
 ) -> Result<CameraRender<'a>, PipelineError> {
@@ -42,6 +44,7 @@ pub(crate) fn plan<'a>(
         camera: Some(scene.camera),
         distortion: scene.spec.distortion,
         depth_png,
+        bag,
         rate_hz: scene.rate_hz,
         seed: scene.seed,
         spec: &scene.spec,

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use rslam_core::dataset::euroc::{EurocDataset, IMU_DIR};
-use rslam_core::dataset::ros2::RecordedBagCameras;
+use rslam_core::dataset::ros2::{RecordedBagCameras, IMU_TYPE};
 use rslam_core::dataset::SourceDataset;
 use rslam_perturb::{Lenses, Need, PerturbSpec, Setting};
 
@@ -66,17 +66,24 @@ pub fn recorded_dataset(dataset: &SourceDataset, root: &Path, imu: bool) -> Sett
     }
 }
 
-/// A recorded ROS 2 bag's cameras: its other topics (an IMU, odometry, `/tf`) are copied as
-/// recorded, so the frames keep their times and each `CameraInfo` its lens.
+/// A recorded ROS 2 bag's cameras and IMU topics: its other topics (odometry, `/tf`, each
+/// camera's `CameraInfo`) are copied as recorded, so the frames keep their times and each
+/// `CameraInfo` its lens.
 pub fn recorded_bag(recorded: &RecordedBagCameras) -> Setting {
     let folder = recorded.bag.folder.display();
     let input = format!("the bag {folder}");
     let copied = format!("{input}'s other topics are copied with their times");
-    let setting = Setting::one_camera(input)
+    let info_copied = format!(
+        "{input}'s CameraInfo messages are copied with their stamps, which the images must keep"
+    );
+    let mut setting = Setting::one_camera(input)
         .lacking_all(&[Need::Scene])
         .lacking(Need::SpeedUp, copied)
-        .lacking(Need::Imu, "perturbing a bag's IMU topics is not built yet")
+        .lacking(Need::NewStamps, info_copied)
         .with_lenses(Lenses::None);
+    if recorded.imus.is_empty() {
+        setting = setting.lacking(Need::Imu, format!("{folder} has no {IMU_TYPE} topic"));
+    }
     match recorded.cameras.iter().any(|c| c.depth.is_some()) {
         true => setting,
         false => setting.lacking(Need::Depth, format!("{folder} has no depth topic")),

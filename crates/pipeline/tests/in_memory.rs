@@ -86,6 +86,7 @@ fn render_tum(job: SceneJob) -> (tempfile::TempDir, PathBuf, usize) {
                 sensors: Sensors::Camera {
                     format: DatasetFormat::Tum,
                     depth_png: DepthPng::Fast,
+                    bag: Default::default(),
                 },
             },
             out: out.clone(),

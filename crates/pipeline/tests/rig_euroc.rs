@@ -109,7 +109,7 @@ fn stereo_imu_rig_writes_a_euroc_stereo_pair_with_imu_and_ground_truth() {
     let job = Job {
         source: Source::Scene {
             scene: scene_job(Some(PATH_POSES)),
-            sensors: Sensors::Rig(Rig::stereo_imu(), Layout::Euroc),
+            sensors: Sensors::Rig(Rig::stereo_imu(), Layout::Euroc, Default::default()),
         },
         out: out.clone(),
         force: false,

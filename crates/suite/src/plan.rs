@@ -173,8 +173,12 @@ fn estimated_bytes_per_frame(sequence: &Sequence) -> f64 {
         .iter()
         .any(|item| item.name.ends_with("_noise"));
     let (clean, noise) = match &sequence.sensors {
-        Sensors::Camera { format, depth_png } => measured_bytes_per_pixel(*format, *depth_png),
-        Sensors::CameraImu { format, depth_png } => measured_bytes_per_pixel(*format, *depth_png),
+        Sensors::Camera {
+            format, depth_png, ..
+        }
+        | Sensors::CameraImu {
+            format, depth_png, ..
+        } => measured_bytes_per_pixel(*format, *depth_png),
         Sensors::Rig(..) => EUROC_GREY_BYTES_PER_PIXEL,
     };
     let pixels = sequence.camera.width as f64 * sequence.camera.height as f64;

@@ -114,7 +114,7 @@ impl Sequence {
                     push("--depth-png", depth_png.to_string());
                 }
             }
-            Sensors::Rig(rig, layout) => {
+            Sensors::Rig(rig, layout, _) => {
                 push("--rig", rig.name.clone());
                 push("--rate", self.rate_hz.to_string());
                 push("--format", layout.to_string());
@@ -211,7 +211,7 @@ impl Sequence {
             Some(n) => n,
             None => self.path_length(suite_dir)?,
         };
-        if let Sensors::Rig(rig, _) = &self.sensors {
+        if let Sensors::Rig(rig, ..) = &self.sensors {
             let frames = rig_camera_frames(rig, poses, self.rate_hz, speed_up(&self.spec))?
                 .iter()
                 .map(|c| c.frames)

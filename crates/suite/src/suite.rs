@@ -3,6 +3,7 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
+use rslam_core::dataset::ros2::BagOptions;
 use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
 use rslam_core::limits::{MAX_POSES, MAX_SUITE_SEQUENCES};
 use rslam_core::trajectory_io::ReadOptions;
@@ -228,9 +229,9 @@ fn sensors(
         None => DepthPng::default(),
         Some(text) => text.parse().map_err(|e| format!("depth_png: {e}"))?,
     };
-    let sensors = Sensors::new(preset, layout, depth_png).map_err(worded)?;
+    let sensors = Sensors::new(preset, layout, depth_png, BagOptions::default()).map_err(worded)?;
     sensors.check_spec(spec).map_err(worded)?;
-    if let Sensors::Rig(rig, _) = &sensors {
+    if let Sensors::Rig(rig, ..) = &sensors {
         let cam0 = rig
             .cameras
             .first()

@@ -167,6 +167,7 @@ fn make_dataset(dir: &Path, frames: usize) -> Trajectory {
             sensors: Sensors::Camera {
                 format: DatasetFormat::Replica,
                 depth_png: DepthPng::Fast,
+                bag: Default::default(),
             },
         },
         out: dir.to_path_buf(),

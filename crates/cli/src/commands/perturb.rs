@@ -2,6 +2,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
+use rslam_core::dataset::ros2::{BagCompression, BagOptions};
 use rslam_core::dataset::{DatasetOverrides, DepthPng};
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
@@ -39,6 +40,9 @@ pub struct PerturbArgs {
     /// the size for 2–3× the encoding time; lossless either way, see docs/src/formats.md, "Depth PNGs").
     #[arg(long)]
     depth_png: Option<DepthPng>,
+    /// A bag's MCAP chunks: `none` (default), `zstd` or `lz4`.
+    #[arg(long)]
+    bag_compression: Option<BagCompression>,
     /// Replace what --out holds if it is another rslam output (never a folder of other files).
     #[arg(long)]
     force: bool,
@@ -79,6 +83,12 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
             args.input.display()
         );
     }
+    if args.bag_compression.is_some() && !matches!(input, PerturbInput::Bag(_)) {
+        anyhow::bail!(
+            "--bag-compression: {} is not a ROS 2 bag; only a bag's output has MCAP chunks",
+            args.input.display()
+        );
+    }
     let seed = args.seed;
     let source = match input {
         PerturbInput::Dataset(input) => Source::Dataset {
@@ -92,7 +102,15 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
             seed,
         },
         PerturbInput::Euroc(input) => Source::Euroc { input, spec, seed },
-        PerturbInput::Bag(input) => Source::Bag { input, spec, seed },
+        PerturbInput::Bag(input) => Source::Bag {
+            input,
+            bag: BagOptions {
+                compression: args.bag_compression.unwrap_or_default(),
+                ..BagOptions::default()
+            },
+            spec,
+            seed,
+        },
         PerturbInput::ImageFolder(dir) => Source::Images {
             files: image_files(&dir)?,
             spec,

@@ -2,6 +2,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
+use rslam_core::dataset::ros2::{BagCompression, BagDepth, BagOptions};
 use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
@@ -48,6 +49,16 @@ pub struct RenderArgs {
     /// encoding time; lossless either way, see docs/src/formats.md, "Depth PNGs").
     #[arg(long, default_value = "fast")]
     depth_png: DepthPng,
+    /// With --format ros2: the depth topic's encoding, `16UC1` (millimetres, 0 = none; the
+    /// default) or `32FC1` (metres, NaN = none).
+    #[arg(long, default_value = "16UC1")]
+    bag_depth: BagDepth,
+    /// With --format ros2: the ground truth also as `world → body` transforms on /tf.
+    #[arg(long)]
+    bag_tf: bool,
+    /// With --format ros2: the MCAP chunks' compression, `none` (default), `zstd` or `lz4`.
+    #[arg(long, default_value = "none")]
+    bag_compression: BagCompression,
     /// Seed of every random draw.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -114,7 +125,12 @@ fn jobs(args: &RenderArgs) -> anyhow::Result<Vec<Job>> {
         );
     }
     // Made first so that bad flags are refused before any folder is looked at.
-    let sensors = Sensors::new(preset, args.format.layout(), args.depth_png)?;
+    let bag = BagOptions {
+        depth: args.bag_depth,
+        tf: args.bag_tf,
+        compression: args.bag_compression,
+    };
+    let sensors = Sensors::new(preset, args.format.layout(), args.depth_png, bag)?;
     let job = |scene: SceneJob, out: PathBuf| Job {
         source: Source::Scene {
             scene,

@@ -2,6 +2,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::dataset::ros2::BagOptions;
 use crate::dataset::{write_atomically, DepthPng};
 use crate::{read_text_file, CoreError, Distortion, Intrinsics};
 
@@ -30,6 +31,9 @@ pub struct Manifest {
     /// before this field read as `fast`, which is what they wrote; folders of images hold none.
     #[serde(default)]
     pub depth_png: DepthPng,
+    /// How a ROS 2 bag's depth, `/tf` and chunks are written; absent when as by default.
+    #[serde(default, skip_serializing_if = "BagOptions::is_default")]
+    pub bag: BagOptions,
     pub rate_hz: f64,
     pub frame_count: usize,
     pub seed: u64,
@@ -158,6 +162,29 @@ mod tests {
         assert_eq!(small.depth_png, DepthPng::Small);
         assert_ne!(small.job(), older.job());
         assert_eq!(serde_json::to_value(&small).unwrap()["depth_png"], "small");
+    }
+
+    #[test]
+    fn bag_options_are_part_of_the_job_and_absent_when_default() {
+        let value = serde_json::json!({
+            "tool": "rslam", "tool_version": "0.1.0", "command": [], "source": "room0",
+            "source_hash": "", "format": "ros2", "camera": null, "rate_hz": 20.0,
+            "frame_count": 0, "seed": 0, "perturbation": "", "perturbation_parsed": null,
+            "severities": [], "rgb_source": [], "depth_source": [], "extra": null
+        });
+        let plain: Manifest = serde_json::from_value(value).unwrap();
+        assert!(serde_json::to_value(&plain).unwrap().get("bag").is_none());
+        let metres = Manifest {
+            bag: BagOptions {
+                depth: crate::dataset::ros2::BagDepth::Metres,
+                ..BagOptions::default()
+            },
+            ..plain.clone()
+        };
+        assert_ne!(metres.job(), plain.job());
+        let written = serde_json::to_value(&metres).unwrap();
+        assert_eq!(written["bag"], serde_json::json!({"depth": "32FC1"}));
+        assert_eq!(serde_json::from_value::<Manifest>(written).unwrap(), metres);
     }
 
     /// serde_json's default float parser read 98752.20364687759 back as 98752.2036468776, so the

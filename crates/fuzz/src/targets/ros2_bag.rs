@@ -21,12 +21,12 @@ pub fn storage(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
     let recorded = RecordedBagCameras::read(bag).map_err(|e| e.to_string())?;
     assert!(!recorded.cameras.is_empty());
     for camera in &recorded.cameras {
-        let frames = camera.colour.messages.len();
+        let frames = camera.frames().messages.len();
         assert!(frames >= 2 && camera.rate_hz.is_finite() && camera.rate_hz > 0.0);
         if let Some(depth) = &camera.depth {
             assert_eq!(depth.messages.len(), frames);
         }
-        assert!(recorded.is_perturbed(camera.colour.index));
+        assert!(recorded.is_perturbed(camera.frames().index));
     }
     Ok(())
 }

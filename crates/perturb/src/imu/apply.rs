@@ -53,6 +53,8 @@ pub struct ImuReport {
 #[derive(Clone, Debug, PartialEq)]
 pub struct PerturbedImu {
     pub samples: Vec<ImuSample>,
+    /// Per sample, the index of the input sample it is (the others were dropped).
+    pub input_index: Vec<usize>,
     pub ground_truth: Vec<GroundTruthState>,
     /// Whether the samples changed (any IMU item but `cam_imu_offset`).
     pub samples_changed: bool,
@@ -89,6 +91,7 @@ impl ImuSpec {
     /// Applies the spec to `stream`; draws keyed by `seed`.
     pub fn apply(&self, stream: &ImuStream, seed: u64) -> Result<PerturbedImu, PerturbError> {
         let mut samples = stream.samples.to_vec();
+        let mut input_index: Vec<usize> = (0..samples.len()).collect();
         let mut ground_truth = stream.ground_truth.to_vec();
         let mut report = ImuReport {
             cam_imu_offset_ns: self.cam_imu_offset_ns(),
@@ -131,8 +134,14 @@ impl ImuSpec {
         }
         if let Some(drop) = self.drop {
             let (keep, dropped) = kept(samples.len(), drop, seed);
-            let mut keep = keep.into_iter();
-            samples.retain(|_| keep.next().unwrap_or(true));
+            let (samples_kept, index_kept) = samples
+                .iter()
+                .zip(&input_index)
+                .zip(keep)
+                .filter(|(_, keep)| *keep)
+                .map(|((s, &i), _)| (*s, i))
+                .unzip();
+            (samples, input_index) = (samples_kept, index_kept);
             report.dropped = Some(dropped);
         }
         if let Some(ms) = self.jitter_ms {
@@ -145,6 +154,7 @@ impl ImuSpec {
         }
         Ok(PerturbedImu {
             samples,
+            input_index,
             ground_truth,
             samples_changed: self.changes_imu(),
             ground_truth_changed,
@@ -421,7 +431,17 @@ mod tests {
         let out = spec.apply(&recorded(&samples, &gt), 5).unwrap();
         let dropped = out.report.dropped.unwrap();
         assert_eq!(out.samples.len(), samples.len() - dropped.dropped);
+        assert_eq!(out.input_index.len(), out.samples.len());
         assert!(dropped.longest_run > 1, "bursts");
+        // Each sample is its input's, saturated and moved by less than half a period.
+        let half_period = 2_500_000;
+        for (sample, &i) in out.samples.iter().zip(&out.input_index) {
+            assert!(sample.t_ns.abs_diff(samples[i].t_ns) < half_period);
+            let clipped = samples[i]
+                .gyro
+                .clamp(DVec3::splat(-0.001), DVec3::splat(0.001));
+            assert_eq!(sample.gyro, clipped);
+        }
         assert!(out.samples.windows(2).all(|w| w[0].t_ns < w[1].t_ns));
         assert_eq!(out.ground_truth, gt);
         assert!(!out.ground_truth_changed);

@@ -216,6 +216,7 @@ pub(crate) fn plan<'a>(
         cameras: dataset.cameras.iter().map(|c| c.camera.clone()).collect(),
         time_offsets_ns: vec![0; dataset.cameras.len()],
         imu: dataset.imu.as_ref().map(|imu| imu.imu.clone()),
+        bag_names: Default::default(),
     };
     let perturbed = PerturbedRig::new(&recorded, spec, seed)?;
     let seeds: Vec<u64> = (0..dataset.cameras.len())
@@ -295,6 +296,7 @@ pub(crate) fn plan<'a>(
         camera: Some(cam0.camera.intrinsics),
         distortion: None,
         depth_png: DepthPng::default(),
+        bag: Default::default(),
         rate_hz: cam0.camera.rate_hz,
         seed,
         spec,

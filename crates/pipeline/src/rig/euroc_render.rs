@@ -10,6 +10,7 @@
 use std::sync::Arc;
 
 use rslam_core::dataset::euroc::{EurocWriter, RadialTangential};
+use rslam_core::dataset::ros2::BagOptions;
 use rslam_core::dataset::ros2::RigBag;
 use rslam_core::dataset::{ContentWriter, DatasetFormat, DepthPng, Layout, Manifest};
 use rslam_core::{Distortion, Pose, SplineSe3};
@@ -105,6 +106,7 @@ pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
     rig: &Rig,
     layout: Layout,
+    bag: BagOptions,
     command: &[String],
     scenes: &SceneCache,
 ) -> Result<RigRender<'a>, PipelineError> {
@@ -165,6 +167,10 @@ pub(crate) fn plan<'a>(
         })),
     });
     record_agent(&mut extra, scene);
+    if layout == Layout::Camera(DatasetFormat::Ros2) && !rig.bag_names.is_default() {
+        extra["ros2_names"] = serde_json::to_value(&rig.bag_names)
+            .map_err(|e| PipelineError::Worker(format!("bag names for the manifest: {e}")))?;
+    }
     if !scene.spec.calibration.is_empty() {
         extra["calibration"] = perturbed.record(&rig);
     }
@@ -176,6 +182,7 @@ pub(crate) fn plan<'a>(
         camera: Some(cam0.intrinsics),
         distortion: scene.spec.distortion,
         depth_png: DepthPng::default(),
+        bag,
         rate_hz: cam0.rate_hz,
         seed: scene.seed,
         spec: &scene.spec,
@@ -311,6 +318,8 @@ impl RigRender<'_> {
                 out,
                 written.cameras.clone(),
                 written.imu.clone(),
+                manifest.bag,
+                self.rig.bag_names.clone(),
             )?);
             let stamps = self.stamps()?;
             let made = stamps.iter().map(Vec::len).sum();

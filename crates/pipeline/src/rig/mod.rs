@@ -32,6 +32,7 @@
 //! An unfinished rig render resumes frame by frame (each camera from its first missing frame),
 //! as a one-camera render does, and so does an unfinished EuRoC perturb.
 
+mod bag_imu;
 pub mod calibration;
 pub mod euroc_perturb;
 pub mod euroc_render;
@@ -41,10 +42,12 @@ mod motion;
 pub mod preset;
 pub mod rgbd_imu_perturb;
 pub mod rgbd_imu_render;
+mod rig_bag_names;
 pub mod rig_file;
 mod seeds;
 mod tum_vi_files;
 
+pub(crate) use bag_imu::perturb_bag_imus;
 pub use calibration::{PerturbedRig, PER_FRAME_FILE};
 pub use euroc_perturb::is_euroc_input;
 pub use euroc_render::{rig_camera_frames, CameraFrames};

@@ -7,6 +7,7 @@ use std::path::Path;
 
 use glam::{DQuat, DVec3};
 use rslam_core::dataset::euroc::{CameraColour, EurocCamera, EurocImu, RadialTangential};
+use rslam_core::dataset::ros2::BagNames;
 use rslam_core::{Intrinsics, Pose};
 
 use super::rig_file::read_rig_file;
@@ -102,6 +103,8 @@ pub fn d435i_imu() -> EurocImu {
 }
 
 /// What a rig name asks a render for.
+// One per job: the size of the rig variant does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum RigPreset {
     /// `rgbd`: one RGB-D camera, the render without a rig (any core layout).
@@ -150,6 +153,8 @@ pub struct Rig {
     /// Per camera: its stamps are its capture times plus this (its clock runs ahead by it), ns.
     pub time_offsets_ns: Vec<i64>,
     pub imu: Option<EurocImu>,
+    /// Its topics and frames in a ROS 2 bag where not EuRoC's (a rig file's `[ros2]` table).
+    pub bag_names: BagNames,
 }
 
 impl Rig {
@@ -179,6 +184,7 @@ impl Rig {
             }],
             time_offsets_ns: vec![0],
             imu: Some(d435i_imu()),
+            bag_names: BagNames::default(),
         }
     }
 
@@ -213,6 +219,7 @@ impl Rig {
             ],
             time_offsets_ns: vec![0, 0],
             imu: None,
+            bag_names: BagNames::default(),
         }
     }
 

@@ -13,7 +13,7 @@
 //! not (its clock is the IMU's, as the body's ground truth).
 
 use rslam_core::dataset::euroc::{inertial_files, EurocCamera, EurocImu, ImuSample};
-use rslam_core::dataset::ros2::{variances, BagImu};
+use rslam_core::dataset::ros2::{variances, BagImu, BagOptions};
 use rslam_core::dataset::{rgbd_inertial_settings, DatasetFormat, DepthPng, Manifest};
 use rslam_core::{Pose, SplineSe3, Trajectory};
 use rslam_gpu::GpuContext;
@@ -97,6 +97,7 @@ pub(crate) fn plan<'a>(
     scene: &'a SceneJob,
     format: DatasetFormat,
     depth_png: DepthPng,
+    bag: BagOptions,
     command: &[String],
     scenes: &SceneCache,
 ) -> Result<RgbdImuRender<'a>, PipelineError> {
@@ -155,6 +156,7 @@ pub(crate) fn plan<'a>(
         camera: Some(camera.intrinsics),
         distortion: None,
         depth_png,
+        bag,
         rate_hz: camera.rate_hz,
         seed: scene.seed,
         spec,

@@ -22,6 +22,9 @@
 //! accelerometer_noise_density = 2.0e-3
 //! accelerometer_random_walk = 3.0e-3
 //! comment = "ADIS16448"           # optional
+//!
+//! [ros2]                          # optional: names in a ROS 2 bag (rig_bag_names.rs)
+//! cam0 = { topic = "/left/image_raw", frame_id = "left" }
 //! ```
 //!
 //! The cameras are pinhole without distortion (rendered frames); the EuRoC layout has no depth.
@@ -29,11 +32,13 @@
 use std::path::Path;
 
 use rslam_core::dataset::euroc::{CameraColour, EurocCamera, EurocImu, RadialTangential};
+use rslam_core::dataset::ros2::BagNames;
 use rslam_core::limits::MAX_EUROC_CAMERAS;
 use rslam_core::{read_text_file, CoreError, Intrinsics, Pose};
 use serde::Deserialize;
 
 use super::preset::Rig;
+use super::rig_bag_names::bag_names;
 use crate::PipelineError;
 
 #[derive(Deserialize)]
@@ -43,6 +48,7 @@ struct RigFile {
     #[serde(default)]
     camera: Vec<toml::Spanned<CameraFields>>,
     imu: Option<toml::Spanned<ImuFields>>,
+    ros2: Option<toml::Spanned<toml::Table>>,
 }
 
 #[derive(Deserialize)]
@@ -187,11 +193,17 @@ pub fn read_rig_file(path: &Path) -> Result<Rig, PipelineError> {
             .file_stem()
             .map_or_else(|| "rig".into(), |s| s.to_string_lossy().into_owned()),
     };
+    let bag_names = match &file.ros2 {
+        Some(spanned) => bag_names(spanned.get_ref(), cameras.len(), imu.is_some())
+            .map_err(|message| at(spanned.span().start, format!("ros2: {message}")))?,
+        None => BagNames::default(),
+    };
     Ok(Rig {
         name,
         cameras,
         time_offsets_ns,
         imu,
+        bag_names,
     })
 }
 
@@ -327,6 +339,11 @@ mod tests {
                 format!("{}\n[imu]\n{noise}", camera("")),
                 7,
                 "missing field `rate_hz`",
+            ),
+            (
+                format!("{}\n[ros2]\ncam1 = {{ topic = \"/right\" }}\n", camera("")),
+                7,
+                "ros2: unknown key 'cam1': expected body_frame, ground_truth_topic or a sensor of the rig (cam0)",
             ),
         ] {
             let (_dir, path) = write(&text);

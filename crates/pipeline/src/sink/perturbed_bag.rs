@@ -1,7 +1,7 @@
 //! A recorded bag's camera, perturbed, into its spool of the bag of the same topics
 //! ([`rslam_core::dataset::ros2::PerturbedBag`]): each source frame's colour and depth are
 //! unpacked, encoded as the recorded ones were and written on one worker thread, in source
-//! order.
+//! order (a depth camera of its own writes only its depth).
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -59,11 +59,14 @@ impl FrameSink for PerturbedBagSink<'_> {
             return Ok(());
         };
         let (rgb_time, depth_time) = self.recorded_times[source];
-        let colour_shifts: Vec<f64> = outputs
-            .rgb
-            .iter()
-            .map(|&j| self.plan.frames[j].rgb_time - rgb_time)
-            .collect();
+        let colour_shifts: Vec<f64> = match self.bag.has_colour(self.camera) {
+            true => outputs
+                .rgb
+                .iter()
+                .map(|&j| self.plan.frames[j].rgb_time - rgb_time)
+                .collect(),
+            false => Vec::new(),
+        };
         // Several output frames share one depth capture under misalignment: it is one message.
         let mut depth_shifts: Vec<f64> = outputs
             .depth

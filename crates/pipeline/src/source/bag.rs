@@ -1,5 +1,6 @@
-//! A camera of a recorded ROS 2 bag: its colour (and depth) messages, read from the bag in file
-//! order on the decoding threads and decoded there into upload buffers ahead of the GPU.
+//! A camera of a recorded ROS 2 bag: its colour and depth messages, read from the bag in file
+//! order on the decoding threads and decoded there into upload buffers ahead of the GPU. A depth
+//! camera of its own has no colour: its frames' colour plane is left black and never written.
 
 use std::collections::{HashMap, HashSet};
 use std::sync::{Arc, Mutex};
@@ -7,7 +8,7 @@ use std::sync::{Arc, Mutex};
 use rslam_core::dataset::ros2::{
     decode_colour, decode_depth, BagMessages, RecordedBagCamera, RecordedBagCameras,
 };
-use rslam_core::{CoreError, Intrinsics};
+use rslam_core::{CoreError, Intrinsics, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 
 use crate::source::{check_in_range, FrameSource};
@@ -24,7 +25,7 @@ pub struct BagSource {
 impl BagSource {
     pub fn new(recorded: Arc<RecordedBagCameras>, camera: usize) -> Self {
         let spec = &recorded.cameras[camera];
-        let (width, height) = spec.colour.size;
+        let (width, height) = spec.frames().size;
         let frames_ahead = UploadAhead::new(width, height, spec.depth.is_some());
         Self {
             recorded,
@@ -40,7 +41,7 @@ impl BagSource {
 
 impl FrameSource for BagSource {
     fn size(&self) -> (u32, u32) {
-        self.spec().colour.size
+        self.spec().frames().size
     }
 
     fn has_depth(&self) -> bool {
@@ -53,10 +54,16 @@ impl FrameSource for BagSource {
 
     fn prepare(&mut self, ctx: &GpuContext, sources: &[usize]) -> Result<(), PipelineError> {
         let camera = self.spec();
-        check_in_range(sources, camera.colour.messages.len(), &camera.colour.name)?;
+        let frames = camera.frames();
+        check_in_range(sources, frames.messages.len(), &frames.name)?;
+        let (width, height) = frames.size;
+        let blank = camera
+            .colour
+            .is_none()
+            .then(|| RgbImage::new(width, height));
         let messages = Mutex::new(CameraMessages {
             messages: self.recorded.bag.messages()?,
-            colour_channel: camera.colour.channel,
+            colour_channel: camera.colour.as_ref().map(|c| c.channel),
             depth_channel: camera.depth.as_ref().map(|d| d.channel),
             read: (0, 0),
             wanted: sources.iter().copied().collect(),
@@ -79,16 +86,27 @@ impl FrameSource for BagSource {
                     format!("topic {topic}: {e}"),
                 ))
             };
-            let colour_topic = &camera.colour;
-            let colour = decode_colour(&colour, &colour_topic.encoding)
-                .map_err(|e| bad(&colour_topic.name, e))?;
+            let decoded;
+            let colour = match (&camera.colour, colour, &blank) {
+                (Some(topic), Some(data), _) => {
+                    decoded =
+                        decode_colour(&data, &topic.encoding).map_err(|e| bad(&topic.name, e))?;
+                    &decoded
+                }
+                (_, _, Some(blank)) => blank,
+                _ => {
+                    return Err(PipelineError::Worker(format!(
+                        "frame {frame} has no colour"
+                    )))
+                }
+            };
             let depth = match (&camera.depth, depth) {
                 (Some(topic), Some(data)) => {
                     Some(decode_depth(&data, &topic.encoding).map_err(|e| bad(&topic.name, e))?)
                 }
                 _ => None,
             };
-            Ok(filler.fill(&colour, depth.as_ref())?)
+            Ok(filler.fill(colour, depth.as_ref())?)
         });
         Ok(())
     }
@@ -107,7 +125,7 @@ impl FrameSource for BagSource {
 /// The camera's messages read from the bag in file order.
 struct CameraMessages {
     messages: BagMessages,
-    colour_channel: u16,
+    colour_channel: Option<u16>,
     depth_channel: Option<u16>,
     /// How many colour and depth messages were read.
     read: (usize, usize),
@@ -117,18 +135,21 @@ struct CameraMessages {
     waiting: HashMap<(usize, bool), Vec<u8>>,
 }
 
-type FrameMessages = (Vec<u8>, Option<Vec<u8>>);
+type FrameMessages = (Option<Vec<u8>>, Option<Vec<u8>>);
 
 impl CameraMessages {
-    /// Source frame `index`'s colour and depth messages.
+    /// Source frame `index`'s colour and depth messages (those the camera has).
     fn take(&mut self, index: usize) -> Result<FrameMessages, PipelineError> {
-        let with_depth = self.depth_channel.is_some();
+        let (with_colour, with_depth) =
+            (self.colour_channel.is_some(), self.depth_channel.is_some());
         loop {
-            let have_colour = self.waiting.contains_key(&(index, false));
+            let have_colour = !with_colour || self.waiting.contains_key(&(index, false));
             let have_depth = !with_depth || self.waiting.contains_key(&(index, true));
             if have_colour && have_depth {
-                let colour = self.waiting.remove(&(index, false)).unwrap_or_default();
-                return Ok((colour, self.waiting.remove(&(index, true))));
+                return Ok((
+                    self.waiting.remove(&(index, false)),
+                    self.waiting.remove(&(index, true)),
+                ));
             }
             let Some(message) = self.messages.next() else {
                 return Err(PipelineError::Worker(format!(
@@ -137,7 +158,7 @@ impl CameraMessages {
             };
             let message = message?;
             let channel = message.channel.id;
-            let (count, depth) = if channel == self.colour_channel {
+            let (count, depth) = if Some(channel) == self.colour_channel {
                 (&mut self.read.0, false)
             } else if Some(channel) == self.depth_channel {
                 (&mut self.read.1, true)

@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use super::messages::{cdr_bytes, Time};
 use super::metadata::{metadata_yaml, TopicCount, LATCHED_QOS};
+use super::options::BagCompression;
 use super::schemas::MessageType;
 use crate::dataset::PARTIAL_SUFFIX;
 use crate::CoreError;
@@ -129,18 +130,34 @@ pub struct BagWriter {
     log_span: Option<(u64, u64)>,
 }
 
-/// Messages are written in chunks of this size, uncompressed, each assembled in memory: a few raw
-/// 1200 × 680 frames.
+/// Messages are written in chunks of this size, each assembled in memory: a few raw 1200 × 680
+/// frames.
 const CHUNK_BYTES: u64 = 8 << 20;
 
 impl BagWriter {
-    /// Starts the bag `<folder>/<name>_0.mcap` (as `.partial`) with `topics`, in that order.
-    pub fn create(folder: &Path, name: &str, topics: &[Topic]) -> Result<Self, CoreError> {
-        Self::create_file(folder, &format!("{name}_0.mcap"), topics)
+    /// Starts the bag `<folder>/<name>_0.mcap` (as `.partial`) with `topics`, in that order, its
+    /// chunks compressed by `compression`.
+    pub fn create(
+        folder: &Path,
+        name: &str,
+        topics: &[Topic],
+        compression: BagCompression,
+    ) -> Result<Self, CoreError> {
+        Self::open(folder, &format!("{name}_0.mcap"), topics, compression)
     }
 
-    /// Starts an MCAP file named `file` in `folder` (as `.partial`) with `topics`.
+    /// Starts an MCAP file named `file` in `folder` (as `.partial`) with `topics`, uncompressed:
+    /// a spool merged into the bag later.
     pub fn create_file(folder: &Path, file: &str, topics: &[Topic]) -> Result<Self, CoreError> {
+        Self::open(folder, file, topics, BagCompression::None)
+    }
+
+    fn open(
+        folder: &Path,
+        file: &str,
+        topics: &[Topic],
+        compression: BagCompression,
+    ) -> Result<Self, CoreError> {
         let file = file.to_string();
         let partial = folder.join(format!("{file}{PARTIAL_SUFFIX}"));
         let out = HashedFile {
@@ -152,7 +169,7 @@ impl BagWriter {
         let mut mcap = mcap::WriteOptions::new()
             .profile("ros2")
             .library(concat!("rslam ", env!("CARGO_PKG_VERSION")))
-            .compression(None)
+            .compression(compression.mcap())
             .chunk_size(Some(CHUNK_BYTES))
             .disable_seeking(true)
             .create(out)
@@ -298,7 +315,8 @@ mod tests {
 
     /// A bag of one pose topic in `dir`.
     fn pose_bag(dir: &Path) -> BagWriter {
-        BagWriter::create(dir, "b", &[Topic::new("/pose", MessageType::PoseStamped)]).unwrap()
+        let topics = [Topic::new("/pose", MessageType::PoseStamped)];
+        BagWriter::create(dir, "b", &topics, BagCompression::None).unwrap()
     }
 
     fn names(dir: &Path) -> Vec<String> {

@@ -1,18 +1,21 @@
 //! One RGB-D camera as a ROS 2 bag, with the topics and frame ids of the RealSense ROS 2 driver:
-//! colour (`rgb8`) and depth registered to it (`16UC1`, millimetres, 0 = no measurement; REP 118)
-//! each with its `CameraInfo`, the optical frame's pose in `camera_link` on `/tf_static` (REP 103
-//! axes: z forward, x right, y down), and the ground-truth pose of the optical frame in `world`,
-//! the pose a TUM `groundtruth.txt` of the same job holds. With an IMU (the `rgbd-imu` rig), its
-//! readings on `/imu0` in its own frame `imu0`, whose pose in `camera_link` joins `/tf_static`,
-//! each logged before the frames stamped after it.
+//! colour (`rgb8`) and depth registered to it (`16UC1`, millimetres, 0 = no measurement; or
+//! `32FC1` metres, NaN = no measurement; REP 118) each with its `CameraInfo`, the optical frame's
+//! pose in `camera_link` on `/tf_static` (REP 103 axes: z forward, x right, y down), and the
+//! ground-truth pose of the optical frame in `world`, the pose a TUM `groundtruth.txt` of the
+//! same job holds (and, asked for, `camera_link` in `world` on `/tf`). With an IMU (the `rgbd-imu`
+//! rig), its readings on `/imu0` in its own frame `imu0`, whose pose in `camera_link` joins
+//! `/tf_static`, each logged before the frames stamped after it.
 
 use std::path::Path;
 
 use super::bag::{bag_name, BagWriter, ClosedBag, Topic};
+use super::image_codec::{depth_bytes, depth_image};
 use super::messages::{
     Bytes, CameraInfo, Header, Image, Imu as ImuMessage, Pose, PoseStamped, Quaternion,
     RegionOfInterest, TfMessage, Time, Transform, TransformStamped, Vector3,
 };
+use super::options::BagOptions;
 use super::schemas::MessageType;
 use crate::dataset::euroc::ImuSample;
 use crate::{CoreError, DepthImage, Distortion, Intrinsics, RgbImage};
@@ -23,6 +26,7 @@ pub const DEPTH_TOPIC: &str = "/camera/depth/image_raw";
 pub const DEPTH_INFO_TOPIC: &str = "/camera/depth/camera_info";
 pub const GROUND_TRUTH_TOPIC: &str = "/ground_truth/pose";
 pub const TF_STATIC_TOPIC: &str = "/tf_static";
+pub const TF_TOPIC: &str = "/tf";
 pub const OPTICAL_FRAME: &str = "camera_color_optical_frame";
 pub const BODY_FRAME: &str = "camera_link";
 pub const WORLD_FRAME: &str = "world";
@@ -38,7 +42,6 @@ const DEPTH: usize = 2;
 const DEPTH_INFO: usize = 3;
 const GROUND_TRUTH: usize = 4;
 const TF_STATIC: usize = 5;
-const IMU: usize = 6;
 
 /// The IMU beside the camera: its readings (in its own frame), where it sits, and the variance
 /// of one reading's noise per axis, for the messages' covariances.
@@ -57,7 +60,11 @@ pub struct CameraBag {
     bag: BagWriter,
     intrinsics: Intrinsics,
     distortion: Option<Distortion>,
+    options: BagOptions,
     imu: Option<BagImu>,
+    /// The indices of the optional topics.
+    imu_topic: Option<usize>,
+    tf_topic: Option<usize>,
     /// The IMU samples written so far.
     imu_written: usize,
     tf_written: bool,
@@ -69,6 +76,7 @@ impl CameraBag {
         intrinsics: Intrinsics,
         distortion: Option<Distortion>,
         imu: Option<BagImu>,
+        options: BagOptions,
     ) -> Result<Self, CoreError> {
         let name = bag_name(folder);
         let mut topics = vec![
@@ -79,14 +87,22 @@ impl CameraBag {
             Topic::new(GROUND_TRUTH_TOPIC, MessageType::PoseStamped),
             Topic::latched(TF_STATIC_TOPIC, MessageType::TfMessage),
         ];
-        if imu.is_some() {
-            topics.push(Topic::new(IMU_TOPIC, MessageType::Imu));
-        }
+        let mut optional = |wanted: bool, topic: Topic| {
+            wanted.then(|| {
+                topics.push(topic);
+                topics.len() - 1
+            })
+        };
+        let imu_topic = optional(imu.is_some(), Topic::new(IMU_TOPIC, MessageType::Imu));
+        let tf_topic = optional(options.tf, Topic::new(TF_TOPIC, MessageType::TfMessage));
         Ok(Self {
-            bag: BagWriter::create(folder, &name, &topics)?,
+            bag: BagWriter::create(folder, &name, &topics, options.compression)?,
             intrinsics,
             distortion,
+            options,
             imu,
+            imu_topic,
+            tf_topic,
             imu_written: 0,
             tf_written: false,
         })
@@ -109,33 +125,28 @@ impl CameraBag {
         self.bag.write(COLOR_INFO, stamp, &info)
     }
 
-    /// Depth captured at `time` and its camera info: millimetres, 0 where there is no depth.
+    /// Depth captured at `time` and its camera info, in the options' encoding.
     pub fn write_depth(&mut self, time: f64, depth: &DepthImage) -> Result<(), CoreError> {
         let stamp = self.stamp_at(time)?;
-        let data: Vec<u8> = depth
-            .data
-            .iter()
-            .flat_map(|&z| millimetres(z).to_le_bytes())
-            .collect();
-        let message = Image {
-            header: header(stamp),
-            height: depth.height,
-            width: depth.width,
-            encoding: "16UC1".into(),
-            is_bigendian: 0,
-            step: 2 * depth.width,
-            data: Bytes(&data),
-        };
+        let data = depth_bytes(depth, self.options.depth);
+        let message = depth_image(header(stamp), depth, self.options.depth, &data);
         self.bag.write(DEPTH, stamp, &message)?;
         let info = camera_info(header(stamp), &self.intrinsics, self.distortion);
         self.bag.write(DEPTH_INFO, stamp, &info)
     }
 
-    /// The optical frame's ground-truth pose in the world at `time`.
+    /// The optical frame's ground-truth pose in the world at `time` (and `camera_link`'s on
+    /// `/tf`, when asked for).
     pub fn write_ground_truth(&mut self, time: f64, pose: &crate::Pose) -> Result<(), CoreError> {
         let stamp = self.stamp_at(time)?;
         self.bag
-            .write(GROUND_TRUTH, stamp, &pose_in_world(stamp, pose))
+            .write(GROUND_TRUTH, stamp, &pose_in_world(stamp, pose))?;
+        if let Some(tf) = self.tf_topic {
+            let body = pose.compose(&optical_in_body().inverse());
+            let transforms = vec![transform_stamped(stamp, WORLD_FRAME, BODY_FRAME, &body)];
+            self.bag.write(tf, stamp, &TfMessage { transforms })?;
+        }
+        Ok(())
     }
 
     /// Writes the IMU readings left, then closes the bag: its storage file's name and
@@ -165,7 +176,7 @@ impl CameraBag {
                 self.bag.write(TF_STATIC, first, &tf)?;
             }
         }
-        let Some(imu) = &self.imu else {
+        let (Some(imu), Some(topic)) = (&self.imu, self.imu_topic) else {
             return Ok(());
         };
         while let Some(sample) = imu.samples.get(self.imu_written) {
@@ -174,7 +185,7 @@ impl CameraBag {
                 break;
             }
             let message = imu_message(sample, at, imu.gyro_variance, imu.accel_variance);
-            self.bag.write(IMU, at, &message)?;
+            self.bag.write(topic, at, &message)?;
             self.imu_written += 1;
         }
         Ok(())

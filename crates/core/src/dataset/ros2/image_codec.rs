@@ -4,6 +4,7 @@
 //! `compressed` formats). Each message written back keeps its header and encoding.
 
 use super::messages::{cdr_bytes, from_cdr, Bytes, CompressedImage, Header, Image};
+use super::options::BagDepth;
 use super::DEPTH_UNITS_PER_METRE;
 use crate::dataset::codec::{decode_rgb, encode_grey_png, encode_jpeg, encode_png, luma8};
 use crate::dataset::writer::JPEG_QUALITY;
@@ -256,36 +257,52 @@ pub fn encode_depth(
     depth: &DepthImage,
     encoding: &ImageEncoding,
 ) -> Result<Vec<u8>, String> {
-    let (name, bytes_per_pixel, data): (&str, u32, Vec<u8>) = match encoding {
-        ImageEncoding::Depth16 => (
-            "16UC1",
-            2,
-            depth
-                .data
-                .iter()
-                .flat_map(|&z| super::camera::millimetres(z).to_le_bytes())
-                .collect(),
-        ),
-        ImageEncoding::Depth32 => (
-            "32FC1",
-            4,
-            depth
-                .data
-                .iter()
-                .flat_map(|&z| if z > 0.0 { z } else { f32::NAN }.to_le_bytes())
-                .collect(),
-        ),
+    let encoding = match encoding {
+        ImageEncoding::Depth16 => BagDepth::Millimetres,
+        ImageEncoding::Depth32 => BagDepth::Metres,
         _ => return Err(format!("{} is not depth", encoding.name())),
     };
-    cdr_bytes(&Image {
+    let data = depth_bytes(depth, encoding);
+    cdr_bytes(&depth_image(header, depth, encoding, &data))
+}
+
+/// Depth in metres as `encoding`'s samples: 16UC1 whole millimetres (0: no measurement, and
+/// beyond 65.535 m) or 32FC1 metres (NaN: no measurement).
+pub(super) fn depth_bytes(depth: &DepthImage, encoding: BagDepth) -> Vec<u8> {
+    match encoding {
+        BagDepth::Millimetres => depth
+            .data
+            .iter()
+            .flat_map(|&z| super::camera::millimetres(z).to_le_bytes())
+            .collect(),
+        BagDepth::Metres => depth
+            .data
+            .iter()
+            .flat_map(|&z| if z > 0.0 { z } else { f32::NAN }.to_le_bytes())
+            .collect(),
+    }
+}
+
+/// The `Image` message of `depth`'s size holding `data`, its samples in `encoding`.
+pub(super) fn depth_image<'a>(
+    header: Header,
+    depth: &DepthImage,
+    encoding: BagDepth,
+    data: &'a [u8],
+) -> Image<'a> {
+    let bytes_per_sample = match encoding {
+        BagDepth::Millimetres => 2,
+        BagDepth::Metres => 4,
+    };
+    Image {
         header,
         height: depth.height,
         width: depth.width,
-        encoding: name.into(),
+        encoding: encoding.encoding().into(),
         is_bigendian: 0,
-        step: bytes_per_pixel * depth.width,
-        data: Bytes(&data),
-    })
+        step: bytes_per_sample * depth.width,
+        data: Bytes(data),
+    }
 }
 
 #[cfg(test)]

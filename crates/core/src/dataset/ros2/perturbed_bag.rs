@@ -1,17 +1,19 @@
-//! A recorded bag written again with its cameras' images perturbed. The cameras are perturbed
-//! one after another, each into a spool file of its own (`cameraN.spool`, MCAP); at the end every
-//! other message of the input is copied byte for byte with its times and sequence number, merged
-//! by log time with the spools' images, and the spools are removed. An image keeps its header
-//! (its stamp moved where the plan re-stamps it, its log and publish times moved by as much) and
-//! its encoding.
+//! A recorded bag written again with its cameras' images (and IMU topics) perturbed. The cameras
+//! are perturbed one after another, each into a spool file of its own (`cameraN.spool`, MCAP),
+//! and each IMU topic given anew into one (`imuN.spool`); at the end every other message of the
+//! input is copied byte for byte with its times and sequence number, merged by log time with the
+//! spools' messages, and the spools are removed. An image keeps its header (its stamp moved where
+//! the plan re-stamps it, its log and publish times moved by as much) and its encoding.
 
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use super::bag::{bag_name, BagWriter, ClosedBag, LogTimes};
 use super::image_codec::{encode_colour, encode_depth};
 use super::merge::{close_spool, merge_by_log_time, remove_spools};
-use super::messages::{Header, Time};
+use super::messages::{cdr_bytes, Header, Imu, Time};
+use super::options::BagCompression;
 use super::recorded::RecordedBag;
 use super::recorded_camera::{ImageTopic, RecordedBagCamera, RecordedBagCameras};
 use crate::{CoreError, DepthImage, RgbImage};
@@ -21,19 +23,41 @@ const SPOOL_EXTENSION: &str = "spool";
 pub struct PerturbedBag {
     recorded: Arc<RecordedBagCameras>,
     folder: PathBuf,
+    compression: BagCompression,
     /// Per camera, its images so far.
     spools: Vec<Mutex<BagWriter>>,
+    /// The IMU topics written anew, and their spools, closed.
+    imu_topics: HashSet<usize>,
+    imu_spools: Vec<RecordedBag>,
 }
 
 impl PerturbedBag {
-    /// Starts the bag in `folder` of `recorded`'s topics, a spool per camera.
-    pub fn create(folder: &Path, recorded: Arc<RecordedBagCameras>) -> Result<Self, CoreError> {
+    /// Starts the bag in `folder` of `recorded`'s topics, a spool per camera; `imus` are IMU
+    /// topics (by index among the recorded topics) whose messages are replaced by those given.
+    /// The bag's chunks are compressed by `compression`.
+    pub fn create(
+        folder: &Path,
+        recorded: Arc<RecordedBagCameras>,
+        imus: &[(usize, Vec<(Imu, LogTimes)>)],
+        compression: BagCompression,
+    ) -> Result<Self, CoreError> {
+        let mut imu_spools = Vec::new();
+        for (i, (topic, messages)) in imus.iter().enumerate() {
+            let file = format!("imu{i}.{SPOOL_EXTENSION}");
+            let mut spool =
+                BagWriter::create_file(folder, &file, &[recorded.topics[*topic].clone()])?;
+            for (message, times) in messages {
+                let data = cdr_bytes(message).map_err(|e| CoreError::bad_file(folder, e))?;
+                spool.write_bytes(0, *times, &data)?;
+            }
+            imu_spools.push(close_spool(folder, spool)?);
+        }
         let spools = recorded
             .cameras
             .iter()
             .enumerate()
             .map(|(i, camera)| {
-                let topics: Vec<_> = [Some(&camera.colour), camera.depth.as_ref()]
+                let topics: Vec<_> = [&camera.colour, &camera.depth]
                     .into_iter()
                     .flatten()
                     .map(|t| recorded.topics[t.index].clone())
@@ -45,8 +69,19 @@ impl PerturbedBag {
         Ok(Self {
             recorded,
             folder: folder.to_path_buf(),
+            compression,
             spools,
+            imu_topics: imus.iter().map(|(topic, _)| *topic).collect(),
+            imu_spools,
         })
+    }
+
+    /// Whether camera `camera` has a colour topic (not a depth camera of its own).
+    pub fn has_colour(&self, camera: usize) -> bool {
+        self.recorded
+            .cameras
+            .get(camera)
+            .is_some_and(|c| c.colour.is_some())
     }
 
     /// Colour message `index` of camera `camera`, its stamp moved by `shift_s` seconds.
@@ -58,9 +93,15 @@ impl PerturbedBag {
         colour: &RgbImage,
     ) -> Result<(), CoreError> {
         let (spec, spool) = self.camera(camera)?;
-        let (header, times) = moved(&spec.colour, index, shift_s);
-        let data = encode_colour(header, colour, &spec.colour.encoding)
-            .map_err(|e| self.error(&spec.colour, e))?;
+        let Some(topic) = &spec.colour else {
+            return Err(self.error(
+                spec.frames(),
+                "colour written to a camera without colour".into(),
+            ));
+        };
+        let (header, times) = moved(topic, index, shift_s);
+        let data =
+            encode_colour(header, colour, &topic.encoding).map_err(|e| self.error(topic, e))?;
         let mut spool = spool.lock().unwrap_or_else(|p| p.into_inner());
         spool.write_bytes(0, times, &data)
     }
@@ -76,7 +117,7 @@ impl PerturbedBag {
         let (spec, spool) = self.camera(camera)?;
         let Some(topic) = &spec.depth else {
             return Err(self.error(
-                &spec.colour,
+                spec.frames(),
                 "depth written to a camera without depth".into(),
             ));
         };
@@ -84,7 +125,8 @@ impl PerturbedBag {
         let data =
             encode_depth(header, depth, &topic.encoding).map_err(|e| self.error(topic, e))?;
         let mut spool = spool.lock().unwrap_or_else(|p| p.into_inner());
-        spool.write_bytes(1, times, &data)
+        // The spool's topics are the camera's colour (when it has one), then its depth.
+        spool.write_bytes(usize::from(spec.colour.is_some()), times, &data)
     }
 
     /// Merges the input's other messages with the cameras' spools into the bag and removes the
@@ -98,25 +140,31 @@ impl PerturbedBag {
                 close_spool(&self.folder, spool)
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let spools: Vec<RecordedBag> = spools.into_iter().chain(self.imu_spools).collect();
         let recorded = &self.recorded;
-        let mut bag = BagWriter::create(&self.folder, &bag_name(&self.folder), &recorded.topics)?;
+        let name = bag_name(&self.folder);
+        let mut bag = BagWriter::create(&self.folder, &name, &recorded.topics, self.compression)?;
         let streams = std::iter::once(&recorded.bag)
             .chain(&spools)
             .map(RecordedBag::messages)
             .collect::<Result<Vec<_>, _>>()?;
+        let topic_by_name: HashMap<&str, usize> = recorded
+            .topics
+            .iter()
+            .enumerate()
+            .map(|(i, topic)| (topic.name.as_str(), i))
+            .collect();
+        let imu_topics = &self.imu_topics;
         merge_by_log_time(&mut bag, streams, |stream, message| match stream {
             0 => {
                 let topic = recorded
                     .topic_of_channel
                     .get(&message.channel.id)
                     .copied()?;
-                (!recorded.is_perturbed(topic)).then_some(topic)
+                let written_anew = recorded.is_perturbed(topic) || imu_topics.contains(&topic);
+                (!written_anew).then_some(topic)
             }
-            _ => {
-                let camera = &recorded.cameras[stream - 1];
-                let depth = camera.depth.as_ref().filter(|d| d.name == message.topic());
-                Some(depth.unwrap_or(&camera.colour).index)
-            }
+            _ => topic_by_name.get(message.topic()).copied(),
         })?;
         remove_spools(&spools)?;
         bag.finish()
@@ -195,7 +243,7 @@ mod tests {
     fn recorded(folder: &Path) -> RecordedBag {
         std::fs::create_dir_all(folder).unwrap();
         let camera = Intrinsics::from_pinhole((4, 2), [3.0, 3.0, 2.0, 1.0]).unwrap();
-        let mut bag = CameraBag::create(folder, camera, None, None).unwrap();
+        let mut bag = CameraBag::create(folder, camera, None, None, Default::default()).unwrap();
         for i in 0..FRAMES {
             let t = 1e9 + i as f64 / 30.0;
             bag.write_rgb(t, &colour(i)).unwrap();
@@ -218,9 +266,9 @@ mod tests {
         let [camera] = &recorded.cameras[..] else {
             panic!("{} cameras", recorded.cameras.len());
         };
-        assert_eq!(camera.colour.name, COLOR_TOPIC);
+        assert_eq!(camera.frames().name, COLOR_TOPIC);
         assert_eq!(camera.depth.as_ref().unwrap().name, DEPTH_TOPIC);
-        assert_eq!(camera.colour.messages.len(), FRAMES);
+        assert_eq!(camera.frames().messages.len(), FRAMES);
         assert!((camera.rate_hz - 30.0).abs() < 1e-3, "{}", camera.rate_hz);
         assert_eq!((camera.intrinsics.fx, camera.intrinsics.cy), (3.0, 1.0));
         assert_eq!(recorded.topics.len(), 6);
@@ -234,7 +282,7 @@ mod tests {
         let camera = &recorded.cameras[0];
         let out = dir.path().join("out");
         std::fs::create_dir_all(&out).unwrap();
-        let bag = PerturbedBag::create(&out, recorded.clone()).unwrap();
+        let bag = PerturbedBag::create(&out, recorded.clone(), &[], BagCompression::None).unwrap();
         let inverted = |i| {
             let mut c = colour(i);
             c.data.iter_mut().for_each(|v| *v = 255 - *v);
@@ -271,8 +319,8 @@ mod tests {
         let depths = on(&after, DEPTH_TOPIC);
         for i in 0..FRAMES {
             let (log, _, data) = &colours[i];
-            assert_eq!(*log, camera.colour.messages[i].times.log_time);
-            let encoding = &camera.colour.encoding;
+            assert_eq!(*log, camera.frames().messages[i].times.log_time);
+            let encoding = &camera.frames().encoding;
             assert_eq!(decode_colour(data, encoding).unwrap(), inverted(i));
             let (log, _, data) = &depths[i];
             let depth_topic = camera.depth.as_ref().unwrap();
@@ -300,7 +348,7 @@ mod tests {
         let folder = dir.path().join("no_info");
         std::fs::create_dir_all(&folder).unwrap();
         let topics = [Topic::new("/cam/image_raw", MessageType::Image)];
-        let mut bag = BagWriter::create(&folder, "no_info", &topics).unwrap();
+        let mut bag = BagWriter::create(&folder, "no_info", &topics, BagCompression::None).unwrap();
         for i in 0..2 {
             let stamp = Time::from_seconds(i as f64);
             let image = colour(i);

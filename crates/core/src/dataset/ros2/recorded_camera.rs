@@ -1,17 +1,19 @@
 //! The cameras rslam perturbs in a recorded bag, found by reading the bag once: each colour image
 //! topic (`Image` or `CompressedImage`; a stereo pair, infrared cameras) is a camera of its own,
 //! with the intrinsics of its `CameraInfo`; a depth topic joins the colour topic it is registered
-//! to (same size and intrinsics, one message per colour message by stamp). Each message's stamp
-//! and times are kept. Every other topic is copied as it is. A bag with an image topic rslam
-//! cannot read, depth registered to no colour topic or not one-to-one with it is refused, naming
-//! the bag and the topic.
+//! to (same size and intrinsics, one message per colour message by stamp), and is a camera of
+//! its own otherwise (depth of its own lens, or at another rate). Each message's stamp and times
+//! are kept. IMU topics are kept whole ([`RecordedImu`]) for the IMU items. Every other topic is
+//! copied as it is. A bag with an image topic rslam cannot read, or two depth topics registered to
+//! one colour topic, is refused, naming the bag and the topic.
 
 use std::collections::HashMap;
 
 use super::bag::{LogTimes, Topic};
 use super::image_codec::ImageEncoding;
-use super::messages::{from_cdr, CameraInfo, CompressedImage, Image, Time};
+use super::messages::{from_cdr, CameraInfo, CompressedImage, Image, Imu, Time};
 use super::recorded::{BagMessage, RecordedBag};
+use super::recorded_imu::{RecordedImu, IMU_TYPE};
 use crate::dataset::codec::encoded_image_size;
 use crate::{printable, CoreError, Distortion, Intrinsics};
 
@@ -40,14 +42,27 @@ pub struct ImageTopic {
 }
 
 /// A camera of a recorded bag: source frame `i` is colour message `i` and depth message `i`.
+/// It has colour, depth registered to it, or both.
 #[derive(Clone, Debug)]
 pub struct RecordedBagCamera {
-    pub colour: ImageTopic,
+    /// `None`: depth on a camera of its own.
+    pub colour: Option<ImageTopic>,
     pub depth: Option<ImageTopic>,
     pub intrinsics: Intrinsics,
     pub distortion: Option<Distortion>,
-    /// The median rate of the colour stamps.
+    /// The median rate of its frames' stamps.
     pub rate_hz: f64,
+}
+
+impl RecordedBagCamera {
+    /// The topic whose messages are the camera's frames: its colour, else its depth.
+    pub fn frames(&self) -> &ImageTopic {
+        match (&self.colour, &self.depth) {
+            (Some(colour), _) => colour,
+            (None, Some(depth)) => depth,
+            (None, None) => unreachable!("a recorded camera has colour or depth"),
+        }
+    }
 }
 
 /// A recorded bag's topics and its cameras, in the order their topics first appear.
@@ -59,6 +74,8 @@ pub struct RecordedBagCameras {
     /// The index in `topics` of each MCAP channel id.
     pub topic_of_channel: HashMap<u16, usize>,
     pub cameras: Vec<RecordedBagCamera>,
+    /// Its IMU topics, which IMU items apply to.
+    pub imus: Vec<RecordedImu>,
 }
 
 /// What reading the bag found on each topic.
@@ -67,6 +84,7 @@ struct Found {
     topics: Vec<Topic>,
     by_channel: HashMap<u16, usize>,
     images: Vec<ImageTopic>,
+    imus: Vec<RecordedImu>,
     camera_infos: HashMap<String, CameraInfo>,
 }
 
@@ -81,66 +99,58 @@ impl RecordedBagCameras {
             std::mem::take(&mut found.images)
                 .into_iter()
                 .partition(|t| t.encoding.is_depth());
-        if colours.is_empty() {
+        if colours.is_empty() && depths.is_empty() {
             return Err(bad(format!(
-                "no colour image topic ({IMAGE_TYPE} or {COMPRESSED_IMAGE_TYPE}) to perturb"
+                "no image topic ({IMAGE_TYPE} or {COMPRESSED_IMAGE_TYPE}) to perturb"
             )));
         }
-        let mut cameras = Vec::new();
-        for colour in colours {
-            let info = found.camera_info_of(&colour).map_err(bad)?;
-            let intrinsics = Intrinsics::from_pinhole((info.width, info.height), k_of(info))
-                .map_err(|e| bad(format!("the CameraInfo of {}: {e}", colour.name)))?;
-            if (info.width, info.height) != colour.size {
-                return Err(bad(format!(
-                    "{} holds {}x{} images, but its CameraInfo says {}x{}",
-                    colour.name, colour.size.0, colour.size.1, info.width, info.height
-                )));
-            }
-            let distortion = distortion_of(info)
-                .map_err(|e| bad(format!("the CameraInfo of {}: {e}", colour.name)))?;
-            let rate_hz = rate_of(&colour).map_err(bad)?;
-            cameras.push(RecordedBagCamera {
-                colour,
-                depth: None,
-                intrinsics,
-                distortion,
-                rate_hz,
-            });
-        }
+        let mut cameras = colours
+            .into_iter()
+            .map(|colour| found.camera_of(colour))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(bad)?;
+        let mut depth_cameras = Vec::new();
         for depth in depths {
             let info = found.camera_info_of(&depth).map_err(bad)?;
             let registered = cameras.iter_mut().find(|c| {
-                depth.size == c.colour.size && k_of(info) == k_of_intrinsics(&c.intrinsics)
+                c.colour
+                    .as_ref()
+                    .is_some_and(|colour| colour.size == depth.size)
+                    && k_of(info) == k_of_intrinsics(&c.intrinsics)
             });
-            let Some(camera) = registered else {
-                return Err(bad(format!(
-                    "depth topic {} is registered to no colour topic (none has its size and CameraInfo): perturbing depth on a camera of its own is not built yet",
-                    depth.name
-                )));
-            };
-            if let Some(first) = &camera.depth {
-                return Err(bad(format!(
-                    "depth topics {} and {} are both registered to {}: expected one",
-                    first.name, depth.name, camera.colour.name
-                )));
+            if let Some(camera) = registered {
+                let colour = camera.frames();
+                if let Some(first) = &camera.depth {
+                    return Err(bad(format!(
+                        "depth topics {} and {} are both registered to {}: expected one",
+                        first.name, depth.name, colour.name
+                    )));
+                }
+                if pairs_one_to_one(colour, &depth, camera.rate_hz) {
+                    camera.depth = Some(depth);
+                    continue;
+                }
             }
-            pair_one_to_one(&camera.colour, &depth, camera.rate_hz).map_err(bad)?;
-            camera.depth = Some(depth);
+            depth_cameras.push(found.camera_of(depth).map_err(bad)?);
         }
+        cameras.extend(depth_cameras);
         Ok(Self {
             bag,
             topics: found.topics,
             topic_of_channel: found.by_channel,
             cameras,
+            imus: found.imus,
         })
     }
 
     /// Whether topic `index` is one rslam writes anew (a camera's colour or depth).
     pub fn is_perturbed(&self, index: usize) -> bool {
-        self.cameras
-            .iter()
-            .any(|c| c.colour.index == index || c.depth.as_ref().is_some_and(|d| d.index == index))
+        self.cameras.iter().any(|c| {
+            [&c.colour, &c.depth]
+                .into_iter()
+                .flatten()
+                .any(|t| t.index == index)
+        })
     }
 }
 
@@ -185,6 +195,23 @@ impl Found {
                 let header = image.header;
                 (header.stamp, header.frame_id, encoding, size)
             }
+            IMU_TYPE => {
+                let imu: Imu = from_cdr(&message.data).map_err(bad)?;
+                let times = LogTimes {
+                    log_time: message.log_time,
+                    publish_time: message.publish_time,
+                    sequence: message.sequence,
+                };
+                match self.imus.iter_mut().find(|t| t.index == index) {
+                    Some(topic) => topic.messages.push((imu, times)),
+                    None => self.imus.push(RecordedImu {
+                        index,
+                        name: topic.to_string(),
+                        messages: vec![(imu, times)],
+                    }),
+                }
+                return Ok(());
+            }
             CAMERA_INFO_TYPE => {
                 if !self.camera_infos.contains_key(topic) {
                     let info: CameraInfo = from_cdr(&message.data).map_err(bad)?;
@@ -228,6 +255,34 @@ impl Found {
             }),
         }
         Ok(())
+    }
+
+    /// The camera whose frames are `topic`'s messages (colour, or depth on its own), with the
+    /// intrinsics and lens of its `CameraInfo` and the rate of its stamps.
+    fn camera_of(&self, topic: ImageTopic) -> Result<RecordedBagCamera, String> {
+        let info = self.camera_info_of(&topic)?;
+        let intrinsics = Intrinsics::from_pinhole((info.width, info.height), k_of(info))
+            .map_err(|e| format!("the CameraInfo of {}: {e}", topic.name))?;
+        if (info.width, info.height) != topic.size {
+            return Err(format!(
+                "{} holds {}x{} images, but its CameraInfo says {}x{}",
+                topic.name, topic.size.0, topic.size.1, info.width, info.height
+            ));
+        }
+        let distortion =
+            distortion_of(info).map_err(|e| format!("the CameraInfo of {}: {e}", topic.name))?;
+        let rate_hz = rate_of(&topic)?;
+        let (colour, depth) = match topic.encoding.is_depth() {
+            true => (None, Some(topic)),
+            false => (Some(topic), None),
+        };
+        Ok(RecordedBagCamera {
+            colour,
+            depth,
+            intrinsics,
+            distortion,
+            rate_hz,
+        })
     }
 
     /// The `CameraInfo` beside an image topic: `camera_info` in its namespace, the driver
@@ -292,21 +347,24 @@ fn distortion_of(info: &CameraInfo) -> Result<Option<Distortion>, String> {
     }
 }
 
-/// The median rate of a topic's stamps, which must rise.
+/// The median rate of an image topic's stamps, which must rise.
 fn rate_of(topic: &ImageTopic) -> Result<f64, String> {
     let stamps: Vec<f64> = topic.messages.iter().map(|m| m.stamp.seconds()).collect();
+    median_rate(&topic.name, &stamps)
+}
+
+/// The median rate of `stamps` (seconds) of the topic `name`, which must rise.
+pub(super) fn median_rate(name: &str, stamps: &[f64]) -> Result<f64, String> {
     if stamps.len() < 2 {
         return Err(format!(
-            "{} has {} message(s): a rate needs at least 2",
-            topic.name,
+            "{name} has {} message(s): a rate needs at least 2",
             stamps.len()
         ));
     }
     let mut steps: Vec<f64> = stamps.windows(2).map(|w| w[1] - w[0]).collect();
     if let Some(i) = steps.iter().position(|&s| s <= 0.0) {
         return Err(format!(
-            "{}: the message stamped {:.9} s follows one stamped {:.9} s; expected rising stamps",
-            topic.name,
+            "{name}: the message stamped {:.9} s follows one stamped {:.9} s; expected rising stamps",
             stamps[i + 1],
             stamps[i]
         ));
@@ -315,29 +373,14 @@ fn rate_of(topic: &ImageTopic) -> Result<f64, String> {
     Ok(1.0 / steps[steps.len() / 2])
 }
 
-/// Checks that depth message `i` is colour message `i`'s partner: the nearest in stamp, within
-/// half a frame interval.
-fn pair_one_to_one(colour: &ImageTopic, depth: &ImageTopic, rate_hz: f64) -> Result<(), String> {
-    if colour.messages.len() != depth.messages.len() {
-        return Err(format!(
-            "{} has {} messages and {} {}: a camera's colour and depth must pair one to one (streams at other rates are not built yet)",
-            colour.name,
-            colour.messages.len(),
-            depth.name,
-            depth.messages.len()
-        ));
-    }
+/// Whether depth message `i` is colour message `i`'s partner for every `i`: the nearest in stamp,
+/// within half a frame interval.
+fn pairs_one_to_one(colour: &ImageTopic, depth: &ImageTopic, rate_hz: f64) -> bool {
     let tolerance = 0.5 / rate_hz;
-    for (c, d) in colour.messages.iter().zip(&depth.messages) {
-        let (tc, td) = (c.stamp.seconds(), d.stamp.seconds());
-        if (tc - td).abs() > tolerance {
-            return Err(format!(
-                "{} at {tc:.9} s has no depth on {} within {:.1} ms (the nearest in order is at {td:.9} s)",
-                colour.name,
-                depth.name,
-                tolerance * 1e3
-            ));
-        }
-    }
-    Ok(())
+    colour.messages.len() == depth.messages.len()
+        && colour
+            .messages
+            .iter()
+            .zip(&depth.messages)
+            .all(|(c, d)| (c.stamp.seconds() - d.stamp.seconds()).abs() <= tolerance)
 }

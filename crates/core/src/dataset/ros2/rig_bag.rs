@@ -1,8 +1,9 @@
-//! A rig of cameras and an IMU (the stereo rigs) as a ROS 2 bag, with the topics of EuRoC's
-//! recordings: `/cam0/image_raw` (`mono8`, or `rgb8` for a colour camera) with
-//! `/cam0/camera_info`, the same for each camera, `/imu0` (`sensor_msgs/Imu` in frame `imu0`),
-//! the body's ground-truth pose on `/ground_truth/pose` (the rows of EuRoC's
-//! `state_groundtruth_estimate0`), and every sensor's `T_BS` in frame `body` on `/tf_static`.
+//! A rig of cameras and an IMU (the stereo rigs) as a ROS 2 bag, by default with the topics of
+//! EuRoC's recordings ([`BagNames`]): `/cam0/image_raw` (`mono8`, or `rgb8` for a colour camera)
+//! with `/cam0/camera_info`, the same for each camera, `/imu0` (`sensor_msgs/Imu` in frame
+//! `imu0`), the body's ground-truth pose on `/ground_truth/pose` (the rows of EuRoC's
+//! `state_groundtruth_estimate0`; asked for, also `world → body` on `/tf`), and every sensor's
+//! `T_BS` in frame `body` on `/tf_static`.
 //!
 //! The cameras are drawn one after another, so each camera's messages go to a spool file of its
 //! own (`camN.spool`, MCAP); [`RigBag::finish`] spools the IMU and the ground truth too, merges
@@ -13,24 +14,26 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
 use super::bag::{bag_name, BagWriter, ClosedBag, Topic};
-use super::camera::{camera_info, imu_message, pose_in_world, transform_stamped};
+use super::camera::{camera_info, imu_message, pose_in_world, transform_stamped, WORLD_FRAME};
 use super::merge::{close_spool, merge_by_log_time, remove_spools};
 use super::messages::{Bytes, Header, Image, TfMessage, Time};
+use super::names::BagNames;
+use super::options::BagOptions;
 use super::recorded::RecordedBag;
 use super::schemas::MessageType;
-use super::{GROUND_TRUTH_TOPIC, IMU_FRAME, IMU_TOPIC, TF_STATIC_TOPIC};
+use super::{TF_STATIC_TOPIC, TF_TOPIC};
 use crate::dataset::codec::luma8;
 use crate::dataset::euroc::{CameraColour, EurocCamera, EurocImu, GroundTruthState, ImuSample};
 use crate::{CoreError, Distortion, RgbImage};
 
-/// The frame the rig's sensors are placed in.
-pub const RIG_BODY_FRAME: &str = "body";
 const SPOOL_EXTENSION: &str = "spool";
 
 pub struct RigBag {
     folder: PathBuf,
     cameras: Vec<EurocCamera>,
     imu: Option<EurocImu>,
+    options: BagOptions,
+    names: BagNames,
     /// Per camera, its messages so far.
     spools: Vec<Mutex<BagWriter>>,
     /// The earliest frame stamp written, in nanoseconds (`u64::MAX` before the first).
@@ -42,11 +45,13 @@ impl RigBag {
         folder: &Path,
         cameras: Vec<EurocCamera>,
         imu: Option<EurocImu>,
+        options: BagOptions,
+        names: BagNames,
     ) -> Result<Self, CoreError> {
         let spools = cameras
             .iter()
             .map(|camera| {
-                let topics = camera_topics(camera);
+                let topics = camera_topics(camera, &names);
                 let file = format!("{}.{SPOOL_EXTENSION}", camera.name);
                 BagWriter::create_file(folder, &file, &topics).map(Mutex::new)
             })
@@ -55,6 +60,8 @@ impl RigBag {
             folder: folder.to_path_buf(),
             cameras,
             imu,
+            options,
+            names,
             spools,
             first_frame_ns: AtomicU64::new(u64::MAX),
         })
@@ -72,7 +79,7 @@ impl RigBag {
         let stamp = Time::from_nanoseconds(t_ns as i64);
         let header = Header {
             stamp,
-            frame_id: spec.name.clone(),
+            frame_id: self.names.frame_id(&spec.name),
         };
         let grey: Vec<u8>;
         let (encoding, step, data) = match spec.colour {
@@ -111,27 +118,44 @@ impl RigBag {
         imu: &[ImuSample],
         ground_truth: &[GroundTruthState],
     ) -> Result<ClosedBag, CoreError> {
-        let mut topics: Vec<Topic> = self.cameras.iter().flat_map(camera_topics).collect();
+        let names = &self.names;
+        let mut topics: Vec<Topic> = self
+            .cameras
+            .iter()
+            .flat_map(|camera| camera_topics(camera, names))
+            .collect();
         let imu_samples = if self.imu.is_some() { imu } else { &[] };
-        let imu_topic = Topic::new(IMU_TOPIC, MessageType::Imu);
-        let truth_topic = Topic::new(GROUND_TRUTH_TOPIC, MessageType::PoseStamped);
+        let imu_topic = Topic::new(&names.imu_topic(), MessageType::Imu);
+        let truth_topic = Topic::new(&names.ground_truth_topic(), MessageType::PoseStamped);
+        let mut truth_topics = vec![truth_topic];
+        if self.options.tf {
+            truth_topics.push(Topic::new(TF_TOPIC, MessageType::TfMessage));
+        }
         if self.imu.is_some() {
             topics.push(imu_topic.clone());
         }
-        topics.push(truth_topic.clone());
+        topics.extend(truth_topics.iter().cloned());
         topics.push(Topic::latched(TF_STATIC_TOPIC, MessageType::TfMessage));
 
         let mut imu_spool = BagWriter::create_file(&self.folder, "imu0.spool", &[imu_topic])?;
         let (gyro, accel) = self.imu.as_ref().map_or((0.0, 0.0), variances);
         for sample in imu_samples {
             let stamp = Time::from_nanoseconds(sample.t_ns as i64);
-            imu_spool.write(0, stamp, &imu_message(sample, stamp, gyro, accel))?;
+            let mut message = imu_message(sample, stamp, gyro, accel);
+            message.header.frame_id = names.imu_frame();
+            imu_spool.write(0, stamp, &message)?;
         }
         let mut truth_spool =
-            BagWriter::create_file(&self.folder, "ground_truth.spool", &[truth_topic])?;
+            BagWriter::create_file(&self.folder, "ground_truth.spool", &truth_topics)?;
         for state in ground_truth {
             let stamp = Time::from_nanoseconds(state.t_ns as i64);
             truth_spool.write(0, stamp, &pose_in_world(stamp, &state.world_from_body))?;
+            if self.options.tf {
+                let body = &state.world_from_body;
+                let body_frame = names.body_frame();
+                let transforms = vec![transform_stamped(stamp, WORLD_FRAME, &body_frame, body)];
+                truth_spool.write(1, stamp, &TfMessage { transforms })?;
+            }
         }
         // On a tie the IMU comes first, then the ground truth, then the cameras in order.
         let mut spools = vec![
@@ -144,7 +168,7 @@ impl RigBag {
         }
 
         let name = bag_name(&self.folder);
-        let mut bag = BagWriter::create(&self.folder, &name, &topics)?;
+        let mut bag = BagWriter::create(&self.folder, &name, &topics, self.options.compression)?;
         let first_frame = self.first_frame_ns.load(Ordering::Relaxed);
         let first = [
             imu_samples.first().map(|s| s.t_ns),
@@ -170,18 +194,15 @@ impl RigBag {
 
     /// `/tf_static`: every camera's and the IMU's `T_BS`.
     fn sensors_in_body(&self, stamp: Time) -> TfMessage {
+        let (names, body) = (&self.names, self.names.body_frame());
         let cameras = self.cameras.iter().map(|camera| {
-            transform_stamped(
-                stamp,
-                RIG_BODY_FRAME,
-                &camera.name,
-                &camera.body_from_camera,
-            )
+            let frame = names.frame_id(&camera.name);
+            transform_stamped(stamp, &body, &frame, &camera.body_from_camera)
         });
         let imu = self
             .imu
             .iter()
-            .map(|imu| transform_stamped(stamp, RIG_BODY_FRAME, IMU_FRAME, &imu.body_from_imu));
+            .map(|imu| transform_stamped(stamp, &body, &names.imu_frame(), &imu.body_from_imu));
         TfMessage {
             transforms: cameras.chain(imu).collect(),
         }
@@ -189,11 +210,11 @@ impl RigBag {
 }
 
 /// A camera's image and camera-info topics.
-fn camera_topics(camera: &EurocCamera) -> [Topic; 2] {
+fn camera_topics(camera: &EurocCamera, names: &BagNames) -> [Topic; 2] {
     [
-        Topic::new(&format!("/{}/image_raw", camera.name), MessageType::Image),
+        Topic::new(&names.image_topic(&camera.name), MessageType::Image),
         Topic::new(
-            &format!("/{}/camera_info", camera.name),
+            &names.camera_info_topic(&camera.name),
             MessageType::CameraInfo,
         ),
     ]

@@ -120,6 +120,7 @@ pub fn manifest() -> Manifest {
         camera: None,
         distortion: None,
         depth_png: Default::default(),
+        bag: Default::default(),
         rate_hz: CAMERA_RATE_HZ,
         frame_count: FRAMES,
         seed: 0,
