@@ -1,5 +1,5 @@
 //! A recorded ROS 2 bag as `rslam perturb --input BAG` reads it: the MCAP storage file of a
-//! rosbag2 folder, every message read and the camera found
+//! rosbag2 folder, every message read and the cameras and IMU topics found
 //! (`rslam_core::dataset::ros2::RecordedBagCameras`).
 
 use std::path::Path;
@@ -27,6 +27,16 @@ pub fn storage(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
             assert_eq!(depth.messages.len(), frames);
         }
         assert!(recorded.is_perturbed(camera.frames().index));
+    }
+    for imu in &recorded.imus {
+        if let Ok(samples) = imu.samples() {
+            assert!(samples.windows(2).all(|w| w[0].t_ns < w[1].t_ns));
+        }
+        if let Ok(rate_hz) = imu.rate_hz() {
+            assert!(rate_hz.is_finite() && rate_hz > 0.0);
+            let noise = imu.stated_noise(rate_hz);
+            assert!(noise.is_none_or(|n| n.gyroscope_noise_density.is_finite()));
+        }
     }
     Ok(())
 }

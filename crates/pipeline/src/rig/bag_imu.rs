@@ -68,14 +68,8 @@ pub(crate) fn perturb_bag_imus(
 /// The noise `imu_noise` scales: what the topic's covariances state. Without `imu_noise` none is
 /// needed.
 fn recorded_noise(imu: &RecordedImu, spec: &PerturbSpec, rate_hz: f64) -> Result<ImuNoise, String> {
-    let unscaled = ImuNoise {
-        gyroscope_noise_density: 0.0,
-        gyroscope_random_walk: 0.0,
-        accelerometer_noise_density: 0.0,
-        accelerometer_random_walk: 0.0,
-    };
     match (spec.imu.noise_scale, imu.stated_noise(rate_hz)) {
-        (None, _) => Ok(unscaled),
+        (None, _) => Ok(ImuNoise::ZERO),
         (Some(_), Some(noise)) => Ok(noise),
         (Some(k), None) => Err(format!(
             "imu_noise:{k}: topic {} states no noise (its angular velocity and linear acceleration covariances are 0, unknown by REP 145), so there is no recorded noise to scale",
