@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rslam_core::dataset::ros2::BagOptions;
 use rslam_core::dataset::{DepthPng, Layout};
 use rslam_core::hash::{fnv1a64, splitmix64};
 use rslam_core::trajectory_io::read_trajectory;
@@ -92,39 +93,48 @@ impl Sequence {
         let mut args: Vec<String> = ["rslam", "render", "--scene", &self.scene]
             .map(String::from)
             .to_vec();
-        let mut push = |flag: &str, value: String| {
-            args.push(flag.to_string());
-            args.push(value);
-        };
+        let mut push = |words: &[&str]| args.extend(words.iter().map(|w| w.to_string()));
         if let Some(traj) = &self.traj {
-            push("--traj", traj.display().to_string());
+            push(&["--traj", &traj.display().to_string()]);
         }
         if let Some(frames) = self.frames {
-            push("--frames", frames.to_string());
+            push(&["--frames", &frames.to_string()]);
         }
-        match &self.sensors {
-            Sensors::Camera { depth_png, .. } | Sensors::CameraImu { depth_png, .. } => {
+        let bag = match &self.sensors {
+            Sensors::Camera { depth_png, bag, .. } | Sensors::CameraImu { depth_png, bag, .. } => {
                 if let Sensors::CameraImu { .. } = self.sensors {
-                    push("--rig", "rgbd-imu".into());
+                    push(&["--rig", "rgbd-imu"]);
                 }
-                push("--camera", self.camera_text.clone().unwrap_or_default());
-                push("--rate", self.rate_hz.to_string());
-                push("--format", self.layout().to_string());
+                push(&["--camera", self.camera_text.as_deref().unwrap_or_default()]);
+                push(&["--rate", &self.rate_hz.to_string()]);
+                push(&["--format", &self.layout().to_string()]);
                 if *depth_png != DepthPng::default() {
-                    push("--depth-png", depth_png.to_string());
+                    push(&["--depth-png", &depth_png.to_string()]);
                 }
+                bag
             }
-            Sensors::Rig(rig, layout, _) => {
-                push("--rig", rig.name.clone());
-                push("--rate", self.rate_hz.to_string());
-                push("--format", layout.to_string());
+            Sensors::Rig(rig, layout, bag) => {
+                push(&["--rig", &rig.name]);
+                push(&["--rate", &self.rate_hz.to_string()]);
+                push(&["--format", &layout.to_string()]);
+                bag
             }
+        };
+        let default = BagOptions::default();
+        if bag.depth != default.depth {
+            push(&["--bag-depth", &bag.depth.to_string()]);
         }
-        push("--seed", self.seed.to_string());
+        if bag.tf {
+            push(&["--bag-tf"]);
+        }
+        if bag.compression != default.compression {
+            push(&["--bag-compression", &bag.compression.to_string()]);
+        }
+        push(&["--seed", &self.seed.to_string()]);
         if !self.spec.is_empty() {
-            push("--perturb", self.spec.to_string());
+            push(&["--perturb", &self.spec.to_string()]);
         }
-        push("--out", out.display().to_string());
+        push(&["--out", &out.display().to_string()]);
         args
     }
 

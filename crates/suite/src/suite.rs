@@ -229,7 +229,7 @@ fn sensors(
         None => DepthPng::default(),
         Some(text) => text.parse().map_err(|e| format!("depth_png: {e}"))?,
     };
-    let sensors = Sensors::new(preset, layout, depth_png, BagOptions::default()).map_err(worded)?;
+    let sensors = Sensors::new(preset, layout, depth_png, bag_options(row)?).map_err(worded)?;
     sensors.check_spec(spec).map_err(worded)?;
     if let Sensors::Rig(rig, ..) = &sensors {
         let cam0 = rig
@@ -244,6 +244,19 @@ fn sensors(
     Ok((sensors, camera, Some(camera_text)))
 }
 
+/// The row's bag options (`bag_depth`, `bag_tf`, `bag_compression`), defaults where left out.
+fn bag_options(row: &SequenceFields) -> Result<BagOptions, String> {
+    let mut options = BagOptions::default();
+    if let Some(text) = &row.bag_depth {
+        options.depth = text.parse().map_err(|e| format!("bag_depth: {e}"))?;
+    }
+    if let Some(text) = &row.bag_compression {
+        options.compression = text.parse().map_err(|e| format!("bag_compression: {e}"))?;
+    }
+    options.tf = row.bag_tf.unwrap_or_default();
+    Ok(options)
+}
+
 /// A library error in the words of `suite.toml`: the key of the row that sets the part of the
 /// job it names.
 fn worded(error: PipelineError) -> String {
@@ -252,6 +265,7 @@ fn worded(error: PipelineError) -> String {
             let key = match part {
                 JobPart::Spec => "perturb",
                 JobPart::Trajectory => "traj",
+                JobPart::Bag => "bag_depth/bag_tf/bag_compression",
                 _ => return format!("{part}: {message}"),
             };
             format!("{key}: {message}")
@@ -335,6 +349,39 @@ mod tests {
             suite.sequences[0].command().join(" "),
             "rslam render --scene room0 --frames 5 --camera replica --rate 20 --format replica \
              --seed 4 --perturb fog:3 --out datasets/room0__fog-3"
+        );
+    }
+
+    #[test]
+    fn bag_options_are_part_of_a_ros2_rows_command_and_refused_elsewhere() {
+        let suite = open("[defaults]\nformat = \"ros2\"\nbag_depth = \"32FC1\"\nbag_tf = true\n[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\nseed = 1\nbag_compression = \"zstd\"\n").unwrap();
+        let command = suite.sequences[0].command().join(" ");
+        assert!(
+            command.contains(
+                "--format ros2 --bag-depth 32FC1 --bag-tf --bag-compression zstd --seed 1"
+            ),
+            "{command}"
+        );
+        let Sensors::Camera { bag, .. } = &suite.sequences[0].sensors else {
+            panic!("one camera");
+        };
+        assert_eq!(
+            bag.compression,
+            rslam_core::dataset::ros2::BagCompression::Zstd
+        );
+        let err = open("[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\nbag_tf = true\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("suite.toml:1: sequence 'room0__a': bag_depth/bag_tf/bag_compression: applies to a ROS 2 bag, not the replica layout"),
+            "{err}"
+        );
+        let err = open("[[sequence]]\nname = \"room0__a\"\nscene = \"room0\"\nformat = \"ros2\"\nbag_depth = \"16uc1\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("bag_depth: unknown bag depth encoding '16uc1'"),
+            "{err}"
         );
     }
 

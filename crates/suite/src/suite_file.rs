@@ -4,7 +4,8 @@
 //! ```toml
 //! seed = 0                      # every row without its own seed gets mix(seed, name)
 //! [defaults]
-//! frames = 2000                 # also: format, camera, rig, rate, scene, traj, depth_png
+//! frames = 2000                 # also: format, camera, rig, rate, scene, traj, depth_png,
+//!                               #   bag_depth, bag_tf, bag_compression
 //! [[sequence]]
 //! name = "room0__fog-3"         # <scene>__<setting>, the folder under datasets/
 //! scene = "room0"               # built-in scene or mesh file (relative to this file)
@@ -60,6 +61,14 @@ pub struct SequenceFields {
     /// `fast` or `small` (see `rslam render --depth-png`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub depth_png: Option<String>,
+    /// A bag's options (`format = "ros2"`; see `rslam render --bag-depth`, `--bag-tf`,
+    /// `--bag-compression`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bag_depth: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bag_tf: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bag_compression: Option<String>,
 }
 
 impl SequenceFields {
@@ -84,6 +93,15 @@ impl SequenceFields {
                 .depth_png
                 .clone()
                 .or_else(|| defaults.depth_png.clone()),
+            bag_depth: self
+                .bag_depth
+                .clone()
+                .or_else(|| defaults.bag_depth.clone()),
+            bag_tf: self.bag_tf.or(defaults.bag_tf),
+            bag_compression: self
+                .bag_compression
+                .clone()
+                .or_else(|| defaults.bag_compression.clone()),
         }
     }
 }
