@@ -62,7 +62,7 @@ pub static IMU_ITEMS: &[ItemEntry] = &[
     ItemEntry {
         name: NOISE,
         syntax: "imu_noise:K",
-        description: "IMU noise densities and bias random walks × K (Kalibr's model, per axis). Rendered: the IMU is synthesised with them (any K ≥ 0); recorded: independent noise of (K² − 1)× imu0/sensor.yaml's variances is added (K ≥ 1), and its bias walk goes into the ground-truth biases. sensor.yaml keeps the nominal values",
+        description: "IMU noise densities and bias random walks × K (Kalibr's model, per axis). Rendered: the IMU is synthesised with them (any K ≥ 0); recorded: independent noise of (K² − 1)× imu0/sensor.yaml's variances is added (K ≥ 1), and its bias walk goes into the ground-truth biases; sensor.yaml keeps the nominal values. A ROS 2 bag: (K² − 1)× the white noise its Imu covariances state, no bias walk",
         needs: &[Need::Imu],
     },
     ItemEntry {
