@@ -374,3 +374,58 @@ fn runs_mode_writes_the_tables_and_marks_failures() {
     ws.rslam(&["eval", "--runs", "runs", "--datasets", "nowhere"])
         .fails_with(2, &["nowhere"]);
 }
+
+/// A COLMAP reconstruction of the loop `tum` draws, in COLMAP's own frame (a quarter of the scale,
+/// turned 90° about z, shifted), written as `images.txt` with ids in reverse name order: Sim(3)
+/// alignment finds the frame again and leaves no error, as for a real SfM result.
+#[test]
+fn a_colmap_images_txt_is_read_as_the_cameras_it_places() {
+    let ws = Workspace::new();
+    ws.write("gt.txt", &tum(120, 0.0, identity));
+    let mut images = String::from("# IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n");
+    for i in (0..120).rev() {
+        let s = i as f64 / 30.0;
+        let p = [
+            2.0 * (0.5 * s).cos(),
+            1.5 * (0.5 * s).sin(),
+            0.2 * (1.7 * s).sin(),
+        ];
+        // Camera-to-world in COLMAP's frame: a turn of θ about z, centre 0.25 R₀ p + (5, −2, 1).
+        let theta = 0.8 * s + std::f64::consts::FRAC_PI_2;
+        let c = [0.25 * -p[1] + 5.0, 0.25 * p[0] - 2.0, 0.25 * p[2] + 1.0];
+        // World-to-camera: the turn by −θ, and t = −R(−θ) c.
+        let (sin, cos) = theta.sin_cos();
+        let t = [
+            -(c[0] * cos + c[1] * sin),
+            -(-c[0] * sin + c[1] * cos),
+            -c[2],
+        ];
+        let (qz, qw) = ((-theta / 2.0).sin(), (-theta / 2.0).cos());
+        images += &format!(
+            "{} {qw:.15} 0 0 {qz:.15} {:.15} {:.15} {:.15} 1 frame_{i:05}.png\n\n",
+            120 - i,
+            t[0],
+            t[1],
+            t[2]
+        );
+    }
+    ws.write("images.txt", &images);
+    let out = ws
+        .rslam(&[
+            "eval",
+            "images.txt",
+            "gt.txt",
+            "--align",
+            "sim3",
+            "--rate",
+            "30",
+            "--json",
+        ])
+        .success();
+    let json = json_of(&out);
+    assert_eq!(json["pairs"], 120);
+    assert!(json["ate"]["rmse"].as_f64().unwrap() < 1e-6, "{out}");
+    assert!(json["rpe_rot_deg"]["max"].as_f64().unwrap() < 1e-6, "{out}");
+    let scale = json["alignment"]["scale"].as_f64().unwrap();
+    assert!((scale - 4.0).abs() < 1e-6, "scale {scale}");
+}

@@ -17,8 +17,9 @@ Numbers as evo 1.38.1 computes them (evo_ape / evo_rpe). Note the order: `rslam 
 takes the ground truth first.
 
 Files: TUM (t tx ty tz qx qy qz qw), Replica traj.txt (16 numbers, row-major 4x4 camera-to-world;
-frame i at i / --rate), KITTI (12 numbers, row-major 3x4; matched by index unless --kitti-times) or
-EuRoC ground truth (t[ns],px,py,pz,qw,qx,qy,qz,...), detected from the content; or a ROS 2 bag
+frame i at i / --rate), KITTI (12 numbers, row-major 3x4; matched by index unless --kitti-times),
+EuRoC ground truth (t[ns],px,py,pz,qw,qx,qy,qz,...) or COLMAP images.txt (world-to-camera per
+image, in name order, image i at i / --rate), detected from the content; or a ROS 2 bag
 folder: the header-stamped poses of a PoseStamped, PoseWithCovarianceStamped or Odometry topic, or
 of the transforms to one frame on a TF topic (--est-topic / --gt-topic TOPIC or TOPIC:CHILD).
 
@@ -107,8 +108,8 @@ pub struct EvalArgs {
     /// mav0/state_groundtruth_estimate0/data.csv or mav0/mocap0/data.csv.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["runs", "plot"])]
     agents: Option<PathBuf>,
-    /// Force the file format instead of detecting it: tum, replica, kitti or euroc (a ROS 2 bag
-    /// folder is read as ros2).
+    /// Force the file format instead of detecting it: tum, replica, kitti, euroc or colmap (a
+    /// COLMAP images.txt); a ROS 2 bag folder is read as ros2.
     #[arg(long)]
     format: Option<TrajectoryFormat>,
     /// When EST is a ROS 2 bag: its topic of PoseStamped, PoseWithCovarianceStamped or Odometry
@@ -120,7 +121,8 @@ pub struct EvalArgs {
     /// /ground_truth/pose).
     #[arg(long, value_name = "TOPIC")]
     gt_topic: Option<String>,
-    /// Frame rate of Replica traj.txt files (frame i gets timestamp i / rate), Hz.
+    /// Frame rate of Replica traj.txt and COLMAP images.txt files (frame i gets timestamp
+    /// i / rate), Hz.
     #[arg(long, default_value_t = ReadOptions::DEFAULT_REPLICA_RATE_HZ)]
     rate: f64,
     /// KITTI times file (one timestamp in seconds per line) for KITTI pose files.

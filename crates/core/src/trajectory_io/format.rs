@@ -15,16 +15,19 @@ pub enum TrajectoryFormat {
     Kitti,
     /// EuRoC ground truth `data.csv`: `t[ns],px,py,pz,qw,qx,qy,qz,…`, `#` header.
     Euroc,
+    /// COLMAP `images.txt`: world-to-camera per image, in name order, no timestamps.
+    Colmap,
     /// A pose or TF topic of a ROS 2 bag (a rosbag2 folder, [`ReadOptions::topic`]).
     Ros2,
 }
 
 impl TrajectoryFormat {
-    pub const ALL: [TrajectoryFormat; 5] = [
+    pub const ALL: [TrajectoryFormat; 6] = [
         Self::Tum,
         Self::Replica,
         Self::Kitti,
         Self::Euroc,
+        Self::Colmap,
         Self::Ros2,
     ];
 
@@ -34,6 +37,7 @@ impl TrajectoryFormat {
             Self::Replica => "replica",
             Self::Kitti => "kitti",
             Self::Euroc => "euroc",
+            Self::Colmap => "colmap",
             Self::Ros2 => "ros2",
         }
     }
@@ -45,6 +49,7 @@ impl TrajectoryFormat {
             Self::Replica => "16 numbers (row-major 4x4 camera-to-world)",
             Self::Kitti => "12 numbers (row-major 3x4 camera-to-world)",
             Self::Euroc => "at least 8 comma-separated numbers 't[ns],px,py,pz,qw,qx,qy,qz'",
+            Self::Colmap => "an image line 'IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME' (world-to-camera), then its points line",
             Self::Ros2 => "a message of a pose topic",
         }
     }
@@ -58,7 +63,7 @@ impl fmt::Display for TrajectoryFormat {
 
 /// The text is not one of the format names.
 #[derive(Debug, thiserror::Error)]
-#[error("unknown trajectory format '{text}': expected tum, replica, kitti, euroc or ros2")]
+#[error("unknown trajectory format '{text}': expected tum, replica, kitti, euroc, colmap or ros2")]
 pub struct UnknownFormat {
     pub text: String,
 }
@@ -81,7 +86,7 @@ impl FromStr for TrajectoryFormat {
 pub enum TimeSource {
     /// Read from the file (TUM, EuRoC) or from a KITTI times file.
     File,
-    /// Synthesised as `i / hz` (Replica `traj.txt`).
+    /// Synthesised as `i / hz` (Replica `traj.txt`, COLMAP `images.txt`).
     Rate { hz: f64 },
     /// No time at all (KITTI without a times file): the timestamps hold the frame index
     /// `0, 1, 2, …`, and such a trajectory is matched to another by index.
@@ -94,7 +99,8 @@ pub enum TimeSource {
 pub struct ReadOptions {
     /// Force a format instead of detecting it from the content.
     pub format: Option<TrajectoryFormat>,
-    /// Frame rate giving Replica frame `i` the timestamp `i / replica_rate_hz`.
+    /// Frame rate giving Replica frame `i` (and COLMAP image `i` in name order) the timestamp
+    /// `i / replica_rate_hz`.
     pub replica_rate_hz: f64,
     /// KITTI times file (one timestamp in seconds per line, as `times.txt` of KITTI odometry).
     pub kitti_times: Option<PathBuf>,
@@ -142,7 +148,7 @@ mod tests {
         let err = "csv".parse::<TrajectoryFormat>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "unknown trajectory format 'csv': expected tum, replica, kitti, euroc or ros2"
+            "unknown trajectory format 'csv': expected tum, replica, kitti, euroc, colmap or ros2"
         );
     }
 }

@@ -1,10 +1,12 @@
-//! Trajectory file formats (TUM, Replica traj.txt, KITTI, EuRoC): readers with auto-detection and writers.
+//! Trajectory file formats (TUM, Replica traj.txt, KITTI, EuRoC, COLMAP images.txt): readers
+//! with auto-detection, and writers (TUM, Replica).
 //!
 //! Readers are lenient on layout (tabs, repeated blanks, trailing blanks, `#` comments, a byte
 //! order mark, CRLF) and strict on numbers: a line that does not hold what its format expects,
 //! a value that is not a finite number or a zero quaternion is an error naming the file and line.
 //! Non-unit quaternions are normalised.
 
+mod colmap;
 mod detect;
 pub(crate) mod euroc;
 mod format;

@@ -2,7 +2,7 @@ use std::path::Path;
 
 use super::detect::detect;
 use super::lines::check_line_count;
-use super::{euroc, kitti, replica, tum};
+use super::{colmap, euroc, kitti, replica, tum};
 use super::{ReadOptions, TimeSource, TrajectoryFile, TrajectoryFormat};
 use crate::dataset::ros2::read_pose_topic;
 use crate::{read_text_file, CoreError, Trajectory};
@@ -59,6 +59,10 @@ pub fn read_trajectory_with(
         TrajectoryFormat::Euroc => (euroc::parse(path, &text)?, TimeSource::File),
         TrajectoryFormat::Replica => (
             replica::parse(path, &text, rate)?,
+            TimeSource::Rate { hz: rate },
+        ),
+        TrajectoryFormat::Colmap => (
+            colmap::parse(path, &text, rate)?,
             TimeSource::Rate { hz: rate },
         ),
         TrajectoryFormat::Kitti => read_kitti(path, &text, options.kitti_times.as_deref())?,

@@ -150,7 +150,8 @@ fn undetectable_field_count_is_an_error() {
     assert_eq!(
         error_of("# x\n1 2 3\n", None),
         "F:2: cannot tell the trajectory format from 3 fields: expected 8 numbers (TUM), \
-         12 (KITTI), 16 (Replica) or comma-separated EuRoC; or force a format"
+         12 (KITTI), 16 (Replica), comma-separated EuRoC or a COLMAP images.txt line; or \
+         force a format"
     );
 }
 
@@ -337,4 +338,96 @@ fn tum_round_trips_with_six_decimal_stamps_and_three_header_lines() {
         assert_eq!(b.translation, p.translation);
         assert!((b.rotation.dot(p.rotation) - 1.0).abs() < EPS);
     }
+}
+
+/// `images.txt` as COLMAP writes it: a comment header, ids in another order than the names, each
+/// image line followed by its 2D points (one of them empty, one a long line).
+fn colmap_images_txt(poses: &[Pose]) -> String {
+    let mut text = String::from(
+        "# Image list with two lines of data per image:\n\
+         #   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n\
+         #   POINTS2D[] as (X, Y, POINT3D_ID)\n\
+         # Number of images: 5, mean observations per image: 2\n",
+    );
+    for (k, i) in [3usize, 0, 4, 1, 2].into_iter().enumerate() {
+        let world_to_camera = poses[i].inverse();
+        let (q, t) = (world_to_camera.rotation, world_to_camera.translation);
+        text.push_str(&format!(
+            "{} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} 1 frame_{i:05}.png\n",
+            k + 7,
+            q.w,
+            q.x,
+            q.y,
+            q.z,
+            t.x,
+            t.y,
+            t.z
+        ));
+        match k {
+            1 => text.push('\n'),
+            2 => text.push_str("12.5 40.25 -1 ".repeat(400).trim_end()),
+            _ => text.push_str("100.5 20.25 17 3.5 4.5 -1"),
+        }
+        text.push('\n');
+    }
+    text
+}
+
+#[test]
+fn colmap_images_are_camera_to_world_in_name_order_stamped_at_the_rate() {
+    let dir = Dir::new();
+    let poses = sample_poses();
+    let path = dir.write("images.txt", colmap_images_txt(&poses));
+    let file = read_trajectory_with(
+        &path,
+        &ReadOptions {
+            replica_rate_hz: 10.0,
+            ..ReadOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(file.format, TrajectoryFormat::Colmap);
+    assert_eq!(file.time_source, TimeSource::Rate { hz: 10.0 });
+    assert_eq!(file.trajectory.timestamps, [0.0, 0.1, 0.2, 0.3, 0.4]);
+    for (read, expected) in file.trajectory.poses.iter().zip(&poses) {
+        assert!((read.translation - expected.translation).length() < EPS);
+        assert!(read.rotation.angle_between(expected.rotation) < 1e-9);
+    }
+    // The camera centre is −Rᵀt: a camera at the origin looking along +x reads back so.
+    let looking_x = Pose::new(
+        DQuat::from_mat3(&glam::DMat3::from_cols(
+            DVec3::NEG_Y,
+            DVec3::NEG_Z,
+            DVec3::X,
+        )),
+        DVec3::new(1.0, 2.0, 3.0),
+    );
+    let one = dir.write("one.txt", colmap_images_txt(&[looking_x; 5]));
+    let read_one = read(&one).trajectory.poses[0];
+    assert!((read_one.translation - DVec3::new(1.0, 2.0, 3.0)).length() < EPS);
+    assert!((read_one.rotation * DVec3::Z - DVec3::X).length() < EPS);
+}
+
+#[test]
+fn colmap_errors_name_the_line() {
+    let line = "1 1 0 0 0 0 0 0 1 a.png\n\n";
+    let twice = format!("{line}{line}");
+    assert_eq!(
+        error_of(&twice, None),
+        "F:3: image 'a.png' again (first on line 1); expected each image once"
+    );
+    let cut = format!("{line}2 1 0 0 0 0 0\n");
+    let err = error_of(&cut, Some(TrajectoryFormat::Colmap));
+    assert!(
+        err.starts_with("F:3: expected an image line 'IMAGE_ID QW"),
+        "{err}"
+    );
+    let nan = "1 nan 0 0 0 0 0 0 1 a.png\n\n";
+    assert!(
+        error_of(nan, None).starts_with("F:1: field 1 is 'nan'"),
+        "{}",
+        error_of(nan, None)
+    );
+    let zero = "1 0 0 0 0 0 0 0 1 a.png\n\n";
+    assert!(error_of(zero, None).contains("F:1: zero quaternion"));
 }
