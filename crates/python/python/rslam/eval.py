@@ -26,8 +26,8 @@ def evaluate(est, gt, *, align="se3", max_diff=0.01, t_offset=0.0, format=None, 
         align: 'se3' (RGB-D, default), 'sim3' (monocular) or 'none'.
         max_diff: largest timestamp difference of an associated pair, seconds (inclusive).
         t_offset: added to the estimate's timestamps, seconds.
-        format: force the file format ('tum', 'replica', 'kitti', 'euroc').
-        rate: frame rate of Replica traj.txt files, Hz.
+        format: force the file format ('tum', 'replica', 'kitti', 'euroc', 'colmap').
+        rate: frame rate of Replica traj.txt and COLMAP images.txt files, Hz.
         delta, delta_unit, all_pairs: the RPE pairs ('f' frames, 'm' metres, 'deg' degrees).
         est_topic, gt_topic: the pose topic of a bag ('/odom'; '/tf:base_link' for a TF
             topic's transforms to a frame); None reads the bag's one pose topic.
