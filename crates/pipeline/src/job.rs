@@ -11,7 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rslam_core::dataset::ros2::{BagDepth, BagOptions};
+use rslam_core::dataset::ros2::{BagCompression, BagDepth, BagOptions};
 use rslam_core::dataset::{DatasetFormat, DatasetOverrides, DepthPng, Layout, Manifest};
 use rslam_gpu::GpuContext;
 use rslam_perturb::{PerturbSpec, Setting};
@@ -63,10 +63,11 @@ pub enum Source {
         seed: u64,
     },
     /// A recorded ROS 2 bag (a rosbag2 folder), copied into a bag with its camera's images
-    /// perturbed; each topic keeps its encoding, so only `bag.compression` applies.
+    /// perturbed; each topic keeps its encoding and the recorded `/tf`, so of a bag's options
+    /// only the chunks' compression is the job's to choose.
     Bag {
         input: PathBuf,
-        bag: BagOptions,
+        compression: BagCompression,
         spec: PerturbSpec,
         seed: u64,
     },
@@ -305,10 +306,16 @@ impl Job {
             }
             Source::Bag {
                 input,
-                bag,
+                compression,
                 spec,
                 seed,
-            } => Box::new(perturb_bag::plan(input, *bag, spec, *seed, command)?),
+            } => Box::new(perturb_bag::plan(
+                input,
+                *compression,
+                spec,
+                *seed,
+                command,
+            )?),
             Source::Images { files, spec, seed } => {
                 Box::new(perturb_images::plan(files, spec, *seed, command)?)
             }

@@ -10,7 +10,8 @@ use std::path::Path;
 use std::sync::Arc;
 
 use rslam_core::dataset::ros2::{
-    BagOptions, Imu, LogTimes, PerturbedBag, RecordedBag, RecordedBagCamera, RecordedBagCameras,
+    BagCompression, BagOptions, Imu, LogTimes, PerturbedBag, RecordedBag, RecordedBagCamera,
+    RecordedBagCameras,
 };
 use rslam_core::dataset::{ContentWriter, DatasetFormat, DepthPng, Manifest};
 use rslam_gpu::GpuContext;
@@ -25,7 +26,7 @@ use crate::rig::perturb_bag_imus;
 use crate::rig::CameraFrames;
 use crate::sink::{seal_bag, PerturbedBagSink};
 use crate::source::BagSource;
-use crate::{settings, JobPart, PipelineError};
+use crate::{settings, PipelineError};
 
 pub(crate) struct BagPerturb {
     seed: u64,
@@ -46,17 +47,11 @@ struct CameraRun {
 
 pub(crate) fn plan(
     input: &Path,
-    bag: BagOptions,
+    compression: BagCompression,
     spec: &PerturbSpec,
     seed: u64,
     command: &[String],
 ) -> Result<BagPerturb, PipelineError> {
-    if bag.depth != BagOptions::default().depth || bag.tf {
-        return Err(PipelineError::option(
-            JobPart::Bag,
-            "a perturbed bag keeps each topic's encoding and its recorded /tf: only the compression applies",
-        ));
-    }
     let recorded = RecordedBagCameras::read(RecordedBag::open(input)?)?;
     settings::check(spec, &settings::recorded_bag(&recorded))?;
     let has_colour = recorded.cameras.iter().any(|c| c.colour.is_some());
@@ -97,7 +92,10 @@ pub(crate) fn plan(
         camera: Some(cam0.intrinsics),
         distortion: cam0.distortion,
         depth_png: DepthPng::default(),
-        bag,
+        bag: BagOptions {
+            compression,
+            ..BagOptions::default()
+        },
         rate_hz: cam0.rate_hz,
         seed,
         spec,

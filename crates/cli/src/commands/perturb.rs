@@ -2,7 +2,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
-use rslam_core::dataset::ros2::{BagCompression, BagOptions};
+use rslam_core::dataset::ros2::BagCompression;
 use rslam_core::dataset::{DatasetOverrides, DepthPng};
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
@@ -104,10 +104,7 @@ pub fn run(args: PerturbArgs) -> anyhow::Result<ExitCode> {
         PerturbInput::Euroc(input) => Source::Euroc { input, spec, seed },
         PerturbInput::Bag(input) => Source::Bag {
             input,
-            bag: BagOptions {
-                compression: args.bag_compression.unwrap_or_default(),
-                ..BagOptions::default()
-            },
+            compression: args.bag_compression.unwrap_or_default(),
             spec,
             seed,
         },

@@ -143,8 +143,8 @@ impl CameraBag {
             .write(GROUND_TRUTH, stamp, &pose_in_world(stamp, pose))?;
         if let Some(tf) = self.tf_topic {
             let body = pose.compose(&optical_in_body().inverse());
-            let transforms = vec![transform_stamped(stamp, WORLD_FRAME, BODY_FRAME, &body)];
-            self.bag.write(tf, stamp, &TfMessage { transforms })?;
+            self.bag
+                .write(tf, stamp, &body_in_world(stamp, BODY_FRAME, &body))?;
         }
         Ok(())
     }
@@ -184,7 +184,8 @@ impl CameraBag {
             if stamp.is_some_and(|stamp| at > stamp) {
                 break;
             }
-            let message = imu_message(sample, at, imu.gyro_variance, imu.accel_variance);
+            let (gyro, accel) = (imu.gyro_variance, imu.accel_variance);
+            let message = imu_message(sample, at, IMU_FRAME, gyro, accel);
             self.bag.write(topic, at, &message)?;
             self.imu_written += 1;
         }
@@ -322,11 +323,19 @@ pub(super) fn transform_stamped(
     }
 }
 
-/// One IMU reading: no orientation (REP 145: its covariance's first element −1), the rates and
-/// specific force with the reading's noise variance on the diagonal.
+/// `/tf`'s ground truth: `body_frame`'s pose `pose` in the world, stamped `stamp`.
+pub(super) fn body_in_world(stamp: Time, body_frame: &str, pose: &crate::Pose) -> TfMessage {
+    TfMessage {
+        transforms: vec![transform_stamped(stamp, WORLD_FRAME, body_frame, pose)],
+    }
+}
+
+/// One IMU reading in frame `frame_id`: no orientation (REP 145: its covariance's first element
+/// −1), the rates and specific force with the reading's noise variance on the diagonal.
 pub(super) fn imu_message(
     sample: &ImuSample,
     stamp: Time,
+    frame_id: &str,
     gyro_variance: f64,
     accel_variance: f64,
 ) -> ImuMessage {
@@ -341,7 +350,7 @@ pub(super) fn imu_message(
     ImuMessage {
         header: Header {
             stamp,
-            frame_id: IMU_FRAME.into(),
+            frame_id: frame_id.into(),
         },
         orientation: Quaternion {
             x: 0.0,

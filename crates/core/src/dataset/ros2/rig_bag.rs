@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
 use super::bag::{bag_name, BagWriter, ClosedBag, Topic};
-use super::camera::{camera_info, imu_message, pose_in_world, transform_stamped, WORLD_FRAME};
+use super::camera::{body_in_world, camera_info, imu_message, pose_in_world, transform_stamped};
 use super::merge::{close_spool, merge_by_log_time, remove_spools};
 use super::messages::{Bytes, Header, Image, TfMessage, Time};
 use super::names::BagNames;
@@ -139,22 +139,24 @@ impl RigBag {
 
         let mut imu_spool = BagWriter::create_file(&self.folder, "imu0.spool", &[imu_topic])?;
         let (gyro, accel) = self.imu.as_ref().map_or((0.0, 0.0), variances);
+        let imu_frame = names.imu_frame();
         for sample in imu_samples {
             let stamp = Time::from_nanoseconds(sample.t_ns as i64);
-            let mut message = imu_message(sample, stamp, gyro, accel);
-            message.header.frame_id = names.imu_frame();
-            imu_spool.write(0, stamp, &message)?;
+            imu_spool.write(
+                0,
+                stamp,
+                &imu_message(sample, stamp, &imu_frame, gyro, accel),
+            )?;
         }
         let mut truth_spool =
             BagWriter::create_file(&self.folder, "ground_truth.spool", &truth_topics)?;
+        let body_frame = names.body_frame();
         for state in ground_truth {
             let stamp = Time::from_nanoseconds(state.t_ns as i64);
-            truth_spool.write(0, stamp, &pose_in_world(stamp, &state.world_from_body))?;
+            let body = &state.world_from_body;
+            truth_spool.write(0, stamp, &pose_in_world(stamp, body))?;
             if self.options.tf {
-                let body = &state.world_from_body;
-                let body_frame = names.body_frame();
-                let transforms = vec![transform_stamped(stamp, WORLD_FRAME, &body_frame, body)];
-                truth_spool.write(1, stamp, &TfMessage { transforms })?;
+                truth_spool.write(1, stamp, &body_in_world(stamp, &body_frame, body))?;
             }
         }
         // On a tie the IMU comes first, then the ground truth, then the cameras in order.
