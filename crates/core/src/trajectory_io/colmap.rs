@@ -32,19 +32,19 @@ pub(super) fn parse(path: &Path, text: &str, rate_hz: f64) -> Result<Trajectory,
         if content.is_empty() || content.starts_with('#') {
             continue;
         }
-        let at = LineRef { path, line };
-        let (name, pose) = image(&at, content)?;
-        if let Some((_, first, _)) = images.iter().find(|(n, _, _)| *n == name) {
-            return Err(at.error(format!(
-                "image '{}' again (first on line {first}); expected each image once",
-                printable(&name)
-            )));
-        }
+        let (name, pose) = image(&LineRef { path, line }, content)?;
         images.push((name, line, pose));
         // The image's 2D points, whatever they hold.
         lines.next();
     }
+    // Stable: of two images of one name, the one met first stays first.
     images.sort_by(|a, b| a.0.cmp(&b.0));
+    if let Some([(name, first, _), (_, again, _)]) = images.windows(2).find(|w| w[0].0 == w[1].0) {
+        return Err(LineRef { path, line: *again }.error(format!(
+            "image '{}' again (first on line {first}); expected each image once",
+            printable(name)
+        )));
+    }
     let poses = images.into_iter().map(|(_, _, pose)| pose).collect();
     Ok(Trajectory::from_poses_at_rate(poses, rate_hz))
 }
