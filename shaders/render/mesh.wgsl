@@ -13,6 +13,18 @@ struct Camera {
 @group(0) @binding(1) var textures: texture_2d_array<f32>;
 @group(0) @binding(2) var texture_sampler: sampler;
 
+// The light mix (crates/render/src/raster/light_mix.rs): with count 0 the baked vertex colours,
+// else the sum of the scene's light layers, each times its weight, clamped as the baked 8-bit
+// colours are.
+const MAX_LIGHT_LAYERS: u32 = 8u;
+struct LightMix {
+    count: u32,
+    weights: array<vec4<f32>, MAX_LIGHT_LAYERS>,
+}
+@group(0) @binding(3) var<uniform> light_mix: LightMix;
+// Linear colour per vertex and layer, vertex-major.
+@group(0) @binding(4) var<storage, read> light_layers: array<vec4<f32>>;
+
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) uv: vec2<f32>,
@@ -30,12 +42,20 @@ struct VertexOut {
 
 
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
+fn vs_main(v: VertexIn, @builtin(vertex_index) index: u32) -> VertexOut {
     let p_cam = camera.camera_from_world * vec4<f32>(v.position, 1.0);
     var out: VertexOut;
     out.clip = camera.clip_from_camera * p_cam;
     out.uv = v.uv;
-    out.linear_color = srgb_to_linear(v.color.rgb);
+    if light_mix.count == 0u {
+        out.linear_color = srgb_to_linear(v.color.rgb);
+    } else {
+        var sum = vec3<f32>(0.0);
+        for (var l = 0u; l < light_mix.count; l++) {
+            sum += light_layers[index * light_mix.count + l].rgb * light_mix.weights[l].rgb;
+        }
+        out.linear_color = clamp(sum, vec3<f32>(0.0), vec3<f32>(1.0));
+    }
     out.camera_z = p_cam.z;
     out.layer = v.layer;
     return out;

@@ -2,24 +2,9 @@
 //! same frames (both run the frames in capture order with the same keys), the camera brings the
 //! frames to 18 % grey, and `sensor_state.csv` records what each frame was taken with.
 
-use crate::dataset_check::files;
+use crate::dataset_check::{files, mean_linear};
 use crate::harness::Workspace;
 use crate::render::SMALL_CAMERA;
-
-/// The mean linear brightness of an sRGB image file (what the controller steers).
-fn mean_linear(path: &std::path::Path) -> f64 {
-    let image = image::open(path).unwrap().to_rgb8();
-    let linear = |v: u8| {
-        let c = v as f64 / 255.0;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    };
-    let values = image.as_raw();
-    values.iter().map(|&v| linear(v)).sum::<f64>() / values.len() as f64
-}
 
 /// `sensor_state.csv`: its header and its rows of numbers (empty cells as NaN).
 fn state_rows(path: &std::path::Path) -> (String, Vec<Vec<f64>>) {

@@ -103,3 +103,18 @@ pub fn assert_same_files(a: &Path, b: &Path, files: &[&str]) {
         assert!(read(a) == read(b), "{file}: not the same bytes");
     }
 }
+
+/// The mean linear brightness of an sRGB image file (what the controller steers).
+pub fn mean_linear(path: &std::path::Path) -> f64 {
+    let image = image::open(path).unwrap().to_rgb8();
+    let linear = |v: u8| {
+        let c = v as f64 / 255.0;
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let values = image.as_raw();
+    values.iter().map(|&v| linear(v)).sum::<f64>() / values.len() as f64
+}

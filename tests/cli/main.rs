@@ -12,6 +12,7 @@ mod eval_recon;
 mod golden;
 mod harness;
 mod imu_items;
+mod light;
 mod list;
 mod motion;
 mod perturb;

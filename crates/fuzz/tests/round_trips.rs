@@ -160,6 +160,7 @@ proptest! {
             mesh: Mesh { vertices, indices: indices.clone() },
             textures: vec![Texture::white()],
             default_trajectory: None,
+            lights: None,
         };
         let read = parse_ply(&ply_bytes(&scene)).map_err(TestCaseError::fail)?;
         let written: Vec<[f32; 3]> = scene.mesh.vertices.iter().map(|v| v.position).collect();

@@ -31,6 +31,8 @@ pub enum Need {
     CaptureOrder,
     /// Reads or changes an IMU's stream.
     Imu,
+    /// Changes a scene's lights: a built-in scene, whose light is kept as layers.
+    LightLayers,
 }
 
 impl Need {
@@ -46,6 +48,7 @@ impl Need {
             Need::Lens => "a layout that states the lens",
             Need::CaptureOrder => "frames in capture order",
             Need::Imu => "an IMU",
+            Need::LightLayers => "a built-in scene (its lights as layers)",
         }
     }
 }
@@ -205,7 +208,12 @@ impl PerturbSpec {
                 sensor: None,
             }
         };
-        let before_frames = [self.deviation_items(), self.sensor_items()].concat();
+        let before_frames = [
+            self.deviation_items(),
+            self.sensor_items(),
+            self.light.items(),
+        ]
+        .concat();
         let after_frames = [self.stream_items(), self.imu.items()].concat();
         calibration
             .chain(before_frames.into_iter().map(whole_rig))
@@ -253,6 +261,7 @@ fn missing(need: Need, item: &Written, clause: &str, setting: &Setting) -> Strin
         Need::Lens if setting.lenses == Lenses::Radtan => format!("{}'s calibration files (EuRoC's sensor.yaml, ORB-SLAM3's stereo settings) describe radial-tangential lenses: use distortion:radtan(k1,k2,p1,p2)", setting.input),
         Need::Lens => format!("{} does not support a lens yet; the one-camera render and the EuRoC rigs (radtan) do", setting.input),
         Need::CaptureOrder => format!("{name} carries its state from frame to frame, so its frames must run in capture order from the first, and {clause}: make a dataset of them instead (render or perturb to a folder)"),
+        Need::LightLayers => format!("{name} changes the scene's lamps and daylight, which only the built-in scenes keep apart (a mesh's light is baked into its colours), and {clause}"),
         Need::Imu => format!("IMU items need an IMU, and {clause}; render a rig with an IMU (stereo-imu in the EuRoC layout, rgbd-imu in the TUM layout, a rig file with [imu]) or perturb a EuRoC dataset with imu0/"),
     }
 }

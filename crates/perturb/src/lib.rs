@@ -28,6 +28,7 @@ mod error;
 pub mod image;
 pub mod image_f32;
 pub mod imu;
+pub mod light;
 mod listing;
 mod perturbation;
 mod perturber;

@@ -12,6 +12,7 @@
 //!        | [SENSOR ':'] ('extrinsic_rot:' DEGREES | 'extrinsic_trans:' METRES)
 //!          ['@calibration' | '@dynamic']                       (`@dynamic`: cameras only)
 //!        | 'distortion:' ('radtan' | 'equidistant') '(' C ',' C ',' C ',' C ')'
+//!        | 'lights:' S | 'flicker:' HZ ['/' DEPTH] | 'daylight:' S  light items (crate::light)
 //! SENSOR := 'cam' N | 'imu' N                               a rig's sensor: cam0, cam1, imu0
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)
 //! ```
@@ -37,6 +38,7 @@ use crate::applies::{ItemEntry, Setting};
 use crate::calibration::{CalibrationItem, CALIBRATION_ITEMS};
 use crate::catalogue::{self, CATALOGUE};
 use crate::imu::{self, ImuSpec, IMU_ITEMS};
+use crate::light::{self, LightSpec, LIGHT_ITEMS};
 use crate::sensor::{self, Exposure, RollingShutter, SENSOR_ITEMS};
 use crate::stream::STREAM_ITEMS;
 use crate::trajectory::TRAJECTORY_ITEMS;
@@ -73,6 +75,9 @@ pub struct PerturbSpec {
     /// job of an rslam without lenses is the same job.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub distortion: Option<Distortion>,
+    /// `lights`, `flicker`, `daylight`: the scene's light over time. Left out without one.
+    #[serde(default, skip_serializing_if = "LightSpec::is_empty")]
+    pub light: LightSpec,
 }
 
 /// One image or depth corruption of a spec.
@@ -223,6 +228,7 @@ impl PerturbSpec {
                 self.rolling_shutter = Some(RollingShutter::parse(value, mode).map_err(err)?)
             }
             name if imu::is_imu_item(name) => self.imu.add(name, value, mode).map_err(err)?,
+            name if light::is_light_item(name) => self.light.add(name, value, mode).map_err(err)?,
             sensor::distortion::NAME => {
                 self.distortion = Some(sensor::distortion::parse(value, mode).map_err(err)?)
             }
@@ -293,6 +299,7 @@ impl PerturbSpec {
     pub fn scene_items(&self) -> Vec<String> {
         let mut items = self.deviation_items();
         items.extend(self.sensor_items());
+        items.extend(self.light.items());
         items
     }
 
@@ -533,7 +540,7 @@ impl fmt::Display for FrameItem {
 
 impl fmt::Display for PerturbSpec {
     /// Canonical pipeline order: calibration items, rot, trans, exposure, rolling_shutter,
-    /// distortion, image items, depth items, fast, misalign, IMU items.
+    /// distortion, light items, image items, depth items, fast, misalign, IMU items.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut parts: Vec<String> = self.calibration.iter().map(|i| i.to_string()).collect();
         parts.extend(self.scene_items());
@@ -545,11 +552,12 @@ impl fmt::Display for PerturbSpec {
 }
 
 /// The entries of every item that is not a frame corruption, in the order `rslam list` shows
-/// them: trajectory, stream, sensor, calibration, IMU.
-pub const ITEM_TABLES: [(&str, &[ItemEntry]); 5] = [
+/// them: trajectory, stream, sensor, light, calibration, IMU.
+pub const ITEM_TABLES: [(&str, &[ItemEntry]); 6] = [
     ("trajectory", TRAJECTORY_ITEMS),
     ("stream", STREAM_ITEMS),
     ("sensor", SENSOR_ITEMS),
+    ("light", LIGHT_ITEMS),
     ("calibration", CALIBRATION_ITEMS),
     ("imu", IMU_ITEMS),
 ];

@@ -63,7 +63,7 @@ impl FramesInMemory<SceneSource> {
             &settings::one_camera_render("a one-camera scene"),
         )?;
         let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
-        source.set_sensor(ctx, &job.spec, job.rate_hz)?;
+        source.set_sensor(ctx, &job.spec, job.rate_hz, job.seed)?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, &job.spec, job.seed)?,
             plan: resolved.plan,
@@ -97,7 +97,10 @@ impl FramesInMemory<SceneSource> {
         settings::check(spec, &settings::one_camera_render("a one-camera scene"))?;
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
-        let shutter_changed = self.pipeline.source_mut().set_sensor(ctx, spec, *rate_hz)?;
+        let shutter_changed = self
+            .pipeline
+            .source_mut()
+            .set_sensor(ctx, spec, *rate_hz, seed)?;
         if deviated.poses != self.pipeline.source().poses() || shutter_changed {
             self.pipeline.source_mut().set_poses(deviated.poses);
             self.generation += 1;
@@ -126,8 +129,7 @@ impl FramesInMemory<SceneSource> {
         };
         self.pipeline
             .show_with(ctx, held, shown, range, |scene, encoder, frame, _| {
-                scene.record_from(ctx, encoder, frame, world_from_camera);
-                Ok(())
+                scene.record_from(ctx, encoder, frame, world_from_camera)
             })
     }
 }

@@ -38,6 +38,7 @@ mod progress;
 mod render;
 pub mod rig;
 mod scene_job;
+mod scene_light;
 pub mod settings;
 mod shown_frame;
 mod shutter_render;

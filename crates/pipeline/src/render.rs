@@ -12,6 +12,7 @@ use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
+use crate::scene_light;
 use crate::source::SceneSource;
 use crate::PipelineError;
 
@@ -36,6 +37,13 @@ pub(crate) fn plan<'a>(
     let ground_truth = resolved.plan.ground_truth(&resolved.poses);
     let mut extra = serde_json::json!({});
     record_agent(&mut extra, scene);
+    scene_light::record(
+        &mut extra,
+        &resolved.scene,
+        &scene.spec,
+        scene.seed,
+        &resolved.plan,
+    )?;
     let manifest = ManifestParts {
         command,
         source: resolved.scene.name.clone(),
@@ -74,7 +82,7 @@ impl Planned for CameraRender<'_> {
         let (scene, resolved) = (self.scene, &self.resolved);
         let mut source =
             SceneSource::new(ctx, &resolved.scene, scene.camera, resolved.poses.clone())?;
-        source.set_sensor(ctx, &scene.spec, scene.rate_hz)?;
+        source.set_sensor(ctx, &scene.spec, scene.rate_hz, scene.seed)?;
         let pipeline = Pipeline::new(ctx, source, &scene.spec, scene.seed)?;
         let output = DatasetOutput {
             format: self.format,

@@ -37,6 +37,11 @@ impl ShutterRender {
         }))
     }
 
+    /// The time a plain render of a frame exposes, in seconds from its timestamp.
+    pub fn window(&self) -> (f64, f64) {
+        self.shutter.window()
+    }
+
     pub fn is(&self, shutter: &Shutter, rate_hz: f64) -> bool {
         self.shutter == *shutter && self.rate_hz == rate_hz
     }
@@ -56,9 +61,10 @@ impl ShutterRender {
         self.shutter.schedule(&path, index)
     }
 
-    /// Records `renders` into `frame`, the final encoding into `encoder`. The rasterizer's
-    /// camera and the pass's parameters are uniforms written at record time, so each render is
-    /// its own submission; the queue runs them in order before `encoder`'s.
+    /// Records `renders` into `frame`, the final encoding into `encoder`; `light` lights each
+    /// render with the light of its window. The rasterizer's camera and light and the pass's
+    /// parameters are uniforms written at record time, so each render is its own submission;
+    /// the queue runs them in order before `encoder`'s.
     pub fn record(
         &self,
         ctx: &GpuContext,
@@ -66,8 +72,10 @@ impl ShutterRender {
         renders: &[SubRender],
         encoder: &mut wgpu::CommandEncoder,
         frame: &FrameTextures,
-    ) {
+        light: &dyn Fn((f64, f64)) -> Result<(), PipelineError>,
+    ) -> Result<(), PipelineError> {
         for render in renders {
+            light(render.light_window)?;
             let mut sub = ctx.device.create_command_encoder(&Default::default());
             rasterizer.encode(ctx, &mut sub, &self.subframe, &render.world_from_camera);
             if render.weight > 0.0 {
@@ -86,6 +94,7 @@ impl ShutterRender {
             ctx.queue.submit([sub.finish()]);
         }
         self.pass.resolve(ctx, encoder, frame);
+        Ok(())
     }
 }
 

@@ -11,14 +11,17 @@ pub use bag::BagSource;
 pub use recorded::{ColourReader, RecordedFrame, RecordedSource};
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
 use rslam_gpu::{wgpu, FrameTextures, GpuContext};
+use rslam_perturb::light::{LightSchedule, LightSpec};
 use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
 use rslam_render::{Rasterizer, Scene};
 
 use crate::lens_render::LensRender;
+use crate::scene_light;
 use crate::shutter_render::ShutterRender;
 use crate::{JobPart, PipelineError};
 
@@ -44,8 +47,10 @@ pub trait FrameSource {
 }
 
 /// A mesh drawn along a path: source frame `i` is the view from `poses[i]`, or under a shutter
-/// the views from the poses around it during capture; under a lens, drawn wider and resampled.
+/// the views from the poses around it during capture; under a lens, drawn wider and resampled;
+/// under light items, each render lit by the light of the time it exposes.
 pub struct SceneSource {
+    scene: Arc<Scene>,
     /// Draws with `camera`, or under a lens with the lens view's wider pinhole.
     rasterizer: Rasterizer,
     /// The camera of the frames.
@@ -53,34 +58,53 @@ pub struct SceneSource {
     poses: Vec<Pose>,
     shutter: Option<ShutterRender>,
     lens: Option<LensRender>,
+    light: Option<LightSchedule>,
+    /// What the light was made from: the spec's light items and the seed.
+    light_key: Option<(LightSpec, u64)>,
+    /// Source frames per second of capture (the path's rate, times `fast`'s K).
+    rate_hz: f64,
+    /// Capture time of each source frame, where not `i / rate_hz`.
+    times_s: Option<Vec<f64>>,
 }
 
 impl SceneSource {
     pub fn new(
         ctx: &GpuContext,
-        scene: &Scene,
+        scene: &Arc<Scene>,
         camera: Intrinsics,
         poses: Vec<Pose>,
     ) -> Result<Self, PipelineError> {
         Ok(Self {
+            scene: scene.clone(),
             rasterizer: Rasterizer::new(ctx, scene, camera)?,
             camera,
             poses,
             shutter: None,
             lens: None,
+            light: None,
+            light_key: None,
+            rate_hz: 1.0,
+            times_s: None,
         })
     }
 
     /// Captures frames with the sensor of `spec`: its shutter (`exposure`, `rolling_shutter`),
-    /// the path sampled at `rate_hz`, and its lens (`distortion`); says whether that changes the
-    /// frames. Under `fast:K` the camera covers K samples of the path per frame interval, during
-    /// capture too.
+    /// the path sampled at `rate_hz`, its lens (`distortion`) and the light items' light (from
+    /// `seed`); says whether that changes the frames. Under `fast:K` the camera covers K samples
+    /// of the path per frame interval, during capture too.
     pub fn set_sensor(
         &mut self,
         ctx: &GpuContext,
         spec: &PerturbSpec,
         rate_hz: f64,
+        seed: u64,
     ) -> Result<bool, PipelineError> {
+        let last = (self.times_s.as_ref()).and_then(|t| t.last().copied());
+        let horizon = last.unwrap_or(0.0).max(self.poses.len() as f64 / rate_hz) + 1.0;
+        let light_key = (!spec.light.is_empty()).then_some((spec.light, seed));
+        let light_changed = light_key != self.light_key;
+        self.light = scene_light::schedule(&self.scene, spec, seed, horizon)?;
+        self.light_key = light_key;
         let lens_changed = self.lens.as_ref().map(|l| *l.lens()) != spec.distortion;
         if lens_changed {
             self.lens = spec
@@ -92,6 +116,7 @@ impl SceneSource {
         }
         let shutter = Shutter::of(spec);
         let rate_hz = rate_hz * f64::from(crate::plan::speed_up(spec));
+        self.rate_hz = rate_hz;
         let same_shutter = !lens_changed
             && match &self.shutter {
                 Some(current) => current.is(&shutter, rate_hz),
@@ -102,7 +127,13 @@ impl SceneSource {
             let size = (drawn.width, drawn.height);
             self.shutter = ShutterRender::new(ctx, shutter, rate_hz, size)?;
         }
-        Ok(!same_shutter)
+        Ok(!same_shutter || light_changed)
+    }
+
+    /// Takes source frame `i` at `times_s[i]` seconds (a rig camera's sample times) instead of
+    /// `i` over the rate: the time its light is taken at. Set before [`Self::set_sensor`].
+    pub fn set_times(&mut self, times_s: Vec<f64>) {
+        self.times_s = Some(times_s);
     }
 
     pub fn poses(&self) -> &[Pose] {
@@ -115,18 +146,32 @@ impl SceneSource {
     }
 
     /// Records the view from `world_from_camera`, off the path (a free camera, at rest: no
-    /// shutter effect; through the lens).
+    /// shutter effect; through the lens; in the light of the sequence's start).
     pub fn record_from(
         &self,
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         frame: &FrameTextures,
         world_from_camera: &Pose,
-    ) {
+    ) -> Result<(), PipelineError> {
+        self.light_for(ctx, 0.0, (0.0, 0.0))?;
         let drawn = self.lens.as_ref().map_or(frame, |l| l.wide());
         self.rasterizer
             .encode(ctx, encoder, drawn, world_from_camera);
         self.through_lens(ctx, encoder, frame);
+        Ok(())
+    }
+
+    /// Lights the next render with the light of `window` (seconds from `time`); the baked light
+    /// without light items.
+    fn light_for(
+        &self,
+        ctx: &GpuContext,
+        time: f64,
+        window: (f64, f64),
+    ) -> Result<(), PipelineError> {
+        let weights = (self.light.as_ref()).map(|l| l.weights(time + window.0, time + window.1));
+        Ok(self.rasterizer.set_light(ctx, weights.as_deref())?)
     }
 
     fn through_lens(
@@ -170,13 +215,22 @@ impl FrameSource for SceneSource {
             Some(shutter) => shutter.schedule(&self.rasterizer, &self.poses, index),
             None => Vec::new(),
         };
+        let time = match &self.times_s {
+            Some(times) => times[index],
+            None => index as f64 / self.rate_hz,
+        };
         match (&self.shutter, renders.is_empty()) {
             (Some(shutter), false) => {
-                shutter.record(ctx, &self.rasterizer, &renders, encoder, drawn)
+                shutter.record(ctx, &self.rasterizer, &renders, encoder, drawn, &|window| {
+                    self.light_for(ctx, time, window)
+                })?
             }
-            _ => self
-                .rasterizer
-                .encode(ctx, encoder, drawn, &self.poses[index]),
+            _ => {
+                let window = self.shutter.as_ref().map_or((0.0, 0.0), |s| s.window());
+                self.light_for(ctx, time, window)?;
+                self.rasterizer
+                    .encode(ctx, encoder, drawn, &self.poses[index]);
+            }
         }
         self.through_lens(ctx, encoder, frame);
         Ok(())

@@ -54,6 +54,7 @@ fn scene(name: &str, mesh: Mesh) -> Scene {
         mesh,
         textures: vec![Texture::white()],
         default_trajectory: None,
+        lights: None,
     }
 }
 
@@ -95,8 +96,9 @@ fn render(scene: &Scene, poses: &[Pose], spec: &str, index: usize) -> (RgbImage,
         "" => PerturbSpec::default(),
         text => PerturbSpec::parse(text).unwrap(),
     };
-    let mut source = SceneSource::new(ctx, scene, CAMERA, poses.to_vec()).unwrap();
-    source.set_sensor(ctx, &spec, RATE_HZ).unwrap();
+    let scene = std::sync::Arc::new(scene.clone());
+    let mut source = SceneSource::new(ctx, &scene, CAMERA, poses.to_vec()).unwrap();
+    source.set_sensor(ctx, &spec, RATE_HZ, 0).unwrap();
     let mut pipeline = Pipeline::new(ctx, source, &spec, 0).unwrap();
     let mut sink = Collect(Vec::new());
     pipeline.run(ctx, &[index], &Silent, &mut sink).unwrap();

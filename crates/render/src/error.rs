@@ -48,6 +48,14 @@ pub enum RenderError {
         count: usize,
         limit: u32,
     },
+    #[error("{name}: {count} light layers exceed the renderer's {max}")]
+    TooManyLights {
+        name: String,
+        count: usize,
+        max: usize,
+    },
+    #[error("{given} light weights given for a scene of {layers} light layers")]
+    LightWeights { given: usize, layers: usize },
 }
 
 impl RenderError {

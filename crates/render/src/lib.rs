@@ -12,5 +12,6 @@ pub mod scene;
 pub use error::RenderError;
 pub use raster::Rasterizer;
 pub use scene::{
-    agent_trajectory, builtin_path_length, load_scene, Mesh, Scene, Texture, Vertex, BUILTIN_SCENES,
+    agent_trajectory, builtin_path_length, load_scene, LightKind, LightLayers, Mesh, Scene,
+    Texture, Vertex, BUILTIN_SCENES, MAX_LIGHT_LAYERS,
 };

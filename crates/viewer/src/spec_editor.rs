@@ -3,6 +3,7 @@
 //! the spec parser of `rslam-perturb` reads, the same string `rslam render --perturb` takes.
 
 use rslam_core::Distortion;
+use rslam_perturb::light::LightSpec;
 use rslam_perturb::sensor::{distortion, Exposure, RollingShutter};
 use rslam_perturb::{find, Level, PerturbSpec, CATALOGUE};
 
@@ -90,6 +91,8 @@ pub struct SpecEditor {
     pub rolling_shutter: Option<RollingShutter>,
     /// `distortion:MODEL(…)` (scenes only), kept as given.
     pub distortion: Option<Distortion>,
+    /// `lights`, `flicker`, `daylight` (built-in scenes only).
+    pub light: LightSpec,
 }
 
 impl SpecEditor {
@@ -130,6 +133,7 @@ impl SpecEditor {
             exposure: spec.exposure,
             rolling_shutter: spec.rolling_shutter,
             distortion: spec.distortion,
+            light: spec.light,
         }
     }
 
@@ -179,6 +183,7 @@ impl SpecEditor {
         parts.extend(self.exposure.map(|e| e.to_string()));
         parts.extend(self.rolling_shutter.map(|r| r.to_string()));
         parts.extend(self.distortion.as_ref().map(distortion::item));
+        parts.extend(self.light.items());
         parts.extend(self.items.iter().map(EditorItem::text));
         if let Some(k) = self.fast {
             parts.push(format!("fast:{k}"));
@@ -205,7 +210,7 @@ mod tests {
 
     #[test]
     fn a_spec_round_trips_through_the_editor() {
-        let text = "rot:0.5@smooth,exposure:20@8,rolling_shutter:30,distortion:radtan(-0.28,0.07,0.0002,0.00002),fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
+        let text = "rot:0.5@smooth,exposure:20@8,rolling_shutter:30,distortion:radtan(-0.28,0.07,0.0002,0.00002),lights:3,flicker:100/0.5,daylight:0.4/10,fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
         let spec = PerturbSpec::parse(text).unwrap();
         let editor = SpecEditor::from_spec(&spec);
         assert_eq!(editor.spec().unwrap(), spec);

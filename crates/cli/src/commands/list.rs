@@ -25,12 +25,13 @@ pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// Each group's heading: its name, and where its items apply.
-const HEADINGS: [(&str, &str, &str); 7] = [
+const HEADINGS: [(&str, &str, &str); 8] = [
     ("image", "Image corruptions", "severity 1-5 or low/mid/high; @dynamic: per-frame severity uniform in 0..s"),
     ("depth", "Depth corruptions", "0 = invalid depth, stays invalid"),
     ("trajectory", "Trajectory deviations", "frames re-rendered along the deviated poses"),
     ("stream", "Stream operations", ""),
     ("sensor", "Sensor effects", "the image formed from the camera's motion during capture"),
+    ("light", "Light", "built-in scenes: each lamp and the daylight is a layer of the bake, mixed per render with the light of the time it exposes"),
     ("calibration", "Calibration of a rig", "--rig, or a EuRoC input with @calibration; image and depth items also take a camera: cam1:fog:3"),
     ("imu", "IMU items", "need an IMU: `render --rig stereo-imu --format euroc` or `--rig rgbd-imu --format tum`, or a EuRoC dataset with imu0/"),
 ];

@@ -1,6 +1,7 @@
 //! Which renders make one frame under a shutter: the sub-frames of an exposure within each band
 //! of rows of a rolling shutter, each from the pose the camera had at that instant (the path
-//! interpolated on SE(3)), with its weight in the linear-light sum.
+//! interpolated on SE(3)), with its weight in the linear-light sum and the interval of time whose
+//! light it shows (for the light items).
 
 use std::ops::Range;
 
@@ -21,7 +22,13 @@ pub const MAX_RENDERS: u32 = 256;
 pub struct Shutter {
     pub exposure: Option<Exposure>,
     pub rolling: Option<RollingShutter>,
+    /// The lamps' flicker (`flicker:HZ`): a rolling shutter reads rows in bands of at most an
+    /// eighth of its period, so that the bands it makes show.
+    pub flicker_hz: Option<f64>,
 }
+
+/// Bands of a rolling shutter per flicker period.
+const BANDS_PER_FLICKER_PERIOD: f64 = 8.0;
 
 /// The camera path the frames are taken along: `poses[i]` at time i / `rate_hz`.
 #[derive(Clone, Copy, Debug)]
@@ -43,6 +50,8 @@ pub struct SubRender {
     pub starts_sum: bool,
     /// Its depth is the frame's depth in `rows` (the render at the rows' read-out instant).
     pub depth: bool,
+    /// The time it exposes, in seconds from the frame's timestamp (equal ends: one instant).
+    pub light_window: (f64, f64),
 }
 
 impl Shutter {
@@ -50,7 +59,15 @@ impl Shutter {
         Self {
             exposure: spec.exposure,
             rolling: spec.rolling_shutter,
+            flicker_hz: spec.light.flicker.map(|f| f.hz),
         }
+    }
+
+    /// The time a frame exposes, in seconds from its timestamp: the exposure around it, or the
+    /// instant itself.
+    pub fn window(&self) -> (f64, f64) {
+        let half = self.exposure.map_or(0.0, |e| e.seconds() / 2.0);
+        (-half, half)
     }
 
     pub fn is_none(&self) -> bool {
@@ -70,7 +87,13 @@ impl Shutter {
         };
         let height = path.camera.height;
         let bands = match self.rolling {
-            Some(rolling) => rolling.bands(motion_over(rolling.ms / 1000.0), height),
+            Some(rolling) => {
+                let read_out = rolling.ms / 1000.0;
+                let flicker = self.flicker_hz.map_or(0.0, |hz| {
+                    read_out * hz * BANDS_PER_FLICKER_PERIOD * super::rolling_shutter::STEP_PX
+                });
+                rolling.bands(motion_over(read_out).max(flicker), height)
+            }
             None => vec![Band {
                 rows: 0..height,
                 offset: 0.0,
@@ -90,6 +113,7 @@ impl Shutter {
             return Vec::new();
         }
         let k = offsets.len();
+        let span = self.exposure.map_or(0.0, |e| e.seconds() / k as f64);
         // With an odd count the middle sub-frame is at the band's instant and gives its depth.
         let middle = (k % 2 == 1).then_some(k / 2);
         let mut renders = Vec::with_capacity(bands.len() * (k + 1));
@@ -101,6 +125,7 @@ impl Shutter {
                     weight: 0.0,
                     starts_sum: false,
                     depth: true,
+                    light_window: (band.offset, band.offset),
                 });
             }
             renders.extend(offsets.iter().enumerate().map(|(j, offset)| SubRender {
@@ -109,6 +134,10 @@ impl Shutter {
                 weight: 1.0 / k as f32,
                 starts_sum: j == 0,
                 depth: middle == Some(j),
+                light_window: (
+                    band.offset + offset - span / 2.0,
+                    band.offset + offset + span / 2.0,
+                ),
             }));
         }
         renders

@@ -32,6 +32,7 @@ use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
 use crate::progress::Progress;
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
+use crate::scene_light;
 use crate::sink::{finish_writer, frames_kept, seal_bag, RigCameraSink, RigFrameWriter};
 use crate::source::SceneSource;
 use crate::{JobPart, PipelineError};
@@ -167,6 +168,13 @@ pub(crate) fn plan<'a>(
         })),
     });
     record_agent(&mut extra, scene);
+    scene_light::record(
+        &mut extra,
+        &resolved.scene,
+        &scene.spec,
+        scene.seed,
+        &cam0_plan,
+    )?;
     if layout == Layout::Camera(DatasetFormat::Ros2) && !rig.bag_names.is_default() {
         extra["ros2_names"] = serde_json::to_value(&rig.bag_names)
             .map_err(|e| PipelineError::Worker(format!("bag names for the manifest: {e}")))?;
@@ -296,7 +304,8 @@ impl RigRender<'_> {
                 &run.times_s,
             )?;
             let mut source = SceneSource::new(ctx, &self.resolved.scene, camera.intrinsics, poses)?;
-            source.set_sensor(ctx, &run.spec, camera.rate_hz)?;
+            source.set_times(run.times_s.clone());
+            source.set_sensor(ctx, &run.spec, camera.rate_hz, self.scene.seed)?;
             let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;
             let mut sink = RigCameraSink::new(writer.clone(), i, times_ns);
             let sources: Vec<usize> = (kept[i]..run.times_s.len()).collect();

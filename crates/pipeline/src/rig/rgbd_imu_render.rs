@@ -32,6 +32,7 @@ use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
 use crate::plan::{self, camera_frame_spec, FramePlan, SourceTiming};
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
+use crate::scene_light;
 use crate::source::SceneSource;
 use crate::PipelineError;
 
@@ -81,6 +82,8 @@ pub(crate) struct RgbdImuRender<'a> {
     frame_spec: PerturbSpec,
     plan: FramePlan,
     poses: Vec<Pose>,
+    /// The camera's capture times, one per pose.
+    times_s: Vec<f64>,
     ground_truth: Trajectory,
     format: DatasetFormat,
     sensor_files: Vec<(String, String)>,
@@ -145,6 +148,13 @@ pub(crate) fn plan<'a>(
         })),
     });
     record_agent(&mut extra, scene);
+    scene_light::record(
+        &mut extra,
+        &resolved.scene,
+        &frame_spec,
+        scene.seed,
+        &frame_plan,
+    )?;
     if !spec.calibration.is_empty() {
         extra["calibration"] = perturbed.record(&rig);
     }
@@ -199,6 +209,7 @@ pub(crate) fn plan<'a>(
         frame_spec,
         plan: frame_plan,
         poses,
+        times_s,
         ground_truth,
         format,
         sensor_files,
@@ -237,7 +248,8 @@ impl Planned for RgbdImuRender<'_> {
             camera.intrinsics,
             self.poses.clone(),
         )?;
-        source.set_sensor(ctx, &self.frame_spec, camera.rate_hz)?;
+        source.set_times(self.times_s.clone());
+        source.set_sensor(ctx, &self.frame_spec, camera.rate_hz, self.scene.seed)?;
         let pipeline = Pipeline::new(ctx, source, &self.frame_spec, self.scene.seed)?;
         let output = DatasetOutput {
             format: self.format,

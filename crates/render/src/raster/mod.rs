@@ -1,8 +1,9 @@
-//! The wgpu rasterizer: camera projection, scene upload, and the render pass.
+//! The wgpu rasterizer: camera projection, scene upload, the light mix, and the render pass.
 
 mod camera;
 mod color_agreement;
 mod depth_agreement;
+mod light_mix;
 mod rasterizer;
 mod texture_array;
 

@@ -3,6 +3,7 @@ use rslam_gpu::{FrameTextures, GpuContext};
 use wgpu::util::DeviceExt;
 
 use super::camera::CameraUniform;
+use super::light_mix::LightMix;
 use super::texture_array;
 use crate::{RenderError, Scene};
 
@@ -28,6 +29,7 @@ pub struct Rasterizer {
     pipeline: wgpu::RenderPipeline,
     bind_group: wgpu::BindGroup,
     camera: wgpu::Buffer,
+    light_mix: LightMix,
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
@@ -89,6 +91,7 @@ impl Rasterizer {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
+        let light_mix = LightMix::new(ctx, scene)?;
         let module = ctx.shader_module(SHADER)?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -149,6 +152,14 @@ impl Rasterizer {
                     binding: 2,
                     resource: wgpu::BindingResource::Sampler(&sampler),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: light_mix.uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: light_mix.layers.as_entire_binding(),
+                },
             ],
         });
         if let Some(e) = pollster::block_on(scope.pop()) {
@@ -164,6 +175,7 @@ impl Rasterizer {
             pipeline,
             bind_group,
             camera,
+            light_mix,
             vertices,
             indices,
             index_count: scene.mesh.indices.len() as u32,
@@ -182,6 +194,16 @@ impl Rasterizer {
             self.depth_buffer = z_buffer(ctx, &intrinsics);
         }
         self.intrinsics = intrinsics;
+    }
+
+    /// Lights the renders submitted from now on with `weights`, one RGB weight per layer of the
+    /// scene's [`crate::LightLayers`]; `None` (the start) keeps the baked colours.
+    pub fn set_light(
+        &self,
+        ctx: &GpuContext,
+        weights: Option<&[[f32; 3]]>,
+    ) -> Result<(), RenderError> {
+        self.light_mix.set(ctx, weights)
     }
 
     /// Records the render of the view from `world_from_camera` into `frame` (colour and z-depth;

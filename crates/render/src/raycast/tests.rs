@@ -219,6 +219,7 @@ fn checker_scene() -> Scene {
         mesh,
         textures: vec![Texture::white(), checker],
         default_trajectory: None,
+        lights: None,
     }
 }
 
@@ -325,6 +326,7 @@ fn surface_edges_mark_layer_plane_and_silhouette_changes_only() {
         mesh,
         textures: vec![Texture::white(); 3],
         default_trajectory: None,
+        lights: None,
     };
     let rc = RayCaster::new(&scene);
     let k = Intrinsics {

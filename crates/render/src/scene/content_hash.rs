@@ -66,6 +66,7 @@ mod tests {
             },
             textures: vec![Texture::white()],
             default_trajectory: None,
+            lights: None,
         }
     }
 

@@ -96,6 +96,7 @@ mod tests {
             },
             textures: vec![Texture::white(), checker],
             default_trajectory: None,
+            lights: None,
         };
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("gt.ply");

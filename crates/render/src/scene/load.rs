@@ -42,6 +42,7 @@ pub fn load_scene(name_or_path: &str) -> Result<Scene, RenderError> {
         mesh,
         textures,
         default_trajectory: None,
+        lights: None,
     };
     if scene.mesh.indices.is_empty() {
         return Err(RenderError::bad_mesh(path, "the file holds no triangles"));

@@ -7,12 +7,14 @@ mod builtin;
 mod content_hash;
 pub mod export;
 mod gltf;
+mod light_layers;
 mod load;
 mod obj;
 mod ply;
 pub(crate) mod srgb;
 
 pub use builtin::{agent_trajectory, builtin_path_length, BUILTIN_SCENES};
+pub use light_layers::{LightKind, LightLayers, MAX_LIGHT_LAYERS};
 pub use load::load_scene;
 
 use rslam_core::Trajectory;
@@ -65,6 +67,9 @@ pub struct Scene {
     pub textures: Vec<Texture>,
     /// The built-in scenes' default camera path; `None` for user meshes.
     pub default_trajectory: Option<Trajectory>,
+    /// Each light's share of the vertex colours, for the light items; `None` for user meshes,
+    /// whose light is baked in.
+    pub lights: Option<LightLayers>,
 }
 
 impl Mesh {

@@ -3,6 +3,7 @@
 //! the seed; the spec string of the shown frame, copyable, and a field to type one.
 
 use rslam_perturb::find;
+use rslam_perturb::light::{Daylight, Flicker, LightSpec, Switching};
 
 use crate::app::ViewerApp;
 use crate::spec_editor::{DeviationSetting, ItemSetting};
@@ -172,6 +173,7 @@ fn stream_items(ui: &mut egui::Ui, app: &mut ViewerApp) {
     if is_scene {
         deviation(ui, "rot (degrees)", &mut editor.rotation, 0.5);
         deviation(ui, "trans (metres)", &mut editor.translation, 0.01);
+        light_items(ui, &mut editor.light);
     }
     ui.horizontal(|ui| {
         let mut on = editor.fast.is_some();
@@ -195,6 +197,61 @@ fn stream_items(ui: &mut egui::Ui, app: &mut ViewerApp) {
             ui.checkbox(&mut dynamic, "dynamic");
         }
         editor.misalign = on.then_some((frames, dynamic));
+    });
+}
+
+/// The light items: a severity for `lights` and `daylight`, a frequency for `flicker`.
+fn light_items(ui: &mut egui::Ui, light: &mut LightSpec) {
+    light_severity(
+        ui,
+        "lights: lamps switched off and on",
+        &mut light.lights,
+        Switching::parse,
+    );
+    ui.horizontal(|ui| {
+        let mut on = light.flicker.is_some();
+        ui.checkbox(&mut on, "flicker (Hz)");
+        let mut flicker = light.flicker.unwrap_or(Flicker {
+            hz: 100.0,
+            depth: None,
+        });
+        if on {
+            ui.add(egui::DragValue::new(&mut flicker.hz).range(1.0..=1000.0));
+        }
+        light.flicker = on.then_some(flicker);
+    });
+    light_severity(
+        ui,
+        "daylight: clouds passing",
+        &mut light.daylight,
+        Daylight::parse,
+    );
+}
+
+/// A light item set by its severity: a checkbox and, when on, a slider. An explicit form given on
+/// the command line stays until the slider moves.
+fn light_severity<T: Copy + std::fmt::Display>(
+    ui: &mut egui::Ui,
+    label: &str,
+    item: &mut Option<T>,
+    parse: fn(&str) -> Result<T, String>,
+) {
+    ui.horizontal(|ui| {
+        let mut on = item.is_some();
+        ui.checkbox(&mut on, label);
+        let written = item.map(|i| i.to_string());
+        let before = (written.as_deref())
+            .and_then(|t| t.rsplit(':').next()?.parse::<u8>().ok())
+            .unwrap_or(3);
+        let mut severity = before;
+        if on {
+            ui.add(egui::Slider::new(&mut severity, 1..=5));
+        }
+        if !on {
+            *item = None;
+        } else if item.is_none() || severity != before {
+            *item = parse(&severity.to_string()).ok();
+        }
     });
 }
 

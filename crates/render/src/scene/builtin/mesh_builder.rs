@@ -8,10 +8,10 @@
 use glam::{Vec2, Vec3};
 
 use super::exposure::exposure;
-use super::lighting::{bake, BakeInput, Lighting, Window};
+use super::lighting::{bake, glowing_layer, BakeInput, Lighting, Window};
 use super::textures::Rgb;
 use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
-use crate::{Mesh, Vertex};
+use crate::{LightKind, LightLayers, Mesh, Vertex};
 
 /// Largest edge of one quad cell, metres; bounds the spacing of the baked lighting samples.
 const MAX_CELL: f32 = 0.25;
@@ -143,33 +143,36 @@ impl MeshBuilder {
         (self.mesh, self.normals, tints, self.emissive)
     }
 
-    /// The mesh with its lighting baked into the vertex colours; `layer_albedo[l]` is the mean
-    /// linear colour of texture layer `l`.
-    pub fn finish(mut self, layer_albedo: &[Vec3]) -> Mesh {
+    /// The mesh with its lighting baked into the vertex colours, and each light's share of them
+    /// ([`LightLayers`]); `layer_albedo[l]` is the mean linear colour of texture layer `l`.
+    pub fn finish(mut self, layer_albedo: &[Vec3]) -> (Mesh, LightLayers) {
         let tints: Vec<Vec3> = self.tints.iter().map(|&t| linear(t)).collect();
         let albedo: Vec<Vec3> = tints
             .iter()
             .zip(&self.mesh.vertices)
             .map(|(&t, v)| t * layer_albedo[v.layer as usize])
             .collect();
-        let irradiance = bake(&BakeInput {
+        let baked = bake(&BakeInput {
             mesh: &self.mesh,
             normals: &self.normals,
             albedo: &albedo,
             emissive: &self.emissive,
             lighting: &self.lighting,
         });
-        let radiance: Vec<Vec3> = irradiance
+        let radiance: Vec<Vec3> = baked
+            .total
             .iter()
             .zip(&albedo)
             .map(|(&e, &a)| e * a)
             .collect();
         let exposure = exposure(&self.mesh, &radiance, &self.emissive);
+        let layer_count = self.lighting.layer_count();
+        let mut colours = Vec::with_capacity(self.mesh.vertices.len() * layer_count);
         for (i, v) in self.mesh.vertices.iter_mut().enumerate() {
             let shade = if self.emissive[i] {
                 Vec3::ONE
             } else {
-                irradiance[i] * exposure
+                baked.total[i] * exposure
             };
             let c = tints[i] * shade;
             v.color = [
@@ -178,8 +181,24 @@ impl MeshBuilder {
                 linear_to_srgb(c.z),
                 255,
             ];
+            let glows_with = self.emissive[i].then(|| glowing_layer(&self.lighting, v.position));
+            colours.extend((0..layer_count).map(|l| {
+                let share = match glows_with {
+                    Some(layer) if layer == l => tints[i],
+                    Some(_) => Vec3::ZERO,
+                    None => tints[i] * baked.layers[l][i] * exposure,
+                };
+                share.to_array()
+            }));
         }
-        self.mesh
+        let lamps = self.lighting.lamps.len();
+        let kinds = (0..layer_count)
+            .map(|l| match l < lamps {
+                true => LightKind::Lamp,
+                false => LightKind::Daylight,
+            })
+            .collect();
+        (self.mesh, LightLayers { kinds, colours })
     }
 
     /// A rectangle seen from its front: `top_left` corner, `right` and `down` edges (local

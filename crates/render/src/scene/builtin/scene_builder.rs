@@ -87,11 +87,13 @@ impl SceneBuilder {
                 .collect::<Vec<_>>(),
         );
         let layer_albedo: Vec<Vec3> = textures.iter().map(mean_linear).collect();
+        let (mesh, lights) = self.mesh.finish(&layer_albedo);
         Scene {
             name: name.to_string(),
-            mesh: self.mesh.finish(&layer_albedo),
+            mesh,
             textures,
             default_trajectory: Some(trajectory),
+            lights: Some(lights),
         }
     }
 }

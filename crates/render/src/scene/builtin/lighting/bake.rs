@@ -3,6 +3,11 @@
 //! first bounce; the later bounces of a closed room are a geometric series in its mean albedo ρ̄
 //! (each bounce returns about ρ̄ of the previous one), so the gathered light is scaled by
 //! 1 / (1 − ρ̄) instead of being traced again.
+//!
+//! Irradiance is linear in the lights, so the bake also keeps each light's share as a layer of
+//! its own ([`Baked::layers`]: each lamp, then the daylight of all windows), for light items
+//! that switch lamps or drift the daylight per frame. The total is summed exactly as without
+//! layers, so the built-in scenes' colours do not change.
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -29,7 +34,7 @@ const RAY_OFFSET: f32 = 2e-3;
 /// Seed of the per-vertex sample rotations ("light" in ASCII).
 const SAMPLING_SEED: u64 = 0x006c_6967_6874;
 /// Bumped whenever the bake's result would change for the same input: it names the cache entry.
-const BAKE_VERSION: u32 = 1;
+const BAKE_VERSION: u32 = 2;
 
 /// What the bake reads, one entry per vertex of `mesh`.
 pub struct BakeInput<'a> {
@@ -44,21 +49,37 @@ pub struct BakeInput<'a> {
     pub lighting: &'a Lighting,
 }
 
-/// Irradiance at every vertex (linear, arbitrary unit), from the cache or baked now.
-pub fn bake(input: &BakeInput) -> Vec<Vec3> {
+/// The irradiance at every vertex (linear, arbitrary unit) and each light's share of it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Baked {
+    pub total: Vec<Vec3>,
+    /// One per light, [`Lighting::layer_count`] of them: each lamp's, then the windows'
+    /// together. Their sum is `total` up to rounding.
+    pub layers: Vec<Vec<Vec3>>,
+}
+
+/// The bake of `input`, from the cache or baked now.
+pub fn bake(input: &BakeInput) -> Baked {
     let Some(folder) = cache::folder() else {
         return bake_now(input);
     };
     let key = cache_key(input);
-    if let Some(e) = cache::load(&folder, &key, input.mesh.vertices.len()) {
-        return e;
+    let (count, layers) = (input.mesh.vertices.len(), input.lighting.layer_count());
+    if let Some(baked) = cache::load(&folder, &key, count, layers) {
+        return baked;
     }
-    let e = bake_now(input);
-    cache::store(&folder, &key, &e);
-    e
+    let baked = bake_now(input);
+    cache::store(&folder, &key, &baked);
+    baked
 }
 
-fn bake_now(input: &BakeInput) -> Vec<Vec3> {
+/// Light of every layer at one vertex, and their total.
+struct Shares {
+    total: Vec3,
+    layers: Vec<Vec3>,
+}
+
+fn bake_now(input: &BakeInput) -> Baked {
     let caster = RayCaster::from_mesh(input.mesh);
     let positions: Vec<Vec3> = input
         .mesh
@@ -66,34 +87,56 @@ fn bake_now(input: &BakeInput) -> Vec<Vec3> {
         .iter()
         .map(|v| Vec3::from(v.position))
         .collect();
-    let direct: Vec<Vec3> = (0..positions.len())
+    let layer_count = input.lighting.layer_count();
+    let dark = || Shares {
+        total: Vec3::ZERO,
+        layers: vec![Vec3::ZERO; layer_count],
+    };
+    let direct: Vec<Shares> = (0..positions.len())
         .into_par_iter()
         .map(|i| {
             if input.emissive[i] {
-                return Vec3::ZERO;
+                return dark();
             }
             let origin = positions[i] + input.normals[i] * RAY_OFFSET;
             direct_light(&caster, input.lighting, origin, input.normals[i], i as u32)
         })
         .collect();
-    let reflected: Vec<Vec3> = direct
+    let reflected: Vec<Shares> = direct
         .iter()
         .zip(input.albedo)
         .zip(input.emissive)
-        .map(|((&e, &a), &glows)| if glows { Vec3::ZERO } else { e * a })
+        .map(|((e, &a), &glows)| match glows {
+            true => dark(),
+            false => Shares {
+                total: e.total * a,
+                layers: e.layers.iter().map(|&l| l * a).collect(),
+            },
+        })
         .collect();
     let bounces = 1.0 / (1.0 - mean_albedo(input)).max(0.2);
-    (0..positions.len())
+    let shares: Vec<Shares> = (0..positions.len())
         .into_par_iter()
         .map(|i| {
             if input.emissive[i] {
-                return Vec3::ZERO;
+                return dark();
             }
             let origin = positions[i] + input.normals[i] * RAY_OFFSET;
             let gathered = gather(&caster, input.mesh, &reflected, origin, input.normals[i], i);
-            direct[i] + gathered * bounces
+            Shares {
+                total: direct[i].total + gathered.total * bounces,
+                layers: (direct[i].layers.iter().zip(&gathered.layers))
+                    .map(|(&d, &g)| d + g * bounces)
+                    .collect(),
+            }
         })
-        .collect()
+        .collect();
+    Baked {
+        total: shares.iter().map(|s| s.total).collect(),
+        layers: (0..layer_count)
+            .map(|l| shares.iter().map(|s| s.layers[l]).collect())
+            .collect(),
+    }
 }
 
 /// Per-vertex rotation of the sample patterns, one per purpose.
@@ -110,8 +153,9 @@ fn visible(caster: &RayCaster, from: Vec3, to: Vec3) -> bool {
         .is_none()
 }
 
-fn direct_light(caster: &RayCaster, l: &Lighting, p: Vec3, n: Vec3, vertex: u32) -> Vec3 {
+fn direct_light(caster: &RayCaster, l: &Lighting, p: Vec3, n: Vec3, vertex: u32) -> Shares {
     let mut e = Vec3::ZERO;
+    let mut layers = vec![Vec3::ZERO; l.layer_count()];
     for (li, lamp) in l.lamps.iter().enumerate() {
         let rot = rotation(vertex, 2 * li as i64);
         let mut sum = 0.0;
@@ -123,7 +167,9 @@ fn direct_light(caster: &RayCaster, l: &Lighting, p: Vec3, n: Vec3, vertex: u32)
                 sum += cos / d.length_squared().max(LAMP_NEAR * LAMP_NEAR);
             }
         }
-        e += LAMP_INTENSITY * sum / LAMP_SAMPLES as f32;
+        let share = LAMP_INTENSITY * sum / LAMP_SAMPLES as f32;
+        e += share;
+        layers[li] = share;
     }
     for (wi, w) in l.windows.iter().enumerate() {
         let rot = rotation(vertex, 2 * wi as i64 + 1);
@@ -139,9 +185,11 @@ fn direct_light(caster: &RayCaster, l: &Lighting, p: Vec3, n: Vec3, vertex: u32)
                 sum += cos_p * cos_w / d.length_squared().max(0.01);
             }
         }
-        e += WINDOW_RADIANCE * sum * w.area() / WINDOW_SAMPLES as f32;
+        let share = WINDOW_RADIANCE * sum * w.area() / WINDOW_SAMPLES as f32;
+        e += share;
+        layers[l.lamps.len()] += share;
     }
-    e
+    Shares { total: e, layers }
 }
 
 /// Irradiance from the surfaces around: with cosine-weighted rays it is the mean outgoing
@@ -149,13 +197,14 @@ fn direct_light(caster: &RayCaster, l: &Lighting, p: Vec3, n: Vec3, vertex: u32)
 fn gather(
     caster: &RayCaster,
     mesh: &Mesh,
-    reflected: &[Vec3],
+    reflected: &[Shares],
     p: Vec3,
     n: Vec3,
     vertex: usize,
-) -> Vec3 {
+) -> Shares {
     let rot = rotation(vertex as u32, -1);
     let mut sum = Vec3::ZERO;
+    let mut layers = vec![Vec3::ZERO; reflected.first().map_or(0, |r| r.layers.len())];
     for k in 0..GATHER_RAYS {
         let dir = cosine_hemisphere(n, square(k, GATHER_RAYS, rot));
         let Some(hit) = caster.cast(p, dir) else {
@@ -166,10 +215,18 @@ fn gather(
         }
         let t = hit.triangle as usize * 3;
         for (c, &b) in hit.barycentrics.iter().enumerate() {
-            sum += reflected[mesh.indices[t + c] as usize] * b;
+            let corner = &reflected[mesh.indices[t + c] as usize];
+            sum += corner.total * b;
+            for (layer, &r) in layers.iter_mut().zip(&corner.layers) {
+                *layer += r * b;
+            }
         }
     }
-    sum / GATHER_RAYS as f32
+    let rays = GATHER_RAYS as f32;
+    Shares {
+        total: sum / rays,
+        layers: layers.into_iter().map(|l| l / rays).collect(),
+    }
 }
 
 /// Mean albedo (luminance) of the lit vertices.

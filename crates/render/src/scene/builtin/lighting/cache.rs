@@ -1,4 +1,4 @@
-//! The baked irradiance on disk, named by a BLAKE3 hash of everything the bake reads (geometry,
+//! The baked irradiance (and its layers) on disk, named by a BLAKE3 hash of everything the bake reads (geometry,
 //! normals, albedo, lights and the bake's version), so a scene is baked once per version and
 //! machine. The folder is `baked-lighting/` in [`super::super::cache_root`]. The cache only saves
 //! time: a missing or unwritable folder means baking again.
@@ -6,6 +6,8 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
+
+use super::Baked;
 
 /// Where baked irradiance is kept, if the environment names a folder.
 pub fn folder() -> Option<PathBuf> {
@@ -16,28 +18,28 @@ fn path(folder: &Path, key: &blake3::Hash) -> PathBuf {
     folder.join(format!("{}.bin", key.to_hex()))
 }
 
-/// The irradiance stored under `key`, if it is there and has `count` vertices.
-pub fn load(folder: &Path, key: &blake3::Hash, count: usize) -> Option<Vec<Vec3>> {
+/// The bake stored under `key`, if it is there with `count` vertices and `layers` layers.
+pub fn load(folder: &Path, key: &blake3::Hash, count: usize, layers: usize) -> Option<Baked> {
     let bytes = std::fs::read(path(folder, key)).ok()?;
-    if bytes.len() != count * 12 {
+    if bytes.len() != count * (1 + layers) * 12 {
         return None;
     }
-    Some(
-        bytes
-            .chunks_exact(12)
-            .map(|c| {
-                let f = |i: usize| f32::from_le_bytes([c[i], c[i + 1], c[i + 2], c[i + 3]]);
-                Vec3::new(f(0), f(4), f(8))
-            })
-            .collect(),
-    )
+    let mut vectors = bytes.chunks_exact(12).map(|c| {
+        let f = |i: usize| f32::from_le_bytes([c[i], c[i + 1], c[i + 2], c[i + 3]]);
+        Vec3::new(f(0), f(4), f(8))
+    });
+    let mut take = || vectors.by_ref().take(count).collect::<Vec<Vec3>>();
+    let total = take();
+    let layers = (0..layers).map(|_| take()).collect();
+    Some(Baked { total, layers })
 }
 
-/// Keeps `irradiance` under `key`; failures only cost a bake next time.
-pub fn store(folder: &Path, key: &blake3::Hash, irradiance: &[Vec3]) {
+/// Keeps `baked` under `key` (the total, then each layer); failures only cost a bake next time.
+pub fn store(folder: &Path, key: &blake3::Hash, baked: &Baked) {
     let path = path(folder, key);
-    let bytes: Vec<u8> = irradiance
-        .iter()
+    let bytes: Vec<u8> = std::iter::once(&baked.total)
+        .chain(&baked.layers)
+        .flatten()
         .flat_map(|e| e.to_array())
         .flat_map(f32::to_le_bytes)
         .collect();

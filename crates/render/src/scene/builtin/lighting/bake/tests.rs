@@ -58,6 +58,7 @@ fn bake_of(
         emissive,
         lighting: l,
     })
+    .total
 }
 
 #[test]
@@ -147,13 +148,62 @@ fn a_window_lights_what_faces_it() {
 fn the_cache_returns_what_was_baked_and_misses_on_another_key() {
     let dir = tempfile::tempdir().unwrap();
     let a = blake3::hash(b"a");
-    let e = vec![Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.5, 0.25, 0.125)];
+    let e = Baked {
+        total: vec![Vec3::new(1.0, 2.0, 3.0), Vec3::new(0.5, 0.25, 0.125)],
+        layers: vec![vec![Vec3::ONE, Vec3::ZERO], vec![Vec3::X, Vec3::Y]],
+    };
     cache::store(dir.path(), &a, &e);
-    assert_eq!(cache::load(dir.path(), &a, 2), Some(e));
+    assert_eq!(cache::load(dir.path(), &a, 2, 2), Some(e));
     assert_eq!(
-        cache::load(dir.path(), &a, 3),
+        cache::load(dir.path(), &a, 3, 2),
         None,
         "a vertex count that differs"
     );
-    assert_eq!(cache::load(dir.path(), &blake3::hash(b"b"), 2), None);
+    assert_eq!(cache::load(dir.path(), &a, 2, 1), None, "a layer count");
+    assert_eq!(cache::load(dir.path(), &blake3::hash(b"b"), 2, 2), None);
+}
+
+#[test]
+fn the_layers_are_each_lights_share_and_sum_to_the_total() {
+    let window = Window {
+        corner: Vec3::new(-0.5, 2.0, 2.0),
+        right: Vec3::X,
+        down: -Vec3::Z,
+    };
+    let l = Lighting {
+        lamps: vec![Vec3::new(-1.0, 0.0, 2.5), Vec3::new(1.0, 0.0, 2.5)],
+        windows: vec![window],
+    };
+    let (mesh, n, _, g) = floor_scene(true);
+    let albedo = vec![Vec3::splat(0.5); n.len()];
+    let input = |lighting| BakeInput {
+        mesh: &mesh,
+        normals: &n,
+        albedo: &albedo,
+        emissive: &g,
+        lighting,
+    };
+    let all = bake_now(&input(&l));
+    assert_eq!(all.layers.len(), 3);
+    for (i, &total) in all.total.iter().enumerate() {
+        let sum: Vec3 = all.layers.iter().map(|layer| layer[i]).sum();
+        assert!((sum - total).abs().max_element() <= 1e-5 * (1.0 + total.max_element()));
+    }
+    // Each layer is what that light alone bakes (same sample patterns: the same light index).
+    let alone = Lighting {
+        lamps: vec![l.lamps[0]],
+        windows: vec![],
+    };
+    let first = bake_now(&input(&alone));
+    for (a, b) in all.layers[0].iter().zip(&first.total) {
+        assert!((*a - *b).abs().max_element() <= 1e-5 * (1.0 + b.max_element()));
+    }
+    let daylight = Lighting {
+        lamps: vec![],
+        windows: vec![window],
+    };
+    let window_only = bake_now(&input(&daylight));
+    for (a, b) in all.layers[2].iter().zip(&window_only.total) {
+        assert!((*a - *b).abs().max_element() <= 1e-5 * (1.0 + b.max_element()));
+    }
 }
