@@ -58,11 +58,10 @@ impl Daylight {
         })
     }
 
-    pub fn table() -> Vec<String> {
-        TABLE
-            .iter()
-            .map(|(d, p)| format!("dims by up to {d}, new level every {p} s"))
-            .collect()
+    /// The severities' parameters as the catalogue's description states them: `0.2/30, …`.
+    #[cfg(test)]
+    pub(crate) fn severities() -> String {
+        TABLE.map(|(d, p)| format!("{d}/{p}")).join(", ")
     }
 
     /// Cloud cover at `t` seconds, in [0, 1].

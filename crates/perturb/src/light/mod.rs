@@ -108,3 +108,26 @@ fn numbers(
         .filter(|v| v.len() == count && v.iter().enumerate().all(|(i, &x)| valid(i, x)))
         .ok_or_else(|| format!("'{value}': expected {expected}"))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_descriptions_state_the_severity_tables() {
+        let description = |name: &str| {
+            LIGHT_ITEMS
+                .iter()
+                .find(|e| e.name == name)
+                .unwrap()
+                .description
+        };
+        let lights = format!("severities 1-5 = {}", Switching::severities());
+        assert!(description(switching::NAME).contains(&lights), "{lights}");
+        let daylight = format!("severities 1-5 = {}", Daylight::severities());
+        assert!(
+            description(daylight::NAME).contains(&daylight),
+            "{daylight}"
+        );
+    }
+}

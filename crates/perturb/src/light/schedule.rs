@@ -52,12 +52,6 @@ impl LightSchedule {
         }
     }
 
-    /// The flicker frequency, if the light flickers: a rolling shutter must then read its rows
-    /// in bands fine enough to show it.
-    pub fn flicker_hz(&self) -> Option<f64> {
-        self.spec.flicker.map(|f| f.hz)
-    }
-
     /// One RGB weight per layer for a render exposing `[a, b]` seconds (a = b: one instant).
     pub fn weights(&self, a: f64, b: f64) -> Vec<[f32; 3]> {
         let mut lamp = 0;

@@ -68,12 +68,10 @@ impl Switching {
         })
     }
 
-    /// The parameters at each severity, for `rslam list` and the book.
-    pub fn table() -> Vec<String> {
-        TABLE
-            .iter()
-            .map(|(f, e, d)| format!("fraction {f}, every {e} s, dark {d} s"))
-            .collect()
+    /// The severities' parameters as the catalogue's description states them: `0.25/20/2, …`.
+    #[cfg(test)]
+    pub(crate) fn severities() -> String {
+        TABLE.map(|(f, e, d)| format!("{f}/{e}/{d}")).join(", ")
     }
 
     /// The outages of `lamps` lamps that start before `horizon` seconds, in time order.
