@@ -195,3 +195,41 @@ fn a_dataset_without_camera_file_needs_camera_and_a_corrupt_frame_is_named() {
     );
     assert!(ws.path("b/rslam.run.json").exists());
 }
+
+/// A real severity is rendered and recorded as one: the manifest keeps `2.5` in the spec and the
+/// per-frame draws of `@dynamic` as numbers; severity 0 writes the clean frames, bytes for bytes.
+#[test]
+fn real_severities_are_recorded_and_severity_zero_is_clean() {
+    use crate::dataset_check::{files, manifest};
+    use crate::render::SMALL_CAMERA;
+    let ws = Workspace::new();
+    let args = ["--frames", "4", "--camera", SMALL_CAMERA];
+    ws.render_room0("clean", &args, None);
+    ws.render_room0("zero", &args, Some("fog:0,depth_noise:0"));
+    let frames = |dir: &str| -> Vec<Vec<u8>> {
+        files(&ws.path(&format!("{dir}/results")), "")
+            .iter()
+            .map(|f| std::fs::read(f).unwrap())
+            .collect()
+    };
+    assert_eq!(frames("zero"), frames("clean"));
+    assert_eq!(manifest(&ws.path("zero")).severities[0].per_frame, "0000");
+
+    ws.render_room0(
+        "real",
+        &args,
+        Some("gaussian_noise:2.5@dynamic,depth_missing:1.5"),
+    );
+    let written = manifest(&ws.path("real"));
+    assert_eq!(
+        written.perturbation,
+        "gaussian_noise:2.5@dynamic,depth_missing:1.5"
+    );
+    let parsed = written.perturbation_parsed.to_string();
+    assert!(parsed.contains(r#""severity":2.5"#), "{parsed}");
+    let drawn = written.severities[0].values().unwrap();
+    assert_eq!(drawn.len(), 4);
+    assert!(drawn.iter().all(|s| (0.0..=2.5).contains(s)), "{drawn:?}");
+    assert_eq!(written.severities[1].per_frame, "1.5 1.5 1.5 1.5");
+    assert_ne!(frames("real"), frames("clean"));
+}

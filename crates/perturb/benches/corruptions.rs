@@ -14,7 +14,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use rslam_core::dataset::{encode_png, read_rgb};
 use rslam_core::{DepthImage, Intrinsics, RgbImage};
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
-use rslam_perturb::{FrameKey, Group, Kit, Scratch, CATALOGUE};
+use rslam_perturb::{FrameKey, Group, Kit, Scratch, Severity, CATALOGUE};
 
 const WIDTH: u32 = 1200;
 const HEIGHT: u32 = 680;
@@ -86,7 +86,7 @@ fn corruptions(c: &mut Criterion) {
                         let key = FrameKey {
                             seed: 0,
                             frame: i as u32,
-                            severity,
+                            severity: Severity::whole(severity).expect("a severity"),
                             explicit: None,
                             camera: Some(Intrinsics::REPLICA),
                         };
@@ -161,7 +161,7 @@ fn corruptions(c: &mut Criterion) {
                 let key = FrameKey {
                     seed: 0,
                     frame: index,
-                    severity: 3,
+                    severity: Severity::whole(3).expect("a severity"),
                     explicit: None,
                     camera: Some(Intrinsics::REPLICA),
                 };

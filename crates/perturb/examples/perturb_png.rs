@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use rslam_core::RgbImage;
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
-use rslam_perturb::{find, FrameKey, Kit, Scratch};
+use rslam_perturb::{find, FrameKey, Kit, Scratch, Severity};
 
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
@@ -57,7 +57,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let entry = find(name).ok_or_else(|| format!("unknown perturbation '{name}'"))?;
         let mut perturbation = (entry.build)(&kit)?;
         for severity in args[3].split(',') {
-            let severity: u8 = severity.parse()?;
+            let severity = Severity::parse(severity).ok_or_else(|| {
+                format!("severity '{severity}': expected 0-5, at most two decimals")
+            })?;
             let (mut gpu_ms, mut total_ms) = (Vec::new(), Vec::new());
             for index in 0..frames.max(1) {
                 frame.upload(&ctx, &clean, None);

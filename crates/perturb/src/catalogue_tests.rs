@@ -3,7 +3,8 @@
 //! `Perturber` builds it, and applied at several severities, seeds and frames (and its explicit
 //! form, where it has one) to the shared test image and depth; all differences are reported.
 
-use crate::perturbation::{CatalogueEntry, FrameKey};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey};
+use crate::severity::Severity;
 use crate::testing::{self, EntryOnGpu};
 use crate::twin::TwinRun;
 use crate::CATALOGUE;
@@ -14,6 +15,10 @@ const WIDTH: u32 = 77;
 const HEIGHT: u32 = 53;
 
 const SEVERITIES: [u8; 3] = [1, 3, 5];
+
+/// Real severities, run by entries that interpolate their parameters: one below severity 1
+/// (interpolated from the clean parameters) and one between two rows.
+const REAL_SEVERITIES: [u16; 2] = [45, 250];
 
 /// (seed, frame) pairs: another seed and a later frame give random entries other draws (and
 /// make frost regenerate its per-seed texture between frames).
@@ -47,11 +52,18 @@ fn check(
     Ok(actual != *clean)
 }
 
-/// The keys an entry runs with: each severity at each (seed, frame), then its explicit form.
-fn keys(explicit: Option<&[f64]>) -> Vec<FrameKey<'_>> {
-    let mut keys: Vec<FrameKey> = SEVERITIES
-        .iter()
-        .flat_map(|&severity| {
+/// The keys an entry runs with: each severity at each (seed, frame), its real severities
+/// where it interpolates, then its explicit form.
+fn keys<'a>(entry: &CatalogueEntry, explicit: Option<&'a [f64]>) -> Vec<FrameKey<'a>> {
+    let whole = SEVERITIES.map(|s| Severity::whole(s).unwrap());
+    let real = REAL_SEVERITIES.map(|h| Severity::from_hundredths(h).unwrap());
+    let severities = match entry.between {
+        Between::Interpolated(_) => [whole.as_slice(), &real].concat(),
+        Between::WholeOnly(_) => whole.to_vec(),
+    };
+    let mut keys: Vec<FrameKey> = severities
+        .into_iter()
+        .flat_map(|severity| {
             SEEDS_FRAMES.map(|(seed, frame)| FrameKey {
                 seed,
                 frame,
@@ -67,7 +79,7 @@ fn keys(explicit: Option<&[f64]>) -> Vec<FrameKey<'_>> {
         keys.push(FrameKey {
             seed,
             frame,
-            severity: 5,
+            severity: Severity::MAX,
             explicit: Some(values),
             camera: Some(testing::camera(WIDTH, HEIGHT)),
         });
@@ -105,7 +117,7 @@ fn every_entry_matches_its_twin() {
         // Built once like the GPU pass, so a stateful twin sees the same frames in the same order.
         let mut twin = entry.twin.start();
         let (mut changed, failed_before) = (false, failures.len());
-        for key in keys(explicit.as_deref()) {
+        for key in keys(entry, explicit.as_deref()) {
             cases += 1;
             match check(entry, &mut gpu, &mut twin, &clean, &key) {
                 Ok(changed_frame) => changed |= changed_frame,

@@ -32,9 +32,12 @@ pub mod light;
 mod listing;
 mod perturbation;
 mod perturber;
+#[cfg(test)]
+mod real_severity_tests;
 pub mod reduce;
 pub mod rng;
 pub mod sensor;
+mod severity;
 mod spec;
 pub mod stream;
 #[cfg(test)]
@@ -50,9 +53,11 @@ pub use catalogue::{find, names, CATALOGUE};
 pub use error::PerturbError;
 pub use listing::{listing, ListEntry};
 pub use perturbation::{
-    view, CatalogueEntry, ExplicitForm, FrameKey, GpuPerturbation, Group, Kit, Scratch, WORKGROUP,
+    view, Between, CatalogueEntry, ExplicitForm, FrameKey, GpuPerturbation, Group, Kit, Scratch,
+    WORKGROUP,
 };
 pub use perturber::{dynamic_severity, severity_on, FrameSeverities, ItemSeverity, Perturber};
+pub use severity::Severity;
 pub use spec::{
     all_names, parse_severity, Deviation, FrameItem, Level, Misalign, PerturbSpec, ITEM_TABLES,
 };

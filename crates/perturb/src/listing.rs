@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::{Group, CATALOGUE, ITEM_TABLES};
+use crate::{Between, Group, CATALOGUE, ITEM_TABLES};
 
 /// One row of `rslam list`.
 #[derive(Clone, Debug, Serialize)]
@@ -18,6 +18,10 @@ pub struct ListEntry {
     pub needs: Vec<&'static str>,
     /// Parameters at severities 1..=5; empty for items without severities.
     pub parameters: Vec<String>,
+    /// How a real severity between two whole ones is made (`interpolated: …`, or `whole
+    /// severities only: …`); empty for items without severities.
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub between: String,
 }
 
 /// Every item: image, then depth corruptions (catalogue order), then the items of
@@ -26,7 +30,7 @@ pub fn listing() -> Vec<ListEntry> {
     let mut entries: Vec<ListEntry> = CATALOGUE
         .iter()
         .map(|e| {
-            let mut syntax = format!("{}:1-5[@dynamic]", e.name);
+            let mut syntax = format!("{}:0-5[@dynamic]", e.name);
             if let Some(form) = &e.explicit {
                 syntax.push_str(&format!(" | {}", form.syntax));
             }
@@ -40,6 +44,10 @@ pub fn listing() -> Vec<ListEntry> {
                 description: e.description.to_string(),
                 needs: e.needs().into_iter().map(|n| n.words()).collect(),
                 parameters: e.parameter_table().to_vec(),
+                between: match e.between {
+                    Between::Interpolated(how) => format!("interpolated: {how}"),
+                    Between::WholeOnly(why) => format!("whole severities only: {why}"),
+                },
             }
         })
         .collect();
@@ -52,6 +60,7 @@ pub fn listing() -> Vec<ListEntry> {
             description: e.description.to_string(),
             needs: e.needs.iter().map(|n| n.words()).collect(),
             parameters: Vec::new(),
+            between: String::new(),
         }));
     }
     entries

@@ -6,6 +6,7 @@ use rslam_gpu::{FrameTextures, GpuContext};
 use serde::Serialize;
 
 use crate::rng::RngKey;
+use crate::severity::Severity;
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::UniformLayout;
 use crate::{Need, PerturbError};
@@ -31,6 +32,16 @@ pub struct ExplicitForm {
     pub format: fn(&[f64]) -> String,
 }
 
+/// How an item takes a real severity (`fog:2.5`) between two whole ones.
+#[derive(Clone, Copy, Debug)]
+pub enum Between {
+    /// Its parameters are interpolated between the table's rows (row 0: the clean frame's
+    /// parameters); the text says in what, for `rslam list` and the book.
+    Interpolated(&'static str),
+    /// Whole severities only; the text says why.
+    WholeOnly(&'static str),
+}
+
 /// One line of the catalogue: everything `rslam list`, the spec parser and the viewer need.
 pub struct CatalogueEntry {
     /// The id used in spec strings and the WGSL file name.
@@ -44,6 +55,8 @@ pub struct CatalogueEntry {
     pub build: fn(&Kit) -> Result<Box<dyn GpuPerturbation>, PerturbError>,
     /// An explicit parameter form, where the perturbation has one.
     pub explicit: Option<ExplicitForm>,
+    /// How it takes a real severity between two whole ones.
+    pub between: Between,
     /// The CPU twin: what `build`'s pass does, on the CPU.
     pub twin: Twin,
     /// How far the GPU pass may be from `twin`.
@@ -87,9 +100,10 @@ impl CatalogueEntry {
 pub struct FrameKey<'a> {
     pub seed: u64,
     pub frame: u32,
-    /// 1..=5; frames whose severity is 0 are never handed to a perturbation. For an explicit
-    /// parameter form it is 5 and [`FrameKey::explicit`] holds the values.
-    pub severity: u8,
+    /// In (0, 5]; frames whose severity is 0 are never handed to a perturbation. Real
+    /// severities reach only items whose entry interpolates ([`Between::Interpolated`]). For an
+    /// explicit parameter form it is 5 and [`FrameKey::explicit`] holds the values.
+    pub severity: Severity,
     pub explicit: Option<&'a [f64]>,
     /// The camera the frame was taken with, where it is known (rendered scenes, datasets); image
     /// files have none. Perturbations computed from the geometry (`depth_sensor`) need it.
@@ -97,9 +111,28 @@ pub struct FrameKey<'a> {
 }
 
 impl FrameKey<'_> {
-    /// Index into a 5-entry severity table.
+    /// Index into a 5-entry severity table, for an item that takes whole severities only.
     pub fn level(&self) -> usize {
-        (self.severity.clamp(1, 5) - 1) as usize
+        (self.severity.ceil().clamp(1, 5) - 1) as usize
+    }
+
+    /// A parameter at this frame's severity: `clean` at 0, `table` at 1..=5, linear between
+    /// (see [`Severity::interpolate`]).
+    pub fn interpolate<T: Copy + Into<f64>>(&self, clean: f64, table: &[T; 5]) -> f64 {
+        self.severity.interpolate(clean, &table.map(Into::into))
+    }
+
+    /// A parameter interpolated linearly in `measure(parameter)`, see
+    /// [`Severity::interpolate_in`].
+    pub fn interpolate_in<T: Copy + Into<f64>>(
+        &self,
+        clean_measure: f64,
+        table: &[T; 5],
+        measure: fn(f64) -> f64,
+        inverse: fn(f64) -> f64,
+    ) -> f64 {
+        self.severity
+            .interpolate_in(clean_measure, &table.map(Into::into), measure, inverse)
     }
 
     /// The key of this frame's random stream for `purpose` of perturbation `name`.

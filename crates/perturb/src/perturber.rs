@@ -6,21 +6,28 @@ use serde::Serialize;
 
 use crate::perturbation::{FrameKey, GpuPerturbation, Kit, Scratch};
 use crate::rng::RngKey;
+use crate::severity::Severity;
 use crate::spec::{Level, PerturbSpec};
 use crate::{catalogue, PerturbError};
 
 /// Purpose of the draw that picks a frame's severity in `@dynamic` mode.
 const PURPOSE_DYNAMIC_SEVERITY: u32 = 0xD1_0000;
 
-/// The severity `name` gets on `frame` in `@dynamic` mode: uniform in {0, 1, …, max}.
-pub fn dynamic_severity(seed: u64, name: &str, frame: u32, max: u8) -> u8 {
+/// The severity `name` gets on `frame` in `@dynamic` mode: uniform in {0, 1, …, max} for a
+/// whole `max`, uniform over [0, max] in steps of 0.01 for a real one.
+pub fn dynamic_severity(seed: u64, name: &str, frame: u32, max: Severity) -> Severity {
     let u = RngKey::new(seed, name, frame, PURPOSE_DYNAMIC_SEVERITY).uniform_f64([0; 4]);
-    ((u * (max as f64 + 1.0)) as u8).min(max)
+    let (steps, step) = match max.as_whole() {
+        Some(whole) => (whole as u16, 100),
+        None => (max.hundredths(), 1),
+    };
+    let drawn = ((u * (steps as f64 + 1.0)) as u16).min(steps);
+    Severity::from_hundredths(drawn * step).expect("a draw up to the maximum")
 }
 
 /// The severity an item named `name` at `level` gives `frame` (pure): its severity, a draw in
-/// {0, …, severity} under `@dynamic`, and 5 for an explicit parameter form.
-pub fn severity_on(name: &str, level: &Level, seed: u64, frame: u32) -> u8 {
+/// [0, severity] under `@dynamic`, and 5 for an explicit parameter form.
+pub fn severity_on(name: &str, level: &Level, seed: u64, frame: u32) -> Severity {
     match *level {
         Level::Severity {
             severity,
@@ -30,7 +37,7 @@ pub fn severity_on(name: &str, level: &Level, seed: u64, frame: u32) -> u8 {
             severity,
             dynamic: true,
         } => dynamic_severity(seed, name, frame, severity),
-        Level::Explicit { .. } => 5,
+        Level::Explicit { .. } => Severity::MAX,
     }
 }
 
@@ -39,7 +46,7 @@ pub fn severity_on(name: &str, level: &Level, seed: u64, frame: u32) -> u8 {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct ItemSeverity {
     pub name: &'static str,
-    pub severity: u8,
+    pub severity: Severity,
 }
 
 /// What one frame received, for the manifest.
@@ -158,7 +165,8 @@ impl Perturber {
             if item.state_fields.is_none() {
                 continue;
             }
-            if let (Some(state), true) = (item.perturbation.state(), severity.severity > 0) {
+            if let (Some(state), true) = (item.perturbation.state(), !severity.severity.is_clean())
+            {
                 encoder.copy_buffer_to_buffer(state, 0, log, at, Some(16));
             }
             at += 16;
@@ -226,7 +234,7 @@ impl Perturber {
             camera: self.camera,
         };
         for (item, got) in self.items.iter_mut().zip(&severities.items) {
-            if got.severity == 0 {
+            if got.severity.is_clean() {
                 continue;
             }
             let explicit = match &item.level {
@@ -259,8 +267,9 @@ mod tests {
     fn dynamic_severities_are_uniform_over_zero_to_max() {
         let frames = 6000u32;
         let mut histogram = [0u32; 6];
+        let whole = |s: u8| Severity::whole(s).unwrap();
         for frame in 0..frames {
-            histogram[dynamic_severity(4, "fog", frame, 5) as usize] += 1;
+            histogram[dynamic_severity(4, "fog", frame, whole(5)).floor() as usize] += 1;
         }
         let p = 1.0 / 6.0;
         let expected = frames as f64 * p;
@@ -271,7 +280,26 @@ mod tests {
                 "severity {s}: {histogram:?}"
             );
         }
-        assert!((0..100).all(|f| dynamic_severity(4, "fog", f, 2) <= 2));
+        assert!((0..100).all(|f| dynamic_severity(4, "fog", f, whole(2)) <= whole(2)));
+    }
+
+    /// A real maximum draws real severities, uniform over [0, max]: the mean is max/2 and the
+    /// draws spread over the whole interval, not onto the whole severities.
+    #[test]
+    fn dynamic_real_severities_are_uniform_over_the_interval() {
+        let max = Severity::parse("2.5").unwrap();
+        let draws: Vec<f64> = (0..6000)
+            .map(|f| dynamic_severity(4, "fog", f, max).value())
+            .collect();
+        assert!(draws.iter().all(|&s| (0.0..=2.5).contains(&s)));
+        let mean = draws.iter().sum::<f64>() / draws.len() as f64;
+        // σ of the mean of a uniform over [0, 2.5]: 2.5 / √12 / √6000 ≈ 0.0093.
+        assert!((mean - 1.25).abs() < 0.05, "{mean}");
+        let below = |x: f64| draws.iter().filter(|&&s| s < x).count() as f64 / 6000.0;
+        for quarter in [0.625, 1.25, 1.875] {
+            assert!((below(quarter) - quarter / 2.5).abs() < 0.03, "{quarter}");
+        }
+        assert!(draws.iter().filter(|s| s.fract() != 0.0).count() > 5000);
     }
 
     /// Frames run through the perturber get what `severities` reports: a clean image on
@@ -302,11 +330,11 @@ mod tests {
                 got.items[1],
                 ItemSeverity {
                     name: "depth_range",
-                    severity: 5
+                    severity: Severity::MAX
                 }
             );
-            seen[severity as usize] = true;
-            let expected = match severity {
+            seen[severity.floor() as usize] = true;
+            let expected = match severity.floor() {
                 0 => clean.clone(),
                 s => brightness::twin(&RgbF32::from_rgb8(&clean), &testing::key(0, s)).to_rgb8(),
             };
@@ -364,6 +392,28 @@ mod tests {
         let cam0 = PerturbSpec::parse("cam0:brightness:5").unwrap();
         assert!(relevelled.set_levels(&cam0, 1));
         assert_eq!(run(&mut relevelled), run(&mut built));
+    }
+
+    /// Severity 0 is the clean frame, bytes for bytes, for image and depth items alike.
+    #[test]
+    fn severity_zero_leaves_the_frame_clean() {
+        let ctx = testing::context();
+        let (w, h) = (40, 30);
+        let spec = PerturbSpec::parse("fog:0,gaussian_noise:0,depth_noise:0").unwrap();
+        let mut perturber = Perturber::new(ctx, &spec, w, h, 3, None).unwrap();
+        let (clean, depth) = (testing::test_image(w, h), testing::test_depth(w, h));
+        let frame = FrameTextures::new(ctx, w, h);
+        frame.upload(ctx, &clean, Some(&depth));
+        let readback = FrameReadback::new(ctx, w, h, true);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let got = perturber.encode(ctx, &mut encoder, &frame, 0).unwrap();
+        readback.encode_copy(&mut encoder, &frame);
+        let (color, out_depth) = readback
+            .read(ctx, ctx.queue.submit([encoder.finish()]))
+            .unwrap();
+        assert!(got.items.iter().all(|item| item.severity.is_clean()));
+        assert!(color == clean);
+        assert!(out_depth.unwrap() == depth);
     }
 
     #[test]

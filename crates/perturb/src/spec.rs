@@ -39,7 +39,9 @@ use crate::calibration::{CalibrationItem, CALIBRATION_ITEMS};
 use crate::catalogue::{self, CATALOGUE};
 use crate::imu::{self, ImuSpec, IMU_ITEMS};
 use crate::light::{self, LightSpec, LIGHT_ITEMS};
+use crate::perturbation::Between;
 use crate::sensor::{self, Exposure, RollingShutter, SENSOR_ITEMS};
+use crate::severity::Severity;
 use crate::stream::STREAM_ITEMS;
 use crate::trajectory::TRAJECTORY_ITEMS;
 use crate::{Group, PerturbError};
@@ -94,8 +96,9 @@ pub struct FrameItem {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Level {
-    /// Severity 1..=5; `dynamic`: each frame draws its severity uniformly from {0, …, severity}.
-    Severity { severity: u8, dynamic: bool },
+    /// Severity in [0, 5] (0: the clean frame); `dynamic`: each frame draws its severity
+    /// uniformly from {0, …, severity} for a whole one, from [0, severity] for a real one.
+    Severity { severity: Severity, dynamic: bool },
     /// An explicit parameter form, e.g. `depth_range:0.42-10` → [0.42, 10].
     Explicit { values: Vec<f64> },
 }
@@ -481,7 +484,13 @@ fn parse_level(
     value: &str,
     mode: Option<&str>,
 ) -> Result<Level, String> {
-    if let Some(severity) = parse_severity(value) {
+    if let Some(severity) = Severity::parse(value) {
+        if let (None, Between::WholeOnly(why)) = (severity.as_whole(), entry.between) {
+            return Err(format!(
+                "severity {severity}: {} takes whole severities 0-5 only ({why})",
+                entry.name
+            ));
+        }
         let dynamic = match mode {
             None | Some("static") => false,
             Some("dynamic") => true,
@@ -489,7 +498,8 @@ fn parse_level(
         };
         return Ok(Level::Severity { severity, dynamic });
     }
-    let severity_help = "expected a severity 1-5 or low/mid/high";
+    let severity_help =
+        "expected a severity 0-5 (real ones like 2.5 too, at most two decimals) or low/mid/high";
     match &entry.explicit {
         Some(form) => {
             if mode.is_some() {
@@ -594,14 +604,14 @@ mod tests {
         assert_eq!(
             spec.image[1].level,
             Level::Severity {
-                severity: 5,
+                severity: Severity::whole(5).unwrap(),
                 dynamic: true
             }
         );
         assert_eq!(
             spec.depth[0].level,
             Level::Severity {
-                severity: 5,
+                severity: Severity::whole(5).unwrap(),
                 dynamic: false
             }
         );
@@ -643,11 +653,49 @@ mod tests {
             assert_eq!(
                 spec.image[0].level,
                 Level::Severity {
-                    severity,
+                    severity: Severity::whole(severity).unwrap(),
                     dynamic: false
                 }
             );
         }
+    }
+
+    #[test]
+    fn real_severities_parse_where_the_item_interpolates() {
+        let spec =
+            PerturbSpec::parse("fog:2.5@dynamic,gaussian_noise:0,depth_missing:0.75").unwrap();
+        let real = |hundredths| Severity::from_hundredths(hundredths).unwrap();
+        assert_eq!(
+            spec.image[0].level,
+            Level::Severity {
+                severity: real(250),
+                dynamic: true
+            }
+        );
+        assert_eq!(
+            spec.image[1].level.clone(),
+            Level::Severity {
+                severity: Severity::CLEAN,
+                dynamic: false
+            }
+        );
+        assert_eq!(
+            spec.to_string(),
+            "fog:2.5@dynamic,gaussian_noise:0,depth_missing:0.75"
+        );
+        assert_eq!(PerturbSpec::parse(&spec.to_string()).unwrap(), spec);
+        let json = serde_json::to_string(&spec).unwrap();
+        assert!(json.contains(r#""severity":2.5"#), "{json}");
+        assert_eq!(serde_json::from_str::<PerturbSpec>(&json).unwrap(), spec);
+        let e = err("saturate:2.5");
+        assert!(
+            e.contains("'saturate:2.5'")
+                && e.contains("whole severities")
+                && e.contains("desaturating"),
+            "{e}"
+        );
+        let e = err("fog:2.125");
+        assert!(e.contains("at most two decimals"), "{e}");
     }
 
     #[test]
@@ -675,7 +723,7 @@ mod tests {
         );
         let e = err("brightness:6");
         assert!(
-            e.contains("'brightness:6'") && e.contains("1-5") && e.contains("low/mid/high"),
+            e.contains("'brightness:6'") && e.contains("0-5") && e.contains("low/mid/high"),
             "{e}"
         );
         let e = err("brightness:3@sometimes");

@@ -8,6 +8,7 @@ use rslam_core::{DepthImage, Intrinsics, RgbImage};
 use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
 
 use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Kit, Scratch};
+use crate::severity::Severity;
 use crate::twin::Tolerance;
 
 /// The process-wide context. No adapter is a failure, never a skip.
@@ -104,8 +105,13 @@ pub fn run_frame(
         .unwrap_or_else(|e| panic!("{}: {e}", entry.name))
 }
 
-/// A key for frame 0 at `severity`.
+/// A key for frame 0 at the whole `severity`.
 pub fn key(seed: u64, severity: u8) -> FrameKey<'static> {
+    key_at(seed, Severity::whole(severity).expect("a severity 0..=5"))
+}
+
+/// A key for frame 0 at `severity`, whole or real.
+pub fn key_at(seed: u64, severity: Severity) -> FrameKey<'static> {
     FrameKey {
         seed,
         frame: 0,
@@ -379,7 +385,7 @@ pub fn assert_seeded(entry: &CatalogueEntry, severity: u8) {
         let key = FrameKey {
             seed,
             frame,
-            severity,
+            severity: Severity::whole(severity).expect("a severity 0..=5"),
             explicit: None,
             camera: Some(camera(64, 48)),
         };

@@ -206,12 +206,12 @@ fn severities(
     rgb_source: &[usize],
     depth_source: &[usize],
 ) -> Vec<ItemSeverities> {
-    let column = |item: &rslam_perturb::FrameItem, sources: &[usize]| ItemSeverities {
-        item: item.to_string(),
-        per_frame: sources
+    let column = |item: &rslam_perturb::FrameItem, sources: &[usize]| {
+        let got: Vec<f64> = sources
             .iter()
-            .map(|&s| char::from(b'0' + severity_on(&item.name, &item.level, seed, s as u32)))
-            .collect(),
+            .map(|&s| severity_on(&item.name, &item.level, seed, s as u32).value())
+            .collect();
+        ItemSeverities::new(item.to_string(), &got)
     };
     spec.image
         .iter()
@@ -280,11 +280,24 @@ mod tests {
         assert_eq!(fog.len(), 40);
         assert!(fog.chars().all(|c| ('0'..='3').contains(&c)));
         assert!(fog.chars().collect::<std::collections::BTreeSet<_>>().len() > 1);
+        let three = rslam_perturb::Severity::whole(3).unwrap();
         for (j, c) in fog.chars().enumerate() {
-            let expected = rslam_perturb::dynamic_severity(7, "fog", j as u32, 3);
-            assert_eq!(c, char::from(b'0' + expected), "frame {j}");
+            let expected = rslam_perturb::dynamic_severity(7, "fog", j as u32, three);
+            assert_eq!(c, char::from(b'0' + expected.floor()), "frame {j}");
         }
         assert_eq!(plan.severities[1].per_frame, "2".repeat(40));
+    }
+
+    /// A real severity's column holds numbers: the static one's at every frame, a dynamic
+    /// one's draws over [0, s], not only whole ones.
+    #[test]
+    fn real_severities_are_written_as_numbers() {
+        let plan = FramePlan::rendered(30, 20.0, &spec("fog:2.5@dynamic,depth_missing:1.5"), 7);
+        let fog = plan.severities[0].values().unwrap();
+        assert_eq!(fog.len(), 30);
+        assert!(fog.iter().all(|s| (0.0..=2.5).contains(s)));
+        assert!(fog.iter().any(|s| s.fract() != 0.0));
+        assert_eq!(plan.severities[1].per_frame, vec!["1.5"; 30].join(" "));
     }
 
     #[test]

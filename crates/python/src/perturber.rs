@@ -243,13 +243,15 @@ impl Perturber {
 
     /// The severity each corruption gives frame ``frame_index`` (0 = left clean), as the
     /// manifest of ``rslam perturb`` records it; differs from the spec's only under @dynamic.
+    /// Whole severities are ints, real ones (``fog:2.5``) floats.
     fn severities<'py>(&self, py: Python<'py>, frame_index: u32) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
         for item in self.spec.frame_items() {
-            dict.set_item(
-                &item.name,
-                severity_on(&item.name, &item.level, self.seed, frame_index),
-            )?;
+            let severity = severity_on(&item.name, &item.level, self.seed, frame_index);
+            match severity.as_whole() {
+                Some(whole) => dict.set_item(&item.name, whole)?,
+                None => dict.set_item(&item.name, severity.value())?,
+            }
         }
         Ok(dict)
     }

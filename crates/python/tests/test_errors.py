@@ -66,10 +66,15 @@ def test_perturber_unknown_item_lists_the_valid_names():
     assert "depth_missing" in message and "misalign" in message
 
 
-@pytest.mark.parametrize("spec", ["fog:0", "fog:6"])
-def test_perturber_severity_outside_1_to_5(spec):
-    with pytest.raises(ValueError, match=f"spec item '{spec}': severity"):
+@pytest.mark.parametrize("spec", ["fog:6", "fog:5.5", "fog:2.125", "fog:-1"])
+def test_perturber_severity_outside_0_to_5(spec):
+    with pytest.raises(ValueError, match=f"spec item '{spec}': .*0-5"):
         rslam.Perturber(spec)
+
+
+def test_perturber_refuses_a_real_severity_where_the_item_takes_whole_ones():
+    with pytest.raises(ValueError, match="saturate takes whole severities 0-5 only"):
+        rslam.Perturber("saturate:2.5")
 
 
 def test_perturber_refuses_sequence_items():

@@ -147,6 +147,20 @@ def test_dynamic_severities_follow_the_frame():
         assert np.array_equal(rgb, clean) == (s == 0), f"frame {i} severity {s}"
 
 
+def test_real_severities_interpolate_the_parameters():
+    grey = np.full((HEIGHT, WIDTH, 3), 128, np.uint8)
+    p = rslam.Perturber("gaussian_noise:2.5", seed=2)
+    assert p.severities(0) == {"gaussian_noise": 2.5}
+    rgb, _ = p.apply(grey)
+    sigma = (rgb.astype(np.float64) / 255.0).std()
+    # Between the table's σ at 2 (0.12) and 3 (0.18): the interpolated 0.15.
+    assert abs(sigma - 0.15) < 0.006, sigma
+    clean, _ = rslam.Perturber("fog:0,gaussian_noise:0").apply(grey)
+    assert np.array_equal(clean, grey)
+    drawn = [rslam.Perturber("fog:2.5@dynamic", seed=4).severities(i)["fog"] for i in range(60)]
+    assert all(0 <= s <= 2.5 for s in drawn) and any(s != int(s) for s in drawn)
+
+
 def test_repr_and_properties():
     p = rslam.Perturber("depth_missing:2,fog:1", seed=3, camera="tum")
     assert repr(p) == "Perturber('fog:1,depth_missing:2', seed=3)"

@@ -69,7 +69,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for i in 0..FRAMES {
         let severity = [1, 2, 3, 4, 5, 4, 3, 2][i % 8];
         session.editor.items[0].setting = ItemSetting::Severity {
-            severity,
+            severity: rslam_perturb::Severity::whole(severity).expect("a severity 1..=5"),
             dynamic: false,
         };
         session.apply_editor();

@@ -5,13 +5,14 @@
 use rslam_core::Distortion;
 use rslam_perturb::light::LightSpec;
 use rslam_perturb::sensor::{distortion, Exposure, RollingShutter};
-use rslam_perturb::{find, Level, PerturbSpec, CATALOGUE};
+use rslam_perturb::{find, Between, Level, PerturbSpec, Severity, CATALOGUE};
 
 /// How one catalogue item is set.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ItemSetting {
-    /// Severity 1..=5; `dynamic`: each frame draws its severity from {0, …, severity}.
-    Severity { severity: u8, dynamic: bool },
+    /// Severity 0..=5, real where the item interpolates; `dynamic`: each frame draws its
+    /// severity from [0, severity].
+    Severity { severity: Severity, dynamic: bool },
     /// The text of an explicit parameter form, e.g. `0.42-10` for `depth_range`.
     Explicit(String),
 }
@@ -27,10 +28,15 @@ impl EditorItem {
         Self {
             name,
             setting: ItemSetting::Severity {
-                severity: 3,
+                severity: Severity::whole(3).expect("3 is a severity"),
                 dynamic: false,
             },
         }
+    }
+
+    /// Whether the item takes real severities (its parameters interpolate between rows).
+    pub fn takes_real_severities(&self) -> bool {
+        find(self.name).is_some_and(|e| matches!(e.between, Between::Interpolated(_)))
     }
 
     /// The explicit form's syntax, where the catalogue gives one.
@@ -50,7 +56,18 @@ impl EditorItem {
     /// What the catalogue says the current severity means (e.g. "[0.5, 3.8] m").
     pub fn parameters(&self) -> String {
         match (&self.setting, find(self.name)) {
-            (ItemSetting::Severity { severity, .. }, Some(entry)) => (entry.parameters)(*severity),
+            (ItemSetting::Severity { severity, .. }, Some(entry)) => {
+                match (severity.as_whole(), severity.floor(), severity.ceil()) {
+                    (Some(0), ..) => "clean".to_string(),
+                    (Some(s), ..) => (entry.parameters)(s),
+                    (None, 0, high) => format!("between clean and {}", (entry.parameters)(high)),
+                    (None, low, high) => format!(
+                        "between {} and {}",
+                        (entry.parameters)(low),
+                        (entry.parameters)(high)
+                    ),
+                }
+            }
             _ => String::new(),
         }
     }

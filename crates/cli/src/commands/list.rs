@@ -4,7 +4,8 @@ use rslam_perturb::{listing, ListEntry};
 
 #[derive(clap::Args)]
 pub struct ListArgs {
-    /// Print the list as JSON (name, group, syntax, description, needs, parameters per severity).
+    /// Print the list as JSON (name, group, syntax, description, needs, parameters per severity,
+    /// how real severities are made).
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the list as the book's catalogue page (docs/src/reference/catalogue.md).
@@ -26,7 +27,7 @@ pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
 
 /// Each group's heading: its name, and where its items apply.
 const HEADINGS: [(&str, &str, &str); 8] = [
-    ("image", "Image corruptions", "severity 1-5 or low/mid/high; @dynamic: per-frame severity uniform in 0..s"),
+    ("image", "Image corruptions", "severity 0-5 (0: the clean frame; real ones such as 2.5 where the item interpolates) or low/mid/high; @dynamic: per-frame severity uniform in 0..s"),
     ("depth", "Depth corruptions", "0 = invalid depth, stays invalid"),
     ("trajectory", "Trajectory deviations", "frames re-rendered along the deviated poses"),
     ("stream", "Stream operations", ""),
@@ -55,6 +56,9 @@ fn text(entries: &[ListEntry]) -> String {
                     "",
                     e.parameters.join(" | ")
                 ));
+            }
+            if !e.between.is_empty() {
+                out.push_str(&format!("  {:<20} 2.5:    {}\n", "", e.between));
             }
         }
         out.push('\n');
@@ -88,6 +92,9 @@ fn markdown(entries: &[ListEntry]) -> String {
                 for (s, p) in e.parameters.iter().enumerate() {
                     out.push_str(&format!("| {} | {} |\n", s + 1, p.replace('|', "\\|")));
                 }
+            }
+            if !e.between.is_empty() {
+                out.push_str(&format!("\nBetween whole severities: {}.\n", e.between));
             }
             out.push('\n');
         }

@@ -53,10 +53,46 @@ pub struct Manifest {
     pub content_digest: String,
 }
 
+/// The severity one frame corruption gave each output frame: one digit per frame when all are
+/// whole (`"0352"`), the numbers separated by spaces when any is real (`"0 2.5 1.25"`).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct ItemSeverities {
     pub item: String,
     pub per_frame: String,
+}
+
+impl ItemSeverities {
+    /// `per_frame` in its short form when every severity is whole.
+    pub fn new(item: String, severities: &[f64]) -> Self {
+        let whole = severities
+            .iter()
+            .all(|s| s.fract() == 0.0 && (0.0..=9.0).contains(s));
+        let per_frame = if whole {
+            severities
+                .iter()
+                .map(|&s| char::from(b'0' + s as u8))
+                .collect()
+        } else {
+            let texts: Vec<String> = severities.iter().map(|s| s.to_string()).collect();
+            texts.join(" ")
+        };
+        Self { item, per_frame }
+    }
+
+    /// The severities `per_frame` holds, in either form; `None` where it is neither.
+    pub fn values(&self) -> Option<Vec<f64>> {
+        if self.per_frame.contains(' ') || self.per_frame.contains('.') {
+            self.per_frame
+                .split(' ')
+                .map(|s| s.parse::<f64>().ok())
+                .collect()
+        } else {
+            self.per_frame
+                .bytes()
+                .map(|b| b.is_ascii_digit().then(|| (b - b'0') as f64))
+                .collect()
+        }
+    }
 }
 
 impl Manifest {
@@ -146,6 +182,18 @@ fn write_compact_pretty(value: &serde_json::Value, indent: usize, out: &mut Stri
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn item_severities_keep_digits_for_whole_ones_and_read_back_both_forms() {
+        let whole = ItemSeverities::new("fog:3@dynamic".into(), &[0.0, 3.0, 2.0]);
+        assert_eq!(whole.per_frame, "032");
+        assert_eq!(whole.values(), Some(vec![0.0, 3.0, 2.0]));
+        let real = ItemSeverities::new("fog:2.5@dynamic".into(), &[0.0, 2.5, 1.25]);
+        assert_eq!(real.per_frame, "0 2.5 1.25");
+        assert_eq!(real.values(), Some(vec![0.0, 2.5, 1.25]));
+        let single = ItemSeverities::new("fog:2.5".into(), &[2.5]);
+        assert_eq!(single.values(), Some(vec![2.5]));
+    }
 
     #[test]
     fn depth_png_is_part_of_the_job_and_older_manifests_read_as_fast() {

@@ -13,7 +13,7 @@ use rslam_core::DepthImage;
 use rslam_gpu::FrameTextures;
 
 use crate::image::color_pass::KeyedParams;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
 use crate::{rng, PerturbError};
 
@@ -39,6 +39,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     description: "voids depth edges (Canny on 8-bit 255z/max z: L1 Sobel, thresholds 50/100) plus a 7x7 square around a `rate` fraction of them",
     parameters: |s| format!("rate={}", RATE[s as usize - 1]),
     build: |kit| Ok(Box::new(EdgeErosion::new(kit)?)),
+    between: Between::Interpolated("erosion rate linear from 0"),
     explicit: None,
     twin: Twin::Depth(twin),
     // Integer Canny on the 8-bit depth: the same pixels voided, the others untouched.
@@ -100,7 +101,7 @@ impl GpuPerturbation for EdgeErosion {
             &self.params,
             &KeyedParams {
                 key: key.rng(NAME, PURPOSE_CHOICE).0,
-                values: [RATE[key.level()], LOW, HIGH, 0.0],
+                values: [key.interpolate(0.0, &RATE) as f32, LOW, HIGH, 0.0],
             },
         );
         encoder.clear_buffer(&self.max_bits, 0, None);
@@ -307,7 +308,7 @@ fn hysteresis_pass(state: &[u8], w: usize, h: usize) -> Vec<u8> {
 /// Edge pixels chosen for a 7×7 square on this frame.
 pub fn chosen(edges: &[u8], width: u32, key: &FrameKey) -> Vec<bool> {
     let rng = key.rng(NAME, PURPOSE_CHOICE);
-    let rate = RATE[key.level()];
+    let rate = key.interpolate(0.0, &RATE) as f32;
     edges
         .iter()
         .enumerate()

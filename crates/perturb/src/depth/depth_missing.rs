@@ -6,7 +6,9 @@ use bytemuck::{Pod, Zeroable};
 use rslam_core::DepthImage;
 use rslam_gpu::FrameTextures;
 
-use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit, WORKGROUP};
+use crate::perturbation::{
+    Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit, WORKGROUP,
+};
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
 use crate::PerturbError;
@@ -30,6 +32,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
             params: kit.uniform_buffer::<Params>(SHADER),
         }))
     },
+    between: Between::Interpolated("rectangle count linear from 0, rounded"),
     explicit: None,
     twin: Twin::Depth(twin),
     // The rectangles are drawn on the CPU; the shader only voids them.
@@ -40,6 +43,11 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         shader: SHADER,
     }],
 };
+
+/// Rectangles at the frame's severity: linear in the count from 0, rounded to a whole one.
+fn count(key: &FrameKey) -> u32 {
+    key.interpolate(0.0, &COUNT).round() as u32
+}
 
 /// A half-open pixel rectangle [x0, x1) × [y0, y1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,7 +62,7 @@ pub struct Rect {
 pub fn rectangles(width: u32, height: u32, key: &FrameKey) -> Vec<Rect> {
     let (w, h) = (width / 10, height / 10);
     let rng = key.rng(NAME, PURPOSE_RECTANGLES);
-    (0..COUNT[key.level()])
+    (0..count(key))
         .map(|i| {
             let x0 = (rng.uniform_f64([i, 0, 0, 0]) * (width - w + 1) as f64) as u32;
             let y0 = (rng.uniform_f64([i, 1, 0, 0]) * (height - h + 1) as f64) as u32;

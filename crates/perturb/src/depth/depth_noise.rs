@@ -6,7 +6,7 @@ use rslam_gpu::FrameTextures;
 
 use super::depth_pass::DepthPass;
 use crate::image::color_pass::KeyedParams;
-use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::reduce::Reduction;
 use crate::twin::{Tolerance, Twin};
 use crate::{rng, PerturbError};
@@ -26,6 +26,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         "Gaussian depth noise, σ = c x std of the frame's valid depth; invalid stays invalid",
     parameters: |s| format!("c={}", FACTOR[s as usize - 1]),
     build: |kit| Ok(Box::new(DepthNoise::new(kit)?)),
+    between: Between::Interpolated("c linear from 0"),
     explicit: None,
     twin: Twin::Depth(twin),
     // The GPU's f32 Kahan sums of the depth std vs the twin's f64 ones, and GPU log/cos vs
@@ -62,7 +63,7 @@ impl GpuPerturbation for DepthNoise {
         self.stats.encode(kit, encoder, frame.depth_view());
         let params = KeyedParams {
             key: key.rng(NAME, PURPOSE_NOISE).0,
-            values: [FACTOR[key.level()], 0.0, 0.0, 0.0],
+            values: [key.interpolate(0.0, &FACTOR) as f32, 0.0, 0.0, 0.0],
         };
         let sums = self.stats.sums().as_entire_binding();
         self.pass.encode(kit, encoder, frame, &params, &[sums]);
@@ -106,7 +107,7 @@ pub fn add_noise(depth: &DepthImage, key: &rng::RngKey, sigma: impl Fn(f32) -> f
 
 /// CPU twin of `depth_noise_stats.wgsl` + `depth_noise.wgsl`.
 pub fn twin(depth: &DepthImage, key: &FrameKey) -> DepthImage {
-    let sigma = FACTOR[key.level()] * valid_depth_std(depth);
+    let sigma = key.interpolate(0.0, &FACTOR) as f32 * valid_depth_std(depth);
     add_noise(depth, &key.rng(NAME, PURPOSE_NOISE), |_| sigma)
 }
 

@@ -9,7 +9,7 @@ use rslam_core::DepthImage;
 use super::depth_noise::add_noise;
 use super::depth_pass::DepthPointwise;
 use crate::image::color_pass::KeyedParams;
-use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, Group};
 use crate::twin::{Tolerance, Twin};
 
 const NAME: &str = "depth_noise_kinect";
@@ -27,9 +27,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     build: |kit| {
         DepthPointwise::boxed(kit, SHADER, |_, key| KeyedParams {
             key: key.rng(NAME, PURPOSE_NOISE).0,
-            values: [MULTIPLIER[key.level()], 0.0, 0.0, 0.0],
+            values: [key.interpolate(0.0, &MULTIPLIER) as f32, 0.0, 0.0, 0.0],
         })
     },
+    between: Between::Interpolated("k linear from 0"),
     explicit: None,
     twin: Twin::Depth(twin),
     // GPU log/cos vs Rust's in the Box-Muller draw, scaled by σ(z) of a few millimetres.
@@ -47,7 +48,7 @@ pub fn kinect_sigma(z: f32) -> f32 {
 
 /// CPU twin of `depth_noise_kinect.wgsl`.
 pub fn twin(depth: &DepthImage, key: &FrameKey) -> DepthImage {
-    let k = MULTIPLIER[key.level()];
+    let k = key.interpolate(0.0, &MULTIPLIER) as f32;
     add_noise(depth, &key.rng(NAME, PURPOSE_NOISE), |z| {
         k * kinect_sigma(z)
     })

@@ -5,7 +5,7 @@ use rslam_core::DepthImage;
 
 use super::depth_pass::DepthPointwise;
 use crate::image::color_pass::KeyedParams;
-use crate::perturbation::{CatalogueEntry, ExplicitForm, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, ExplicitForm, FrameKey, Group};
 use crate::twin::{Tolerance, Twin};
 
 const SHADER: &str = "perturb/depth/depth_range.wgsl";
@@ -23,6 +23,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         format!("[{min}, {max}] m")
     },
     build: |kit| DepthPointwise::boxed(kit, SHADER, |_, key| params(key)),
+    between: Between::Interpolated("MIN linear from 0, MAX linear in 1/MAX from no limit"),
     explicit: Some(ExplicitForm {
         syntax: "MIN-MAX in metres, e.g. depth_range:0.42-10",
         example: "0.42-10",
@@ -47,11 +48,16 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>, String> {
     Ok(vec![min, max])
 }
 
-/// The range this frame uses: the explicit one, or the severity's.
+/// The range this frame uses: the explicit one, or the severity's (the minimum linear from 0,
+/// the maximum linear in 1/max from no limit at severity 0).
 pub fn range(key: &FrameKey) -> (f32, f32) {
     match key.explicit {
         Some([min, max, ..]) => (*min as f32, *max as f32),
-        _ => RANGE[key.level()],
+        _ => {
+            let min = key.interpolate(0.0, &RANGE.map(|(min, _)| min));
+            let max = key.interpolate_in(0.0, &RANGE.map(|(_, max)| max), |m| 1.0 / m, |r| 1.0 / r);
+            (min as f32, max as f32)
+        }
     }
 }
 

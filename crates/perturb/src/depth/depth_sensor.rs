@@ -55,9 +55,10 @@ use rslam_core::{DepthImage, Intrinsics};
 use rslam_gpu::FrameTextures;
 
 use crate::perturbation::{
-    view, CatalogueEntry, ExplicitForm, FrameKey, GpuPerturbation, Group, Kit,
+    view, Between, CatalogueEntry, ExplicitForm, FrameKey, GpuPerturbation, Group, Kit,
 };
 use crate::rng::{self, RngKey};
+use crate::severity::Severity;
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
 use crate::PerturbError;
@@ -203,10 +204,11 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     group: Group::Depth,
     description: "Kinect v1 / RealSense D435 from the geometry: disparity noise and quantisation (Kinect: + angle term), lateral noise at edges (Kinect), projector shadow, range; severity k = Kinect with k·σ_d",
     parameters: |s| {
-        let m = model_at(s as usize - 1);
+        let m = model_at(Severity::whole(s).expect("a severity 1..=5"));
         format!("kinect σ_d={:.2} px", m.sigma_disparity_px)
     },
     build: |kit| Ok(Box::new(DepthSensor::new(kit)?)),
+    between: Between::Interpolated("the disparity noise multiplier linear from 0"),
     explicit: Some(ExplicitForm {
         syntax: "a sensor model, kinect or realsense, e.g. depth_sensor:kinect",
         example: "realsense",
@@ -233,10 +235,12 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     }],
 };
 
-/// The Kinect at severity index `level` (σ_d × `MULTIPLIER[level]`).
-fn model_at(level: usize) -> SensorModel {
+/// The Kinect at the frame's severity: σ_d × the multiplier, linear between the table's rows
+/// from 0 (the sensor's quantisation and shadows without disparity noise).
+fn model_at(severity: Severity) -> SensorModel {
     SensorModel {
-        sigma_disparity_px: KINECT_V1.sigma_disparity_px * MULTIPLIER[level.min(4)],
+        sigma_disparity_px: KINECT_V1.sigma_disparity_px
+            * severity.interpolate(0.0, &MULTIPLIER.map(f64::from)) as f32,
         ..KINECT_V1
     }
 }
@@ -256,7 +260,7 @@ pub fn parse_model(text: &str) -> Result<Vec<f64>, String> {
 pub fn model(key: &FrameKey) -> SensorModel {
     match key.explicit {
         Some([index, ..]) => MODELS[(*index as usize).min(MODELS.len() - 1)],
-        _ => model_at(key.level()),
+        _ => model_at(key.severity),
     }
 }
 
@@ -590,13 +594,13 @@ mod tests {
         };
         let z = 2.0;
         let (_, std, _) = stats(&twin(&wall(z), &key));
-        let sigma = model_at(3).sigma_z(z) as f64;
+        let sigma = model_at(Severity::whole(4).unwrap()).sigma_z(z) as f64;
         assert!(
             (std / sigma - 1.0).abs() < SIGMA_TOLERANCE,
             "{std} vs {sigma}"
         );
         assert_eq!(
-            model_at(3).sigma_disparity_px,
+            model_at(Severity::whole(4).unwrap()).sigma_disparity_px,
             4.0 * KINECT_V1.sigma_disparity_px
         );
     }

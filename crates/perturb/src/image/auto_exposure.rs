@@ -14,7 +14,7 @@ use rslam_gpu::FrameTextures;
 
 use super::color_pass::ColorPass;
 use crate::image_f32::{linear_to_srgb, srgb_to_linear, RgbF32};
-use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::reduce::Reduction;
 use crate::twin::{Tolerance, Twin, TwinState};
 use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
@@ -71,6 +71,26 @@ pub const LEVELS: [Level; 5] = [
     },
 ];
 
+/// The camera at the frame's severity: the time constant and read noise linear between the
+/// table's rows and the full well linear in 1/full-well (the shot noise's variance), from an
+/// instant, noiseless controller and pixel at severity 0.
+fn level_at(key: &FrameKey) -> Level {
+    match key.severity.as_whole() {
+        Some(_) => LEVELS[key.level()],
+        None => Level {
+            time_constant_frames: key.interpolate(0.0, &LEVELS.map(|l| l.time_constant_frames))
+                as f32,
+            full_well: key.interpolate_in(
+                0.0,
+                &LEVELS.map(|l| l.full_well),
+                |w| 1.0 / w,
+                |r| 1.0 / r,
+            ) as f32,
+            read_noise: key.interpolate(0.0, &LEVELS.map(|l| l.read_noise)) as f32,
+        },
+    }
+}
+
 /// The exposure at which a rendered linear value of 1 fills the full well, and the first frame's.
 pub const NOMINAL_EXPOSURE_MS: f32 = 10.0;
 /// The exposure is set in whole row times (assumed 20 µs, the order of a VGA global-shutter
@@ -99,6 +119,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         )
     },
     build: |kit| Ok(Box::new(AutoExposure::new(kit)?)),
+    between: Between::Interpolated("time constant and read noise linear from 0, full well linear in 1/full well from ∞"),
     explicit: None,
     twin: Twin::ColorSequence {
         initial: ExposureState::INITIAL.as_twin_state(),
@@ -187,7 +208,7 @@ impl SensorParams {
     };
 
     fn for_frame(key: &FrameKey) -> Self {
-        let level = LEVELS[key.level()];
+        let level = level_at(key);
         Self {
             shot_key: key.rng(NAME, PURPOSE_SHOT).0,
             read_key: key.rng(NAME, PURPOSE_READ).0,
@@ -219,7 +240,7 @@ impl ControlParams {
     };
 
     fn for_frame(key: &FrameKey) -> Self {
-        let tau = LEVELS[key.level()].time_constant_frames;
+        let tau = level_at(key).time_constant_frames;
         Self {
             law: [
                 TARGET_MEAN,
@@ -319,7 +340,7 @@ pub fn sensor_dn(
     linear: f32,
     read_normal: f32,
 ) -> f32 {
-    let level = LEVELS[key.level()];
+    let level = level_at(key);
     let full_well = level.full_well;
     let electrons_mean =
         (linear * (full_well * state.exposure_ms / NOMINAL_EXPOSURE_MS)).min(2.0 * full_well);

@@ -3,7 +3,7 @@
 use super::color_pass::{KeyedParams, PointwisePass};
 use super::hsv::{hsv_to_rgb, rgb_to_hsv};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, Group};
 use crate::twin::{Tolerance, Twin};
 
 const NAME: &str = "brightness";
@@ -20,9 +20,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     build: |kit| {
         PointwisePass::boxed(kit, SHADER, |key| KeyedParams {
             key: [0; 4],
-            values: [DELTA_V[key.level()], 0.0, 0.0, 0.0],
+            values: [key.interpolate(0.0, &DELTA_V) as f32, 0.0, 0.0, 0.0],
         })
     },
+    between: Between::Interpolated("ΔV linear from 0"),
     explicit: None,
     twin: Twin::Color(twin),
     // The HSV round trip in f32: divisions that differ in the last bit.
@@ -32,7 +33,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 
 /// CPU twin of `brightness.wgsl`.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
-    let delta = DELTA_V[key.level()];
+    let delta = key.interpolate(0.0, &DELTA_V) as f32;
     image.map(|p| {
         let [h, s, v] = rgb_to_hsv(p);
         hsv_to_rgb([h, s, (v + delta).clamp(0.0, 1.0)])

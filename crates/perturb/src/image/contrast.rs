@@ -5,7 +5,7 @@ use rslam_gpu::FrameTextures;
 
 use super::color_pass::{ColorPass, KeyedParams};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::reduce::Reduction;
 use crate::twin::{Tolerance, Twin};
 use crate::PerturbError;
@@ -22,6 +22,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     description: "lowers contrast: scales each channel about its frame mean by c",
     parameters: |s| format!("c={}", FACTOR[s as usize - 1]),
     build: |kit| Ok(Box::new(Contrast::new(kit)?)),
+    between: Between::Interpolated("c linear from 1"),
     explicit: None,
     twin: Twin::Color(twin),
     // The GPU's f32 Kahan sums of the means vs the twin's f64 ones.
@@ -54,7 +55,7 @@ impl GpuPerturbation for Contrast {
         self.means.encode(kit, encoder, frame.color_view());
         let params = KeyedParams {
             key: [0; 4],
-            values: [FACTOR[key.level()], 0.0, 0.0, 0.0],
+            values: [key.interpolate(1.0, &FACTOR) as f32, 0.0, 0.0, 0.0],
         };
         let sums = self.means.sums().as_entire_binding();
         self.pass.encode(kit, encoder, frame, &params, &[sums]);
@@ -75,7 +76,7 @@ pub fn channel_means(image: &RgbF32) -> [f32; 3] {
 
 /// CPU twin of `contrast_mean.wgsl` + `contrast.wgsl`.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
-    let factor = FACTOR[key.level()];
+    let factor = key.interpolate(1.0, &FACTOR) as f32;
     let mean = channel_means(image);
     image.map(|p| std::array::from_fn(|c| (p[c] - mean[c]) * factor + mean[c]))
 }

@@ -13,7 +13,8 @@ use rslam_gpu::FrameTextures;
 use super::kernels::{store_truncated, Edge};
 use super::textures::storage_texture;
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::severity::Severity;
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
 use crate::PerturbError;
@@ -44,6 +45,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         format!("disk radius={radius}px anti-alias σ={alias}")
     },
     build: |kit| Ok(Box::new(DefocusBlur::new(kit)?)),
+    between: Between::Interpolated("radius (rounded) and alias σ linear from 0"),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 running sums: the same order on both sides, but fused multiply-adds on the GPU.
@@ -267,9 +269,13 @@ struct Params {
     boxes: BoxParams,
 }
 
-/// Uniforms for `severity` on an image `height` rows high.
-fn params(severity: u8, height: u32) -> Result<Params, PerturbError> {
-    let (radius, alias) = RADIUS_ALIAS[severity as usize - 1];
+/// Uniforms for `severity` on an image `height` rows high: radius and alias σ linear between
+/// the table's rows from (0, 0) at severity 0, the disk's radius rounded to whole pixels.
+fn params(severity: Severity, height: u32) -> Result<Params, PerturbError> {
+    let radius = severity
+        .interpolate(0.0, &RADIUS_ALIAS.map(|(r, _)| r as f64))
+        .round() as u32;
+    let alias = severity.interpolate(0.0, &RADIUS_ALIAS.map(|(_, a)| a));
     let split = split_kernel(radius, alias);
     let plain_row = height as i32;
     let boxes: Vec<(RowBox, i32)> = (split.disk.iter().map(|&b| (b, 0)))

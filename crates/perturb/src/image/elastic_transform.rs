@@ -9,7 +9,7 @@ use super::color_pass::ColorPass;
 use super::kernels::{gaussian_half_kernel, symmetric_filter, Axis, Edge, Kernel1dUniform};
 use super::separable::{gaussian_runs, Channels, SeparableFilter};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::{uniform, RngKey};
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
@@ -42,6 +42,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         )
     },
     build: |kit| Ok(Box::new(ElasticTransform::new(kit)?)),
+    between: Between::Interpolated("α linear from 0"),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 smoothing sums in another order move the sample point by ulps; bilinear weights.
@@ -146,7 +147,7 @@ impl GpuPerturbation for ElasticTransform {
         self.smooth
             .encode(kit, encoder, &fields, &intermediate, &fields);
         let warp = Warp {
-            alpha: ALPHA[key.level()],
+            alpha: key.interpolate(0.0, &ALPHA) as f32,
             _pad: [0.0; 3],
         };
         let extra = [wgpu::BindingResource::TextureView(&fields)];
@@ -164,7 +165,7 @@ pub fn displacement(width: u32, height: u32, key: &FrameKey) -> Vec<[f32; 2]> {
         .map(|(x, y)| field_noise(&rng, x, y, amplitude))
         .collect();
     let (row_half, column_half) = kernels(width, height);
-    let alpha = ALPHA[key.level()];
+    let alpha = key.interpolate(0.0, &ALPHA) as f32;
     let split = |c: usize| noise.iter().map(|n| n[c]).collect::<Vec<f32>>();
     let smooth = |plane: Vec<f32>| {
         let rows = symmetric_filter(&plane, width, height, &row_half, Axis::Rows, Edge::Reflect);

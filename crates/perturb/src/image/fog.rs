@@ -10,7 +10,7 @@ use super::color_pass::ColorPass;
 use super::kernels::store_truncated;
 use super::textures::storage_texture;
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::{uniform, RngKey};
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
@@ -36,6 +36,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         format!("amplitude={amplitude} wibble decay={decay}")
     },
     build: |kit| Ok(Box::new(Fog::new(kit)?)),
+    between: Between::Interpolated("amplitude linear from 0, decay linear from the first row's"),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 plasma means and the rescaling, with fused multiply-adds on the GPU.
@@ -58,6 +59,14 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         },
     ],
 };
+
+/// (amplitude, decay) at the frame's severity: both linear between the table's rows, from
+/// amplitude 0 (no fog) and the first row's decay at severity 0.
+fn amplitude_decay(key: &FrameKey) -> (f32, f64) {
+    let amplitude = key.interpolate(0.0, &AMPLITUDE_DECAY.map(|(a, _)| a));
+    let decay = key.interpolate(AMPLITUDE_DECAY[0].1, &AMPLITUDE_DECAY.map(|(_, d)| d));
+    (amplitude as f32, decay)
+}
 
 /// The plasma map's side for a frame: the next power of two of the larger side.
 pub fn map_size(width: u32, height: u32) -> u32 {
@@ -155,7 +164,7 @@ impl GpuPerturbation for Fog {
         frame: &FrameTextures,
         key: &FrameKey,
     ) -> Result<(), PerturbError> {
-        let (amplitude, decay) = AMPLITUDE_DECAY[key.level()];
+        let (amplitude, decay) = amplitude_decay(key);
         let rng = key.rng(NAME, 0);
         for (passes, (step, wibble)) in self.levels.iter().zip(levels(self.size, decay)) {
             let level = Level {
@@ -265,7 +274,7 @@ pub fn plasma(size: u32, decay: f64, rng: &RngKey) -> Vec<f32> {
 
 /// CPU twin of fog.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
-    let (amplitude, decay) = AMPLITUDE_DECAY[key.level()];
+    let (amplitude, decay) = amplitude_decay(key);
     let size = map_size(image.width, image.height);
     let map = plasma(size, decay, &key.rng(NAME, 0));
     let high = map.iter().copied().fold(f32::MIN, f32::max);

@@ -11,7 +11,7 @@ use rslam_gpu::FrameTextures;
 use super::color_pass::ColorPass;
 use super::textures::storage_texture;
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::{uniform, RngKey};
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
@@ -36,6 +36,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         format!("{a}·image + {b}·frost")
     },
     build: |kit| Ok(Box::new(Frost::new(kit)?)),
+    between: Between::Interpolated("both weights linear from (1, 0)"),
     explicit: None,
     twin: Twin::Color(twin),
     // The texture's f32 trigonometry (crystal arms) and the blend, each rounded to 8 bits.
@@ -57,6 +58,13 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         },
     ],
 };
+
+/// (image, frost) weights at the frame's severity, linear between the table's rows from (1, 0).
+fn weights(key: &FrameKey) -> (f32, f32) {
+    let image = key.interpolate(1.0, &WEIGHTS.map(|(a, _)| a));
+    let frost = key.interpolate(0.0, &WEIGHTS.map(|(_, b)| b));
+    (image as f32, frost as f32)
+}
 
 /// The texture's size for a frame: a quarter larger each way, room for the per-frame crop.
 fn texture_size(width: u32, height: u32) -> (u32, u32) {
@@ -143,7 +151,7 @@ impl GpuPerturbation for Frost {
             kit.dispatch_grid(encoder, &self.generate, &bind_group, "frost texture", w, h);
             self.generated_for = Some(key.seed);
         }
-        let (a, b) = WEIGHTS[key.level()];
+        let (a, b) = weights(key);
         let (ox, oy) = crop_offset(key.seed, key.frame, kit.width, kit.height);
         let params = FrostParams {
             offset: [ox as i32, oy as i32],
@@ -264,7 +272,7 @@ pub fn frost_texture(seed: u64, width: u32, height: u32) -> RgbF32 {
 
 /// CPU twin of frost.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
-    let (a, b) = WEIGHTS[key.level()];
+    let (a, b) = weights(key);
     let ice = frost_texture(key.seed, image.width, image.height);
     let (ox, oy) = crop_offset(key.seed, key.frame, image.width, image.height);
     let mut out = image.clone();

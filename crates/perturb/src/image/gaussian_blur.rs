@@ -8,7 +8,7 @@ use super::kernels::{gaussian_half_kernel, store_truncated, symmetric_filter};
 use super::kernels::{Axis, Edge, Kernel1dUniform};
 use super::separable::{gaussian_runs, Channels, SeparableFilter};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
 use crate::PerturbError;
 
@@ -26,6 +26,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     description: "Gaussian blur (σ px, radius 4σ, edges replicated), separable",
     parameters: |s| format!("σ={}px", SIGMA[s as usize - 1]),
     build: |kit| Ok(Box::new(GaussianBlur::new(kit)?)),
+    between: Between::Interpolated("σ linear from 0"),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 weighted sums in another order (runs of 8 on the GPU).
@@ -92,7 +93,8 @@ impl GpuPerturbation for GaussianBlur {
         frame: &FrameTextures,
         key: &FrameKey,
     ) -> Result<(), PerturbError> {
-        self.passes.set_sigma(kit, NAME, SIGMA[key.level()])?;
+        self.passes
+            .set_sigma(kit, NAME, key.interpolate(0.0, &SIGMA))?;
         kit.copy_color_to_scratch(encoder, frame);
         let source = view(&kit.scratch.color);
         self.passes
@@ -119,7 +121,7 @@ pub fn blur_twin(image: &RgbF32, sigma: f64) -> RgbF32 {
 
 /// CPU twin of `gaussian_blur`.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
-    blur_twin(image, SIGMA[key.level()])
+    blur_twin(image, key.interpolate(0.0, &SIGMA))
 }
 
 #[cfg(test)]

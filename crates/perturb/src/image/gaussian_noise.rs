@@ -2,7 +2,7 @@
 
 use super::color_pass::{KeyedParams, PointwisePass};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, Group};
 use crate::twin::{Tolerance, Twin};
 
 const NAME: &str = "gaussian_noise";
@@ -20,9 +20,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     build: |kit| {
         PointwisePass::boxed(kit, SHADER, |key| KeyedParams {
             key: key.rng(NAME, PURPOSE_NOISE).0,
-            values: [SIGMA[key.level()], 0.0, 0.0, 0.0],
+            values: [key.interpolate(0.0, &SIGMA) as f32, 0.0, 0.0, 0.0],
         })
     },
+    between: Between::Interpolated("σ linear from 0"),
     explicit: None,
     twin: Twin::Color(twin),
     // GPU and Rust Box-Muller (log, cos) differ in the last bits.
@@ -33,7 +34,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 /// CPU twin of `gaussian_noise.wgsl`.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
     let rng = key.rng(NAME, PURPOSE_NOISE);
-    let sigma = SIGMA[key.level()];
+    let sigma = key.interpolate(0.0, &SIGMA) as f32;
     image.map_pixels(|x, y, p| {
         let n = rng.normal3([x, y, 0, 0]);
         std::array::from_fn(|c| p[c] + sigma * n[c])

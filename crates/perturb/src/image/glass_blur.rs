@@ -10,7 +10,7 @@ use super::gaussian_blur::{blur_twin, GaussianPasses};
 use super::kernels::Kernel1dUniform;
 use super::separable::Channels;
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::RngKey;
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
@@ -39,6 +39,9 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         format!("σ={sigma}px δ={delta}px iterations={iterations}")
     },
     build: |kit| Ok(Box::new(GlassBlur::new(kit)?)),
+    between: Between::WholeOnly(
+        "its iterations go 2, 1, 3, 2, 2: no parameter path between the rows",
+    ),
     explicit: None,
     twin: Twin::Color(twin),
     // The blurs' f32 weighted sums in another order; the sweeps move whole pixels.

@@ -3,7 +3,7 @@
 
 use super::color_pass::{KeyedParams, PointwisePass};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, Group};
 use crate::rng;
 use crate::twin::{Tolerance, Twin};
 
@@ -23,9 +23,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     build: |kit| {
         PointwisePass::boxed(kit, SHADER, |key| KeyedParams {
             key: key.rng(NAME, PURPOSE_NOISE).0,
-            values: [AMOUNT[key.level()], 0.0, 0.0, 0.0],
+            values: [key.interpolate(0.0, &AMOUNT) as f32, 0.0, 0.0, 0.0],
         })
     },
+    between: Between::Interpolated("amount linear from 0"),
     explicit: None,
     twin: Twin::Color(twin),
     // Each value is kept or replaced by 0 or 1, chosen from the same integer hash.
@@ -36,7 +37,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 /// CPU twin of `impulse_noise.wgsl`.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
     let rng = key.rng(NAME, PURPOSE_NOISE);
-    let amount = AMOUNT[key.level()];
+    let amount = key.interpolate(0.0, &AMOUNT) as f32;
     image.map_pixels(|x, y, p| {
         let words = rng.draw([x, y, 0, 0]);
         std::array::from_fn(|c| {

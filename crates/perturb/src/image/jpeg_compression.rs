@@ -9,7 +9,7 @@ use rslam_gpu::FrameTextures;
 
 use super::textures::storage_texture;
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
 use crate::PerturbError;
@@ -41,6 +41,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     description: "JPEG round trip (libjpeg-turbo arithmetic: 4:2:0, integer DCT, IJG tables)",
     parameters: |s| format!("quality={}", QUALITY[s as usize - 1]),
     build: |kit| Ok(Box::new(JpegCompression::new(kit)?)),
+    between: Between::Interpolated("quality linear from 100, rounded"),
     explicit: None,
     twin: Twin::Color(twin),
     // libjpeg-turbo's integer arithmetic on both sides.
@@ -66,8 +67,14 @@ struct Tables {
     quant: [[i32; 4]; 32],
 }
 
-fn tables(severity: u8) -> Tables {
-    let [luma, chroma] = quant_tables(QUALITY[severity as usize - 1]);
+/// The quality at the frame's severity: linear between the table's rows from 100 at severity 0,
+/// rounded to a whole quality as libjpeg takes it.
+fn quality(key: &FrameKey) -> u32 {
+    key.interpolate(100.0, &QUALITY).round() as u32
+}
+
+fn tables(key: &FrameKey) -> Tables {
+    let [luma, chroma] = quant_tables(quality(key));
     let mut quant = [[0; 4]; 32];
     for (i, v) in luma.iter().chain(chroma.iter()).enumerate() {
         quant[i / 4][i % 4] = *v;
@@ -108,7 +115,7 @@ impl GpuPerturbation for JpegCompression {
         frame: &FrameTextures,
         key: &FrameKey,
     ) -> Result<(), PerturbError> {
-        kit.write_uniform(&self.tables, &tables(key.severity));
+        kit.write_uniform(&self.tables, &tables(key));
         let (luma, chroma, color) = (view(&self.luma), view(&self.chroma), frame.color_view());
         let blocks = kit.bind_group(
             &self.blocks,
@@ -269,7 +276,7 @@ fn chroma_of([r, g, b]: [i32; 3]) -> [i32; 2] {
 
 /// CPU twin of both passes.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
-    let [luma_q, chroma_q] = quant_tables(QUALITY[key.level()]);
+    let [luma_q, chroma_q] = quant_tables(quality(key));
     let (w, h) = (image.width as i32, image.height as i32);
     let (w16, h16) = ((w + 15) / 16 * 16, (h + 15) / 16 * 16);
     let rgb = |x: i32, y: i32| -> [i32; 3] {

@@ -7,8 +7,9 @@ use super::color_pass::ColorPass;
 use super::kernels::{apply_line_taps, motion_line_taps, store_truncated};
 use super::kernels::{LineKernelUniform, LineTap};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::RngKey;
+use crate::severity::Severity;
 use crate::twin::{Tolerance, Twin};
 use crate::PerturbError;
 
@@ -30,6 +31,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         format!("radius={radius}px σ={sigma}px")
     },
     build: |kit| Ok(Box::new(MotionBlur::new(kit)?)),
+    between: Between::Interpolated("radius (rounded) and σ linear from 0"),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 weighted sums in another order.
@@ -42,9 +44,13 @@ pub(crate) fn frame_angle(key: RngKey, range: (f64, f64)) -> f64 {
     range.0 + (range.1 - range.0) * key.uniform_f64([0; 4])
 }
 
-/// The frame's line taps at `severity` for a `width`×`height` frame.
-fn frame_taps(seed: u64, frame: u32, severity: u8, width: u32, height: u32) -> Vec<LineTap> {
-    let (radius, sigma) = RADIUS_SIGMA[severity as usize - 1];
+/// The frame's line taps at `severity` for a `width`×`height` frame: radius and σ linear
+/// between the table's rows from (0, 0) at severity 0, the radius rounded to whole pixels.
+fn frame_taps(seed: u64, frame: u32, severity: Severity, width: u32, height: u32) -> Vec<LineTap> {
+    let radius = severity
+        .interpolate(0.0, &RADIUS_SIGMA.map(|(r, _)| r as f64))
+        .round() as u32;
+    let sigma = severity.interpolate(0.0, &RADIUS_SIGMA.map(|(_, s)| s));
     let angle = frame_angle(RngKey::new(seed, NAME, frame, 0), ANGLE_RANGE);
     motion_line_taps(radius, sigma, angle, width, height)
 }
@@ -110,7 +116,7 @@ mod tests {
             ..testing::key(9, 1)
         };
         let out = twin(&image, &key);
-        let taps = frame_taps(9, 4, 1, 64, 64);
+        let taps = frame_taps(9, 4, Severity::whole(1).unwrap(), 64, 64);
         for t in &taps {
             let at = out.at((32 - t.dx) as u32, (32 - t.dy) as u32)[0];
             assert!(at >= t.weight - 1.0 / 255.0, "tap {t:?}: {at}");

@@ -7,7 +7,8 @@ use bytemuck::{Pod, Zeroable};
 use rslam_core::RgbImage;
 use rslam_gpu::FrameTextures;
 
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::severity::Severity;
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
 use crate::PerturbError;
@@ -23,6 +24,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     description: "box-average down by the scale, nearest-neighbour back up (PIL BOX + NEAREST)",
     parameters: |s| format!("scale={}", SCALE[s as usize - 1]),
     build: |kit| Ok(Box::new(Pixelate::new(kit)?)),
+    between: Between::Interpolated("scale linear from 1"),
     explicit: None,
     twin: Twin::Color8(twin),
     // PIL's fixed-point integer arithmetic on both sides.
@@ -33,6 +35,11 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         shader: SHADER,
     }],
 };
+
+/// The scale at the frame's severity: linear between the table's rows, from 1 at severity 0.
+fn scale(key: &FrameKey) -> f64 {
+    key.interpolate(1.0, &SCALE)
+}
 
 /// PIL's fixed-point precision for 8-bit resampling.
 const PRECISION_BITS: u32 = 22;
@@ -129,6 +136,8 @@ struct Pixelate {
     tables: wgpu::Buffer,
     intermediate: wgpu::Texture,
     plans: Vec<Plan>,
+    /// The plan of the last real severity, kept while frames keep it.
+    between: Option<(Severity, Plan)>,
 }
 
 impl Pixelate {
@@ -147,8 +156,9 @@ impl Pixelate {
             .iter()
             .map(|&s| Plan::new(kit.width, kit.height, s))
             .collect();
-        let largest = plans.iter().map(|p| p.tables.len()).max().unwrap_or(0);
-        let widest = small_size(kit.width, kit.height, SCALE[0])[0];
+        // Real severities below 1 shrink less than severity 1 does, down to scale 1.
+        let largest = 2 * (kit.width + kit.height);
+        let widest = kit.width;
         Ok(Self {
             rows: kit.pipeline_entry(SHADER, "box_rows")?,
             columns: kit.pipeline(SHADER)?,
@@ -160,6 +170,7 @@ impl Pixelate {
                 (widest, kit.height),
             ),
             plans,
+            between: None,
         })
     }
 }
@@ -172,7 +183,16 @@ impl GpuPerturbation for Pixelate {
         frame: &FrameTextures,
         key: &FrameKey,
     ) -> Result<(), PerturbError> {
-        let plan = &self.plans[key.level()];
+        let plan = match key.severity.as_whole() {
+            Some(_) => &self.plans[key.level()],
+            None => {
+                if self.between.as_ref().map(|(s, _)| *s) != Some(key.severity) {
+                    let plan = Plan::new(kit.width, kit.height, scale(key));
+                    self.between = Some((key.severity, plan));
+                }
+                &self.between.as_ref().expect("made above").1
+            }
+        };
         let params = Params {
             sizes: [plan.small[0], plan.small[1], kit.width, kit.height],
         };
@@ -225,7 +245,7 @@ impl GpuPerturbation for Pixelate {
 /// CPU twin: PIL's BOX down (rows, then columns, each rounded to 8 bits) and NEAREST up.
 pub fn twin(image: &RgbImage, key: &FrameKey) -> RgbImage {
     let (w, h) = (image.width, image.height);
-    let [sw, sh] = small_size(w, h, SCALE[key.level()]);
+    let [sw, sh] = small_size(w, h, scale(key));
     let columns = box_runs(w, sw);
     let rows = box_runs(h, sh);
     let mut horizontal = vec![[0u8; 3]; (sw * h) as usize];

@@ -4,7 +4,7 @@
 use super::color_pass::{KeyedParams, PointwisePass};
 use super::hsv::{hsv_to_rgb, rgb_to_hsv};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, Group};
 use crate::twin::{Tolerance, Twin};
 
 const NAME: &str = "saturate";
@@ -31,6 +31,9 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
             }
         })
     },
+    between: Between::WholeOnly(
+        "it turns from desaturating (1-2) to oversaturating (3-5), through the clean frame",
+    ),
     explicit: None,
     twin: Twin::Color(twin),
     // The HSV round trip in f32: divisions that differ in the last bit.

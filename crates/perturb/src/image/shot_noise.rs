@@ -3,7 +3,7 @@
 
 use super::color_pass::{KeyedParams, PointwisePass};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, Group};
 use crate::twin::{Tolerance, Twin};
 
 const NAME: &str = "shot_noise";
@@ -21,9 +21,10 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     build: |kit| {
         PointwisePass::boxed(kit, SHADER, |key| KeyedParams {
             key: key.rng(NAME, PURPOSE_NOISE).0,
-            values: [PHOTONS[key.level()], 0.0, 0.0, 0.0],
+            values: [photons(key), 0.0, 0.0, 0.0],
         })
     },
+    between: Between::Interpolated("c linear in 1/c (the noise variance) from no noise"),
     explicit: None,
     twin: Twin::Color(twin),
     // PTRS rejection sampling decides on log/exp of uniforms: a last-bit difference between
@@ -35,10 +36,16 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
     uniforms: &[KeyedParams::layout(SHADER)],
 };
 
+/// Photons per unit intensity at the frame's severity, linear in 1/c (the noise variance) from
+/// no noise at severity 0.
+fn photons(key: &FrameKey) -> f32 {
+    key.interpolate_in(0.0, &PHOTONS, |c| 1.0 / c, |v| 1.0 / v) as f32
+}
+
 /// CPU twin of `shot_noise.wgsl`.
 pub fn twin(image: &RgbF32, key: &FrameKey) -> RgbF32 {
     let rng = key.rng(NAME, PURPOSE_NOISE);
-    let c = PHOTONS[key.level()];
+    let c = photons(key);
     image.map_pixels(|x, y, p| {
         std::array::from_fn(|ch| rng.poisson([x, y, ch as u32], p[ch] * c) / c)
     })

@@ -12,7 +12,7 @@ use super::motion_blur::frame_angle;
 use super::textures::storage_texture;
 use super::zoom_blur::{axis_window, AxisWindow};
 use crate::image_f32::RgbF32;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::rng::{normal_pair, RngKey};
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
@@ -80,6 +80,9 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         )
     },
     build: |kit| Ok(Box::new(Snow::new(kit)?)),
+    between: Between::WholeOnly(
+        "its flake zoom goes 3, 2, 4, 4.5, 2.5: no parameter path between the rows",
+    ),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 Box-Muller noise, bilinear zoom and blur sums in another order.

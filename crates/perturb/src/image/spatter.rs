@@ -13,7 +13,7 @@ use super::color_pass::ColorPass;
 use super::kernels::{Edge, Kernel1dUniform};
 use super::separable::{gaussian_runs, Channels, SeparableFilter};
 use super::textures::storage_texture;
-use crate::perturbation::{view, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{view, Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
 use crate::PerturbError;
@@ -65,6 +65,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         }
     },
     build: |kit| Ok(Box::new(Spatter::new(kit)?)),
+    between: Between::WholeOnly("it turns from water (1-3) to mud (4-5)"),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 noise, blur sums and shading; distances and equalisation are integer-exact.

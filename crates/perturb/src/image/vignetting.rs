@@ -4,7 +4,7 @@
 
 use super::color_pass::{KeyedParams, PointwisePass};
 use crate::image_f32::{linear_to_srgb, srgb_to_linear, RgbF32};
-use crate::perturbation::{CatalogueEntry, FrameKey, Group};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, Group};
 use crate::twin::{Tolerance, Twin};
 
 const NAME: &str = "vignetting";
@@ -25,6 +25,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
             values: [falloff(key), 0.0, 0.0, 0.0],
         })
     },
+    between: Between::Interpolated("corner gain linear from 1"),
     explicit: None,
     twin: Twin::Color(twin),
     // pow in the sRGB transfer function differs in the last bits on the GPU.
@@ -34,7 +35,7 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 
 /// tan²θ_c, so that the corner gain 1 / (1 + tan²θ_c)² is the severity's.
 fn falloff(key: &FrameKey) -> f32 {
-    1.0 / CORNER_GAIN[key.level()].sqrt() - 1.0
+    1.0 / (key.interpolate(1.0, &CORNER_GAIN) as f32).sqrt() - 1.0
 }
 
 /// CPU twin of `vignetting.wgsl`.

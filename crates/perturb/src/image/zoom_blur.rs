@@ -7,7 +7,8 @@ use rslam_gpu::FrameTextures;
 use super::color_pass::ColorPass;
 use super::kernels::store_truncated;
 use crate::image_f32::RgbF32;
-use crate::perturbation::{CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::perturbation::{Between, CatalogueEntry, FrameKey, GpuPerturbation, Group, Kit};
+use crate::severity::Severity;
 use crate::twin::{Tolerance, Twin};
 use crate::uniform_layout::{rust_layout, UniformLayout};
 use crate::PerturbError;
@@ -36,10 +37,11 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
         let (stop, step) = ZOOM_RANGE[s as usize - 1];
         format!(
             "zooms 1..{stop} step {step} ({} layers)",
-            zoom_factors(s).len()
+            zoom_factors(Severity::whole(s).expect("a severity 1..=5")).len()
         )
     },
     build: |kit| Ok(Box::new(ZoomBlur::new(kit)?)),
+    between: Between::Interpolated("stop linear from 1, step linear from the first row's"),
     explicit: None,
     twin: Twin::Color(twin),
     // f32 bilinear weights and sums in another order.
@@ -56,9 +58,11 @@ pub const ENTRY: CatalogueEntry = CatalogueEntry {
 };
 
 /// The factors as `np.arange(1, stop, step)` yields them: ceil((stop − 1)/step) values
-/// 1 + i·step (float rounding included, e.g. 12 values for severity 1).
-pub fn zoom_factors(severity: u8) -> Vec<f64> {
-    let (stop, step) = ZOOM_RANGE[severity as usize - 1];
+/// 1 + i·step (float rounding included, e.g. 12 values for severity 1). Between the table's
+/// rows stop and step are linear, from stop 1 (no zoomed layer) and the first row's step at 0.
+pub fn zoom_factors(severity: Severity) -> Vec<f64> {
+    let stop = severity.interpolate(1.0, &ZOOM_RANGE.map(|(stop, _)| stop));
+    let step = severity.interpolate(ZOOM_RANGE[0].1, &ZOOM_RANGE.map(|(_, step)| step));
     let count = ((stop - 1.0) / step).ceil() as usize;
     (0..count).map(|i| 1.0 + i as f64 * step).collect()
 }
@@ -97,7 +101,7 @@ struct Zooms {
     windows: [[f32; 4]; MAX_ZOOMS],
 }
 
-fn zooms(severity: u8, width: u32, height: u32) -> Zooms {
+fn zooms(severity: Severity, width: u32, height: u32) -> Zooms {
     let factors = zoom_factors(severity);
     let mut out = Zooms {
         count: factors.len() as i32,
@@ -180,9 +184,11 @@ mod tests {
 
     #[test]
     fn factors_follow_numpy_arange() {
-        let lens: Vec<usize> = (1..=5).map(|s| zoom_factors(s).len()).collect();
+        let lens: Vec<usize> = (1..=5)
+            .map(|s| zoom_factors(Severity::whole(s).unwrap()).len())
+            .collect();
         assert_eq!(lens, [12, 16, 11, 13, 11]);
-        assert!((zoom_factors(5)[10] - 1.3).abs() < 1e-9);
+        assert!((zoom_factors(Severity::MAX)[10] - 1.3).abs() < 1e-9);
     }
 
     #[test]

@@ -2,8 +2,8 @@
 //! slider (or the explicit parameters) per item, static or dynamic, the path and stream items,
 //! the seed; the spec string of the shown frame, copyable, and a field to type one.
 
-use rslam_perturb::find;
 use rslam_perturb::light::{Daylight, Flicker, LightSpec, Switching};
+use rslam_perturb::{find, Severity};
 
 use crate::app::ViewerApp;
 use crate::spec_editor::{DeviationSetting, ItemSetting};
@@ -117,10 +117,20 @@ fn items(ui: &mut egui::Ui, app: &mut ViewerApp) {
             });
             let (example, syntax) = (item.explicit_example(), item.explicit_syntax());
             let name = item.name;
+            let real = item.takes_real_severities();
             let mut switch = None;
             match &mut item.setting {
                 ItemSetting::Severity { severity, dynamic } => {
-                    ui.add(egui::Slider::new(severity, 1..=5).text(format!("{name} severity")));
+                    let mut value = severity.value();
+                    let step = if real { 0.05 } else { 1.0 };
+                    ui.add(
+                        egui::Slider::new(&mut value, 0.0..=5.0)
+                            .step_by(step)
+                            .text(format!("{name} severity")),
+                    );
+                    if let Some(picked) = Severity::from_value((value * 100.0).round() / 100.0) {
+                        *severity = picked;
+                    }
                     ui.horizontal(|ui| {
                         ui.checkbox(dynamic, "dynamic")
                             .on_hover_text("each frame draws its severity from 0 to this one");
@@ -136,7 +146,7 @@ fn items(ui: &mut egui::Ui, app: &mut ViewerApp) {
                         ui.add(egui::TextEdit::singleline(text).desired_width(120.0));
                         if ui.small_button("severity").clicked() {
                             switch = Some(ItemSetting::Severity {
-                                severity: 3,
+                                severity: Severity::whole(3).expect("3 is a severity"),
                                 dynamic: false,
                             });
                         }

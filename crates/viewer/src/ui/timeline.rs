@@ -82,8 +82,8 @@ fn strips(ui: &mut egui::Ui, app: &mut ViewerApp) {
             text_color,
         );
         let step = strip.width() / len as f32;
-        for (j, digit) in item.per_frame.bytes().enumerate() {
-            let s = digit.saturating_sub(b'0') as f32 / 5.0;
+        for (j, severity) in item.values().unwrap_or_default().into_iter().enumerate() {
+            let s = severity as f32 / 5.0;
             let shade = egui::Color32::from_rgb(
                 (40.0 + 215.0 * s) as u8,
                 (60.0 * (1.0 - s)) as u8 + 40,
