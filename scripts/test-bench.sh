@@ -4,8 +4,10 @@
 # methods that crash, hang past their timeout and write garbage; `rslam suite report` must show
 # the odometry tracking the clean sequence within CLEAN_ATE_BOUND, the strong perturbation
 # raising its ATE, its dense map (culled to what the cameras saw) less accurate and less complete
-# under the strong perturbation than clean, and each bad method as F with its reason. Also the
-# unit tests of the example methods' Python helpers.
+# under the strong perturbation than clean, and each bad method as F with its reason. Then
+# `rslam suite search` finds the odometry's breaking severity under depth_noise (a real bisection,
+# between clean and 5), and its report.html is opened in a real browser (headless Chromium) for a
+# screenshot that must show the page. Also the unit tests of the example methods' Python helpers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 frames=${BENCH_TEST_FRAMES:-50}
@@ -88,4 +90,37 @@ if problems:
     print("\n".join(problems), file=sys.stderr)
     sys.exit(1)
 PY
+# Breaking point: depth_noise raises the odometry's ATE from under a millimetre to centimetres,
+# so ate>3xclean breaks it somewhere in (0, 5].
+study=$tmp/study
+"$rslam" suite search "$study" --methods examples/methods/opencv_rgbd.toml --families depth_noise \
+  --scenes room0 --frames "$frames" --criterion 'ate>3xclean' --resolution 0.5
+python3 - "$study/search/profile.json" <<'PY'
+import json, sys
+found = json.load(open(sys.argv[1]))["opencv_rgbd"]["depth_noise"]["room0"]
+s = found["breaking_severity"]
+if s is None or not (0 < s <= 5) or found["high"] - found["low"] > 0.5 or found["runs"] < 4:
+    sys.exit(f"opencv_rgbd under depth_noise: no breaking severity in (0, 5] to 0.5: {found}")
+print(f"opencv_rgbd breaks under depth_noise at {s} (holds at {found['low']}; {found['runs']} runs)")
+PY
+if ! command -v chromium >/dev/null; then
+  sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends chromium
+fi
+shot=$tmp/profile.png
+chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1200,900 \
+  --screenshot="$shot" "file://$study/search/report.html" 2>/dev/null
+python3 - "$shot" <<'PY'
+import sys
+import cv2
+image = cv2.imread(sys.argv[1])
+if image is None or image.shape[:2] != (900, 1200):
+    sys.exit(f"no 1200x900 screenshot of the profile report: {None if image is None else image.shape}")
+# A rendered page: white background, dark text, coloured bars; a blank or error page is flat.
+if image.std() < 20 or (image.max(axis=2).astype(int) - image.min(axis=2)).max() < 60:
+    sys.exit("the screenshot of the profile report shows no text and no coloured bars")
+print(f"profile report screenshot: {sys.argv[1]}, {image.shape[1]}x{image.shape[0]}")
+PY
+mkdir -p target/ci-artifacts && cp "$shot" target/ci-artifacts/profile-report.png
 echo "test-bench: ok"

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# CI: two small suites as real Slurm array jobs (2 tasks each, submitted together) on a
-# one-node cluster on this machine (scripts/slurm-cluster.sh): one made with its datasets kept
-# (`suite run`), one benched ephemerally (`suite bench --ephemeral` with a method that returns
-# the ground truth, its frames made in scratch). Every array task must exit 0; then `rslam suite
-# status` must find the first suite complete and every sequence of the second used with its
-# frames deleted, every run recorded, and no frame left anywhere.
+# CI: two small suites and a search as real Slurm array jobs (2 tasks each, submitted together)
+# on a one-node cluster on this machine (scripts/slurm-cluster.sh): one made with its datasets
+# kept (`suite run`), one benched ephemerally (`suite bench --ephemeral` with a method that
+# returns the ground truth, its frames made in scratch), and a `suite search` of that method
+# under two families, each task taking its shard of the searches. Every array task must exit 0;
+# then `rslam suite status` must find the first suite complete and every sequence of the second
+# used with its frames deleted, every run recorded, and no frame left anywhere; and the search
+# without --shard must find every run done and write the profile.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tasks=2
@@ -30,13 +32,20 @@ printf '%s\n' 'name = "oracle"' 'reads = "tum"' \
 kept_script=$("$rslam" suite slurm "$tmp/suite" --tasks "$tasks" | tail -n 1)
 ephemeral_script=$("$rslam" suite slurm "$tmp/ephemeral" --tasks "$tasks" --ephemeral \
   --methods "$tmp/oracle.toml" --scratch "$tmp/scratch" | tail -n 1)
-for script in "$kept_script" "$ephemeral_script"; do
+mkdir -p "$tmp/search"
+search_args=(--methods "$tmp/oracle.toml" --families fog,depth_noise --scenes room0 --frames 10
+  --criterion failed --resolution 1)
+search_script=$("$rslam" suite slurm "$tmp/search" --tasks "$tasks" --search "${search_args[@]}" \
+  --scratch "$tmp/scratch" | tail -n 1)
+for script in "$kept_script" "$ephemeral_script" "$search_script"; do
   [ -f "$script" ] || fail "rslam suite slurm printed '$script', which is no file"
 done
+grep -q ' suite search .* --families fog,depth_noise ' "$search_script" \
+  || fail "$search_script runs no search"
 grep -q ' suite bench .* --ephemeral ' "$ephemeral_script" \
   || fail "$ephemeral_script runs no ephemeral bench"
 jobs=()
-for script in "$kept_script" "$ephemeral_script"; do
+for script in "$kept_script" "$ephemeral_script" "$search_script"; do
   job=$(sbatch --parsable "$script") || fail "sbatch refused $script"
   job=${job%%;*}
   echo "submitted $script as array job $job"
@@ -107,4 +116,12 @@ runs=$(find "$tmp/ephemeral/runs/oracle" -name '0.txt' | wc -l)
 left=$(find "$tmp/ephemeral" "$tmp/scratch" \( -name '*.png' -o -name '*.jpg' \) | wc -l)
 [ "$left" -eq 0 ] || fail "$left frames left behind by the ephemeral job"
 "$rslam" suite report "$tmp/ephemeral" >/dev/null || fail "rslam suite report of the ephemeral suite"
-echo "slurm array jobs ${jobs[*]}: $tasks tasks each completed; a suite made, a suite benched ephemerally"
+records=$(find "$tmp/search/search/runs" -name '*.json' | sort)
+[ -n "$records" ] || fail "the search tasks recorded no run"
+"$rslam" suite search "$tmp/search" "${search_args[@]}" >/dev/null 2>&1 \
+  || fail "rslam suite search without --shard after job ${jobs[2]}"
+[ "$(find "$tmp/search/search/runs" -name '*.json' | sort)" = "$records" ] \
+  || fail "the search without --shard ran what the tasks should have"
+grep -q '"breaking_severity": null' "$tmp/search/search/profile.json" \
+  || fail "the oracle, which never fails, is not reported unbroken in the profile"
+echo "slurm array jobs ${jobs[*]}: $tasks tasks each completed; a suite made, a suite benched ephemerally, a search"

@@ -26,6 +26,7 @@ mod rig_file;
 mod rig_motion;
 mod rig_rgbd;
 mod scene;
+mod search;
 mod sensor;
 mod suite;
 mod view;

@@ -13,6 +13,8 @@
 //!                       once `suite bench --ephemeral` deleted its frames)
 //! logs/timings.jsonl    how long each run took, for time estimates
 //! runs/<method>/<name>/  what `suite bench` ran: estimates, failures, logs, records
+//! search/               `suite search`: its own suite folder (datasets/, runs/) and the
+//!                       robustness profile (profile.json, profile.csv, report.html)
 //! slurm/, k8s/          scheduler scripts and their logs
 //! ```
 
@@ -27,6 +29,7 @@ mod preset;
 mod regen;
 mod run;
 pub mod schedulers;
+pub mod search;
 mod sequence;
 mod shard;
 mod state;

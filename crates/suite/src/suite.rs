@@ -125,7 +125,11 @@ impl Suite {
     }
 }
 
-fn resolve(row: &SequenceFields, suite_seed: u64, dir: &Path) -> Result<Sequence, String> {
+pub(crate) fn resolve(
+    row: &SequenceFields,
+    suite_seed: u64,
+    dir: &Path,
+) -> Result<Sequence, String> {
     let name = row.name.clone().ok_or("a sequence without a name")?;
     check_name(&name)?;
     let scene = row

@@ -9,6 +9,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::naming::category;
 use super::summary::{RunsSummary, SettingCell};
+use crate::grouped_bars::{bar_span, method_color, Legend, CHAR_WIDTH, FONT, TITLE_HEIGHT};
 use crate::plot::Figure;
 
 /// The bars of one category: its settings, as indices into [`RunsSummary::settings`].
@@ -35,21 +36,13 @@ pub(super) fn category_bars(summary: &RunsSummary) -> Vec<CategoryBars<'_>> {
     figures
 }
 
-const TITLE_HEIGHT: u32 = 34;
-const LEGEND_ROW_HEIGHT: u32 = 22;
 const PANEL_HEIGHT: u32 = 250;
 /// Left of the plot: the y labels and the margin.
 const Y_LABEL_AREA: u32 = 70;
 const PLOT_MARGIN: u32 = 10;
 const MIN_WIDTH: u32 = 480;
 const BAR_WIDTH: u32 = 16;
-const MAX_BAR_WIDTH: f64 = 40.0;
 const GROUP_GAP: u32 = 24;
-/// Rough width of a 13 px sans-serif character, to keep setting names and legend entries apart.
-const CHAR_WIDTH: u32 = 7;
-const FONT: &str = "sans-serif";
-/// The largest share of a setting's slot that its bars fill.
-const BARS_SPAN: f64 = 0.8;
 /// Headroom above the highest ATE bar (log scale) for the failure counts.
 const ATE_HEADROOM: f64 = 3.0;
 /// The lowest ATE shown, metres: a perfect run still gets a visible stub.
@@ -63,22 +56,16 @@ impl CategoryBars<'_> {
             .collect()
     }
 
-    fn legend_slot(&self) -> u32 {
-        let longest = self
-            .summary
-            .methods
-            .iter()
-            .map(|m| m.method.chars().count());
-        longest.max().unwrap_or(0) as u32 * CHAR_WIDTH + 34
-    }
-
-    fn legend_columns(&self, width: u32) -> u32 {
-        ((width - Y_LABEL_AREA) / self.legend_slot()).max(1)
-    }
-
-    fn legend_height(&self, width: u32) -> u32 {
-        let rows = (self.summary.methods.len() as u32).div_ceil(self.legend_columns(width));
-        rows.max(1) * LEGEND_ROW_HEIGHT
+    fn legend(&self) -> Legend<'_> {
+        Legend {
+            names: self
+                .summary
+                .methods
+                .iter()
+                .map(|m| m.method.as_str())
+                .collect(),
+            left: Y_LABEL_AREA,
+        }
     }
 
     /// The cells of method `m` that hold runs, with their setting's position in this category.
@@ -91,16 +78,11 @@ impl CategoryBars<'_> {
             .filter(|(_, cell)| cell.runs > 0)
     }
 
-    /// The slot of method `m`'s bar inside a setting's group, in [0, 1]: the bars are centred
-    /// and no wider than [`MAX_BAR_WIDTH`] where few settings leave wide slots.
+    /// The slot of method `m`'s bar inside a setting's group, in [0, 1].
     fn bar_span(&self, m: usize) -> (f64, f64) {
         let plot_width = self.size().0 - Y_LABEL_AREA - PLOT_MARGIN;
         let slot = f64::from(plot_width) / self.settings.len() as f64;
-        let methods = self.summary.methods.len() as f64;
-        let span = (methods * MAX_BAR_WIDTH / slot).min(BARS_SPAN);
-        let width = span / methods;
-        let start = (1.0 - span) / 2.0 + m as f64 * width;
-        (start, start + width)
+        bar_span(m, self.summary.methods.len(), slot)
     }
 
     fn ate_range(&self) -> (f64, f64) {
@@ -111,25 +93,6 @@ impl CategoryBars<'_> {
             (lo.min(a), hi.max(a))
         });
         ((lo.min(hi) / 2.0).max(ATE_FLOOR), hi * ATE_HEADROOM)
-    }
-
-    fn draw_legend<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let columns = self.legend_columns(area.dim_in_pixel().0);
-        for (m, method) in self.summary.methods.iter().enumerate() {
-            let (row, column) = (m as u32 / columns, m as u32 % columns);
-            let x = (Y_LABEL_AREA + column * self.legend_slot()) as i32;
-            let y = (row * LEGEND_ROW_HEIGHT + LEGEND_ROW_HEIGHT / 2) as i32;
-            let color = Palette99::pick(m).to_rgba();
-            area.draw(&Rectangle::new(
-                [(x, y - 6), (x + 14, y + 6)],
-                color.filled(),
-            ))
-            .map_err(|e| e.to_string())?;
-            let style = TextStyle::from((FONT, 14)).pos(Pos::new(HPos::Left, VPos::Center));
-            area.draw_text(&method.method, &style, (x + 20, y))
-                .map_err(|e| e.to_string())?;
-        }
-        Ok(())
     }
 
     /// One panel: a bar per method and setting from `base` up to `value` of the cell.
@@ -183,7 +146,7 @@ impl CategoryBars<'_> {
             .color(&RGBColor(200, 0, 0))
             .pos(Pos::new(HPos::Center, VPos::Bottom));
         for m in 0..self.summary.methods.len() {
-            let color = Palette99::pick(m).to_rgba();
+            let color = method_color(m);
             let (x0, x1) = self.bar_span(m);
             let bars = self.cells(m).filter_map(|(k, cell)| {
                 let top = (panel.value)(cell)?.max(panel.base);
@@ -231,7 +194,7 @@ impl Figure for CategoryBars<'_> {
             (Y_LABEL_AREA + PLOT_MARGIN + group * self.settings.len() as u32).max(MIN_WIDTH);
         (
             width,
-            TITLE_HEIGHT + self.legend_height(width) + 2 * PANEL_HEIGHT,
+            TITLE_HEIGHT + self.legend().height(width) + 2 * PANEL_HEIGHT,
         )
     }
 
@@ -240,8 +203,9 @@ impl Figure for CategoryBars<'_> {
         root.fill(&WHITE).map_err(err)?;
         let title = format!("{}: mean ATE and SR per setting", self.category);
         let body = root.titled(&title, (FONT, 18)).map_err(err)?;
-        let (legend, panels) = body.split_vertically(self.legend_height(body.dim_in_pixel().0));
-        self.draw_legend(&legend)?;
+        let legend = self.legend();
+        let (legend_area, panels) = body.split_vertically(legend.height(body.dim_in_pixel().0));
+        legend.draw(&legend_area)?;
         let (top, bottom) = panels.split_vertically(PANEL_HEIGHT);
         let (lo, hi) = self.ate_range();
         self.draw_panel(

@@ -51,16 +51,21 @@ pub struct Estimate {
     pub failure: Option<String>,
 }
 
+/// The ground truth of the dataset folder `dir`: one of [`GROUND_TRUTH_FILES`], or the folder
+/// itself when it is a ROS 2 bag.
+pub fn ground_truth_of(dir: &Path) -> Option<PathBuf> {
+    let file = GROUND_TRUTH_FILES
+        .iter()
+        .map(|f| dir.join(f))
+        .find(|p| p.is_file());
+    file.or_else(|| dir.join(BAG_METADATA).is_file().then(|| dir.to_path_buf()))
+}
+
 /// The dataset folders of `datasets` that hold a ground truth, sorted by name.
 pub fn find_sequences(datasets: &Path) -> Result<Vec<Sequence>, EvalError> {
     let mut sequences = Vec::new();
     for (name, dir) in subdirectories(datasets)? {
-        let file = GROUND_TRUTH_FILES
-            .iter()
-            .map(|f| dir.join(f))
-            .find(|p| p.is_file());
-        let bag = dir.join(BAG_METADATA).is_file().then(|| dir.clone());
-        let Some(ground_truth) = file.or(bag) else {
+        let Some(ground_truth) = ground_truth_of(&dir) else {
             continue;
         };
         let (scene, setting) = scene_and_setting(&name);

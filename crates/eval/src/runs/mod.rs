@@ -31,7 +31,9 @@ use serde::Serialize;
 
 pub use collect::{collect_runs, CollectedRuns, RunRecord};
 pub(crate) use layout::GROUND_TRUTH_FILES;
-pub use layout::{find_estimates, find_methods, find_sequences, Estimate, Sequence, NO_REASON};
+pub use layout::{
+    find_estimates, find_methods, find_sequences, ground_truth_of, Estimate, Sequence, NO_REASON,
+};
 pub use naming::{category, scene_and_setting, CLEAN};
 pub use summary::{
     csr, summarize, CategoryBound, CsrPoint, MeanAndMin, MethodSummary, RunsSummary, SettingCell,

@@ -129,6 +129,7 @@ mod tests {
                 ephemeral: Some(super::super::EphemeralTask {
                     methods: vec!["/suite/methods/orb.toml".into()],
                     scratch: None,
+                    search: None,
                 }),
             },
         };

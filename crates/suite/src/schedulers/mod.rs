@@ -1,5 +1,6 @@
 //! Scripts that run a suite on a cluster, one `rslam suite run` (or, with method files, one
-//! `rslam suite bench --ephemeral`) per array task or Job index, each on its own shard.
+//! `rslam suite bench --ephemeral`, or one `rslam suite search`) per array task or Job index,
+//! each on its own shard.
 
 pub mod kubernetes;
 pub mod slurm;
@@ -22,12 +23,18 @@ pub struct EphemeralTask {
     pub methods: Vec<String>,
     /// `--scratch` of every task; `None`: each task's `$TMPDIR`, else in place.
     pub scratch: Option<String>,
+    /// The arguments of `suite search` (`--families …`, `--scenes …`, …): each task searches its
+    /// shard of the (method, family, scene) searches instead of benching the suite's sequences.
+    pub search: Option<Vec<String>>,
 }
 
 impl TaskOptions {
     /// The `suite` subcommand every task runs.
     fn subcommand(&self) -> &'static str {
-        match self.ephemeral {
+        match &self.ephemeral {
+            Some(EphemeralTask {
+                search: Some(_), ..
+            }) => "search",
             Some(_) => "bench",
             None => "run",
         }
@@ -37,10 +44,13 @@ impl TaskOptions {
     fn run_arguments(&self) -> Vec<String> {
         let mut args = Vec::new();
         if let Some(ephemeral) = &self.ephemeral {
-            args.push("--ephemeral".to_string());
+            if ephemeral.search.is_none() {
+                args.push("--ephemeral".to_string());
+            }
             for method in &ephemeral.methods {
                 args.extend(["--methods".to_string(), method.clone()]);
             }
+            args.extend(ephemeral.search.iter().flatten().cloned());
             if let Some(scratch) = &ephemeral.scratch {
                 args.extend(["--scratch".to_string(), scratch.clone()]);
             }

@@ -52,9 +52,11 @@ fn slurm_script(suite_dir: &Path, options: &SlurmOptions) -> String {
         format!(
             "# Written by `rslam suite slurm`: {} array tasks, task i {} shard i of the suite",
             options.tasks,
-            match options.task.ephemeral {
-                Some(_) => "benches (makes, runs, deletes the frames of)",
-                None => "makes",
+            match options.task.subcommand() {
+                "search" =>
+                    "searches (`rslam suite search` without --shard writes the profile after)",
+                "bench" => "benches (makes, runs, deletes the frames of)",
+                _ => "makes",
             }
         ),
         format!(
@@ -170,6 +172,7 @@ mod tests {
                 ephemeral: Some(super::super::EphemeralTask {
                     methods: vec!["/m/orb.toml".into(), "/m/dense.toml".into()],
                     scratch: Some("/local/scratch".into()),
+                    search: None,
                 }),
             },
         };
@@ -179,6 +182,40 @@ mod tests {
             text.lines().last().unwrap(),
             format!(
                 "exec /usr/bin/rslam suite bench {} --ephemeral --methods /m/orb.toml --methods /m/dense.toml --scratch /local/scratch --jobs 3",
+                dir.path().canonicalize().unwrap().display()
+            )
+        );
+    }
+
+    #[test]
+    fn a_search_runs_its_shard_of_the_searches_in_each_task() {
+        let dir = tempfile::tempdir().unwrap();
+        let search = ["--families", "fog,gaussian_noise", "--scenes", "room0"];
+        let options = SlurmOptions {
+            tasks: 4,
+            throttle: None,
+            sbatch_args: vec![],
+            rslam: PathBuf::from("/usr/bin/rslam"),
+            task: TaskOptions {
+                jobs: 1,
+                adapter: None,
+                ephemeral: Some(super::super::EphemeralTask {
+                    methods: vec!["/m/orb.toml".into()],
+                    scratch: None,
+                    search: Some(search.map(String::from).to_vec()),
+                }),
+            },
+        };
+        let text =
+            std::fs::read_to_string(write_slurm_script(dir.path(), &options).unwrap()).unwrap();
+        assert!(
+            text.contains("without --shard writes the profile"),
+            "{text}"
+        );
+        assert_eq!(
+            text.lines().last().unwrap(),
+            format!(
+                "exec /usr/bin/rslam suite search {} --methods /m/orb.toml --families fog,gaussian_noise --scenes room0 --jobs 1",
                 dir.path().canonicalize().unwrap().display()
             )
         );

@@ -6,6 +6,7 @@ mod regen;
 mod report;
 mod run;
 mod schedulers;
+mod search;
 mod shard_args;
 mod status;
 
@@ -40,6 +41,9 @@ enum SuiteCommand {
     Regen(regen::RegenArgs),
     /// The benchmark's tables, CSR curves, plots and an HTML page over the bench's runs.
     Report(report::ReportArgs),
+    /// Per method, perturbation family and scene, the lowest severity that breaks the method,
+    /// found by bisection: a robustness profile (DIR/search/profile.json, report.html).
+    Search(search::SearchArgs),
 }
 
 pub fn run(args: SuiteArgs) -> anyhow::Result<ExitCode> {
@@ -52,5 +56,6 @@ pub fn run(args: SuiteArgs) -> anyhow::Result<ExitCode> {
         SuiteCommand::Bench(args) => bench::run(args),
         SuiteCommand::Regen(args) => regen::run(args),
         SuiteCommand::Report(args) => report::run(args),
+        SuiteCommand::Search(args) => search::run(args),
     }
 }

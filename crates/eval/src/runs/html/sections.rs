@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use super::markup::{escape, paragraph, Cell, Section, Table};
+use crate::html_page::{escape, paragraph, Cell, Section, Table};
 use crate::runs::collect::RunRecord;
 use crate::runs::summary::{RunsSummary, SettingCell, CSR_THRESHOLDS};
 use crate::runs::tables::{optional, MetricTable};

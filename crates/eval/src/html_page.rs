@@ -1,9 +1,10 @@
-//! The few HTML pieces the report is made of: escaped text, tables and sections.
+//! The few HTML pieces the reports are made of: escaped text, tables, sections and the page
+//! around them (one file that opens offline: a small inline style, no script, nothing fetched).
 
 use std::fmt::Write as _;
 
 /// `text` safe inside an element or a quoted attribute.
-pub(super) fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         match c {
@@ -19,7 +20,7 @@ pub(super) fn escape(text: &str) -> String {
 }
 
 /// A table cell: its HTML content and an optional class.
-pub(super) struct Cell {
+pub(crate) struct Cell {
     html: String,
     class: Option<&'static str>,
 }
@@ -54,7 +55,7 @@ impl Cell {
 
 /// A table with a header row, body rows and footer rows (summaries over the body).
 #[derive(Default)]
-pub(super) struct Table {
+pub(crate) struct Table {
     pub head: Vec<Cell>,
     pub rows: Vec<Vec<Cell>>,
     pub foot: Vec<Vec<Cell>>,
@@ -99,7 +100,7 @@ fn write_rows(out: &mut String, rows: &[Vec<Cell>]) {
 }
 
 /// A titled part of the report, linked from its table of contents.
-pub(super) struct Section {
+pub(crate) struct Section {
     pub id: &'static str,
     pub title: String,
     pub body: String,
@@ -117,8 +118,49 @@ impl Section {
 }
 
 /// A paragraph of plain text.
-pub(super) fn paragraph(text: &str) -> String {
+pub(crate) fn paragraph(text: &str) -> String {
     format!("<p>{}</p>\n", escape(text))
+}
+
+const STYLE: &str = "
+body { font: 14px/1.45 system-ui, sans-serif; color: #222; max-width: 1500px; margin: 0 auto;
+       padding: 16px 24px; }
+h1 { font-size: 22px; margin-bottom: 4px; }
+h2 { font-size: 18px; border-bottom: 1px solid #ccc; padding-bottom: 3px; margin-top: 32px; }
+nav ol { columns: 2; column-gap: 48px; font-size: 13px; }
+nav li { break-inside: avoid; }
+.scroll { overflow-x: auto; }
+table { border-collapse: collapse; font-variant-numeric: tabular-nums; }
+th, td { border: 1px solid #ddd; padding: 3px 8px; text-align: right; white-space: nowrap; }
+thead th { background: #f0f0f0; position: sticky; top: 0; }
+th:first-child { text-align: left; }
+tbody th, tfoot th { font-weight: normal; }
+tfoot { background: #f7f7f7; }
+td.fail { background: #f8d7da; color: #a00; font-weight: 600; }
+td.part { background: #fff3cd; }
+td.none { color: #999; }
+td.reason { text-align: left; white-space: normal; font-family: monospace; }
+small { color: #555; }
+.plots { display: flex; flex-wrap: wrap; gap: 20px; }
+figure { margin: 8px 0; }
+svg { max-width: 100%; height: auto; }
+#csr svg { max-width: min(100%, 720px); }
+";
+
+/// A whole page: `title`, the `overview` HTML under it, a table of contents and the sections.
+pub(crate) fn page(title: &str, overview: &str, sections: &[Section]) -> String {
+    let nav: String = sections
+        .iter()
+        .map(|p| format!("<li><a href=\"#{}\">{}</a></li>\n", p.id, escape(&p.title)))
+        .collect();
+    let body: String = sections.iter().map(Section::to_html).collect();
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+         <title>{title}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n<h1>{title}</h1>\n\
+         {overview}<nav><ol>\n{nav}</ol></nav>\n{body}</body>\n</html>\n",
+        title = escape(title),
+    )
 }
 
 #[cfg(test)]
