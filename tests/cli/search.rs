@@ -69,8 +69,7 @@ fn search_args<'a>(method: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
 }
 
 fn profile(ws: &Workspace) -> serde_json::Value {
-    let text = std::fs::read_to_string(ws.path("study/search/profile.json")).unwrap();
-    serde_json::from_str(&text).unwrap()
+    json_file(ws, "study/search/profile.json")
 }
 
 #[test]
@@ -259,82 +258,64 @@ fn bad_options_are_refused_in_one_line() {
     );
 }
 
-#[test]
-fn keep_leaves_the_frames_of_every_severity_tried() {
-    let ws = Workspace::new();
+/// `rslam suite search s` of a method that returns the ground truth (so never breaks) with
+/// `repeats` runs a sequence, on 5 frames of room0 under `family`; must succeed.
+fn search_oracle(ws: &Workspace, repeats: usize, family: &str, extra: &[&str]) {
     ws.write(
         "oracle.toml",
-        "name = \"oracle\"\nreads = \"tum\"\ntimeout_s = 60\ncommand = [\"cp\", \"{dataset}/groundtruth.txt\", \"{estimate}\"]\n",
+        &format!(
+            "name = \"oracle\"\nreads = \"tum\"\ntimeout_s = 60\nrepeats = {repeats}\ncommand = \
+             [\"cp\", \"{{dataset}}/groundtruth.txt\", \"{{estimate}}\"]\n"
+        ),
     );
-    ws.rslam(&[
+    let mut args = vec![
         "suite",
         "search",
         "s",
         "--methods",
         "oracle.toml",
         "--families",
-        "fog",
+        family,
         "--scenes",
         "room0",
         "--frames",
         "5",
         "--criterion",
         "failed",
-        "--resolution",
-        "1",
-        "--keep",
-    ])
-    .success();
+    ];
+    args.extend(extra);
+    ws.rslam(&args).success();
+}
+
+fn json_file(ws: &Workspace, rel: &str) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(ws.path(rel)).unwrap()).unwrap()
+}
+
+#[test]
+fn keep_leaves_the_frames_of_every_severity_tried() {
+    let ws = Workspace::new();
+    search_oracle(&ws, 1, "fog", &["--resolution", "1", "--keep"]);
     for name in ["room0__clean", "room0__fog-5"] {
         let rgb = ws.path(&format!("s/search/datasets/{name}/rgb"));
         assert_eq!(std::fs::read_dir(&rgb).unwrap().count(), 5, "{name}");
     }
-    let profile = std::fs::read_to_string(ws.path("s/search/profile.json")).unwrap();
-    assert!(profile.contains("\"breaking_severity\": null"), "{profile}");
+    let found = &json_file(&ws, "s/search/profile.json")["oracle"]["fog"]["room0"];
+    assert!(found["breaking_severity"].is_null(), "{found}");
 }
 
 #[test]
 fn seeds_make_one_sequence_per_seed_at_every_severity() {
     let ws = Workspace::new();
-    ws.write(
-        "oracle.toml",
-        "name = \"oracle\"\nreads = \"tum\"\ntimeout_s = 60\nrepeats = 2\ncommand = [\"cp\", \"{dataset}/groundtruth.txt\", \"{estimate}\"]\n",
-    );
-    ws.rslam(&[
-        "suite",
-        "search",
-        "s",
-        "--methods",
-        "oracle.toml",
-        "--families",
-        "gaussian_noise",
-        "--scenes",
-        "room0",
-        "--frames",
-        "5",
-        "--criterion",
-        "failed",
-        "--seeds",
-        "2",
-    ])
-    .success();
-    let found = &serde_json::from_str::<serde_json::Value>(
-        &std::fs::read_to_string(ws.path("s/search/profile.json")).unwrap(),
-    )
-    .unwrap()["oracle"]["gaussian_noise"]["room0"];
+    search_oracle(&ws, 2, "gaussian_noise", &["--seeds", "2"]);
+    let found = &json_file(&ws, "s/search/profile.json")["oracle"]["gaussian_noise"]["room0"];
     // Clean and 5, each 2 sequences × 2 repeats.
     assert_eq!(found["runs"], 8, "{found}");
-    let seeded = |name: &str| {
-        serde_json::from_str::<serde_json::Value>(
-            &std::fs::read_to_string(ws.path(&format!("s/search/datasets/{name}/rslam.json")))
-                .unwrap(),
-        )
-        .unwrap()["seed"]
-            .clone()
+    let seed = |name: &str| {
+        json_file(&ws, &format!("s/search/datasets/{name}/rslam.json"))["seed"].clone()
     };
     assert_ne!(
-        seeded("room0__gaussian_noise-5"),
-        seeded("room0__gaussian_noise-5-seed1")
+        seed("room0__gaussian_noise-5"),
+        seed("room0__gaussian_noise-5-seed1")
     );
     assert!(ws
         .path("s/search/runs/oracle/room0__clean-seed1/1.json")

@@ -82,13 +82,12 @@ pub struct SearchSummary {
 
 /// A search checked before any work starts: every family, method and probe row.
 pub struct SearchPlan {
-    dir: PathBuf,
     methods: Vec<Method>,
     grids: Vec<(String, Grid)>,
     /// (scene as the rows name it, scene as the user wrote it).
     scenes: Vec<(String, String)>,
-    template: SequenceFields,
-    seed: u64,
+    /// Makes and runs the probes in `DIR/search`.
+    prober: Prober,
     options: SearchOptions,
 }
 
@@ -104,37 +103,28 @@ pub fn plan(
     let scenes = (options.scenes.iter())
         .map(|s| (scene_path(dir, s), s.clone()))
         .collect();
-    let plan = SearchPlan {
+    let prober = Prober {
         dir: dir.join(SEARCH_DIR),
+        template,
+        seed,
+        seeds: options.seeds.max(1),
+        jobs: options.jobs.max(1),
+        scratch: options.scratch.clone(),
+        keep: options.keep,
+    };
+    let plan = SearchPlan {
         methods,
         grids,
         scenes,
-        template,
-        seed,
+        prober,
         options: options.clone(),
     };
-    let prober = plan.prober(None);
     for (scene, _) in &plan.scenes {
         for (family, _) in &plan.grids {
-            prober.row_check(scene, family)?;
+            plan.prober.row_check(scene, family)?;
         }
     }
     Ok(plan)
-}
-
-impl SearchPlan {
-    fn prober<'a>(&self, run: Option<(&'a GpuContext, &'a dyn SearchProgress)>) -> Prober<'a> {
-        Prober {
-            run,
-            dir: self.dir.clone(),
-            template: self.template.clone(),
-            seed: self.seed,
-            seeds: self.options.seeds.max(1),
-            jobs: self.options.jobs.max(1),
-            scratch: self.options.scratch.clone(),
-            keep: self.options.keep,
-        }
-    }
 }
 
 /// Searches every target of the plan's shard; writes the profile when the plan is not sharded.
@@ -143,9 +133,16 @@ pub fn search(
     plan: &SearchPlan,
     progress: &dyn SearchProgress,
 ) -> Result<SearchSummary, SuiteError> {
-    let options = &plan.options;
-    std::fs::create_dir_all(&plan.dir).map_err(|e| SuiteError::io(&plan.dir, e))?;
-    let prober = plan.prober(Some((ctx, progress)));
+    let (options, prober) = (&plan.options, &plan.prober);
+    std::fs::create_dir_all(&prober.dir).map_err(|e| SuiteError::io(&prober.dir, e))?;
+    let probe = |method, scene, family, severity| {
+        prober.run(
+            ctx,
+            progress,
+            method,
+            prober.sequences(scene, family, severity)?,
+        )
+    };
     let mut findings = Vec::new();
     for method in &plan.methods {
         for (family, grid) in &plan.grids {
@@ -158,13 +155,12 @@ pub fn search(
                 if !options.shard.contains(&target.name()) {
                     continue;
                 }
-                let clean =
-                    prober.run(method, prober.sequences(scene, family, Severity::CLEAN)?)?;
+                let clean = probe(method, scene, family, Severity::CLEAN)?;
                 let mut runs = 0;
                 let finding = bisect(*grid, |severity| {
                     let outcomes = match severity.is_clean() {
                         true => clean.clone(),
-                        false => prober.run(method, prober.sequences(scene, family, severity)?)?,
+                        false => probe(method, scene, family, severity)?,
                     };
                     runs += outcomes.len();
                     let broke = options.criterion.breaks(&outcomes, &clean);
@@ -177,8 +173,8 @@ pub fn search(
     }
     let written = match options.shard == Shard::WHOLE {
         true => {
-            let mut written = vec![write_suite_file(plan, &prober, &findings)?];
-            written.extend(write_profile(&profile(&findings, options), &plan.dir)?);
+            let mut written = vec![write_suite_file(plan, &findings)?];
+            written.extend(write_profile(&profile(&findings, options), &prober.dir)?);
             written
         }
         false => Vec::new(),
@@ -190,9 +186,9 @@ pub fn search(
 /// `suite report` and `suite regen` work on `search/` as on any suite.
 fn write_suite_file(
     plan: &SearchPlan,
-    prober: &Prober,
     findings: &[(Target, Finding, usize)],
 ) -> Result<PathBuf, SuiteError> {
+    let prober = &plan.prober;
     let mut sequences = Vec::new();
     for (target, finding, _) in findings {
         let (scene, _) = (plan.scenes.iter())
@@ -210,16 +206,16 @@ fn write_suite_file(
         }
     }
     let file = SuiteFile {
-        seed: plan.seed,
-        defaults: plan.template.clone(),
+        seed: plan.prober.seed,
+        defaults: plan.prober.template.clone(),
         sequences,
     };
     let header =
         "Written by `rslam suite search`: every sequence it made, each severity it tried. \
                   `rslam suite search` writes it again; `suite status`, `suite report` and \
                   `suite regen` read it.";
-    let path = plan.dir.join(SUITE_FILE);
-    let partial = plan.dir.join(format!(".{SUITE_FILE}.partial"));
+    let path = plan.prober.dir.join(SUITE_FILE);
+    let partial = plan.prober.dir.join(format!(".{SUITE_FILE}.partial"));
     std::fs::write(&partial, file.to_text(header)?).map_err(|e| SuiteError::io(&partial, e))?;
     std::fs::rename(&partial, &path).map_err(|e| SuiteError::io(&path, e))?;
     Ok(path)

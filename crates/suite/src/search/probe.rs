@@ -26,9 +26,7 @@ use crate::{Shard, Suite, SuiteError};
 /// How long to wait before trying again a sequence another process (another shard) holds.
 const BUSY_WAIT: Duration = Duration::from_secs(2);
 
-pub(super) struct Prober<'a> {
-    /// The GPU and the progress to make and run sequences with; `None` while planning.
-    pub run: Option<(&'a GpuContext, &'a dyn SearchProgress)>,
+pub(super) struct Prober {
     /// The search's own suite folder, `DIR/search`.
     pub dir: PathBuf,
     /// What every probe's row shares (the `[defaults]` of `DIR/suite.toml`, if any).
@@ -41,7 +39,7 @@ pub(super) struct Prober<'a> {
     pub keep: bool,
 }
 
-impl Prober<'_> {
+impl Prober {
     /// Checks the rows a family's probes on `scene` get.
     pub fn row_check(&self, scene: &str, family: &str) -> Result<(), SuiteError> {
         self.sequences(scene, family, Severity::MAX).map(|_| ())
@@ -85,10 +83,11 @@ impl Prober<'_> {
     /// Makes, runs and evaluates `sequences` with `method`: one outcome per sequence and repeat.
     pub fn run(
         &self,
+        ctx: &GpuContext,
+        progress: &dyn SearchProgress,
         method: &Method,
         sequences: Vec<Sequence>,
     ) -> Result<Vec<RunOutcome>, SuiteError> {
-        let (ctx, progress) = self.run.expect("a prober made to run");
         let suite = Suite {
             dir: self.dir.clone(),
             seed: self.seed,
