@@ -3,6 +3,7 @@
 mod agents;
 mod auto_exposure;
 mod bench;
+mod capture;
 mod dataset_check;
 mod depth_png;
 mod ephemeral;

@@ -19,6 +19,8 @@ fn flag(part: JobPart) -> String {
         JobPart::Trajectory => "--traj".into(),
         JobPart::Agents => "--agents".into(),
         JobPart::Bag => "--bag-depth/--bag-tf/--bag-compression".into(),
+        JobPart::CaptureScale => "--capture-scale".into(),
+        JobPart::CaptureOpacity => "--capture-min-opacity".into(),
         JobPart::Frame | JobPart::FrameIndices | JobPart::Poses => part.to_string(),
     }
 }

@@ -26,6 +26,7 @@ mod nearest_time;
 mod pose;
 mod remove_if_present;
 pub mod se3;
+pub mod splat_io;
 mod spline_se3;
 mod surface_bvh;
 #[cfg(test)]

@@ -160,6 +160,7 @@ proptest! {
             mesh: Mesh { vertices, indices: indices.clone() },
             textures: vec![Texture::white()],
             default_trajectory: None,
+            splats: None,
             lights: None,
         };
         let read = parse_ply(&ply_bytes(&scene)).map_err(TestCaseError::fail)?;

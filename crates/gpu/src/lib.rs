@@ -5,15 +5,19 @@
 //! frame's colour and depth on the GPU, where the renderer writes them and the perturbations
 //! transform them; [`FrameUploads`] brings decoded frames in from the threads that decoded them;
 //! [`FrameRing`] keeps several frames in flight and reads each back once, as a [`MappedFrame`]
-//! unpacked wherever it is handed to.
+//! unpacked wherever it is handed to. [`Scan`] and [`RadixSort`] are the prefix sum and the
+//! stable sort that GPU-resident algorithms (the splat rasteriser) build on.
 
+pub mod compute;
 mod context;
 mod error;
 mod frame;
 mod frame_ring;
 mod frame_uploads;
 mod mapped_frame;
+mod radix_sort;
 mod readback;
+mod scan;
 pub mod shader;
 mod texture;
 
@@ -23,5 +27,7 @@ pub use frame::FrameTextures;
 pub use frame_ring::{FrameRing, ReadFrame};
 pub use frame_uploads::{FilledUpload, FrameUploads, UploadFiller};
 pub use mapped_frame::{MappedColor, MappedDepth, MappedFrame};
+pub use radix_sort::RadixSort;
 pub use readback::{read_buffer, read_texels, FrameReadback};
+pub use scan::Scan;
 pub use wgpu;

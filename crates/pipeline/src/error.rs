@@ -68,6 +68,10 @@ pub enum JobPart {
     Agents,
     /// How a ROS 2 bag is written (its depth encoding, `/tf`, compression).
     Bag,
+    /// A Gaussian-splat capture's metric scale.
+    CaptureScale,
+    /// The accumulated opacity under which a capture's pixel has no depth.
+    CaptureOpacity,
 }
 
 impl fmt::Display for JobPart {
@@ -84,6 +88,8 @@ impl fmt::Display for JobPart {
             Self::Poses => "poses",
             Self::Agents => "agents",
             Self::Bag => "bag options",
+            Self::CaptureScale => "capture scale",
+            Self::CaptureOpacity => "capture min opacity",
         })
     }
 }

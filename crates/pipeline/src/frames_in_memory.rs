@@ -62,7 +62,13 @@ impl FramesInMemory<SceneSource> {
             &job.spec,
             &settings::one_camera_render("a one-camera scene"),
         )?;
-        let mut source = SceneSource::new(ctx, &resolved.scene, job.camera, resolved.poses)?;
+        let mut source = SceneSource::new(
+            ctx,
+            &resolved.scene,
+            job.camera,
+            resolved.poses,
+            job.capture.settings,
+        )?;
         source.set_sensor(ctx, &job.spec, job.rate_hz, job.seed)?;
         Ok(Self {
             pipeline: Pipeline::new(ctx, source, &job.spec, job.seed)?,

@@ -37,6 +37,7 @@ pub(crate) fn plan<'a>(
     let ground_truth = resolved.plan.ground_truth(&resolved.poses);
     let mut extra = serde_json::json!({});
     record_agent(&mut extra, scene);
+    scene.record_capture(&mut extra, &resolved.scene);
     scene_light::record(
         &mut extra,
         &resolved.scene,
@@ -80,8 +81,13 @@ impl Planned for CameraRender<'_> {
 
     fn open<'a>(&'a self, ctx: &'a GpuContext) -> Result<Writing<'a>, PipelineError> {
         let (scene, resolved) = (self.scene, &self.resolved);
-        let mut source =
-            SceneSource::new(ctx, &resolved.scene, scene.camera, resolved.poses.clone())?;
+        let mut source = SceneSource::new(
+            ctx,
+            &resolved.scene,
+            scene.camera,
+            resolved.poses.clone(),
+            scene.capture.settings,
+        )?;
         source.set_sensor(ctx, &scene.spec, scene.rate_hz, scene.seed)?;
         let pipeline = Pipeline::new(ctx, source, &scene.spec, scene.seed)?;
         let output = DatasetOutput {

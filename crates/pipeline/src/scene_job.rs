@@ -9,7 +9,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 use rslam_core::trajectory_io::read_trajectory;
 use rslam_core::{Intrinsics, Pose};
 use rslam_perturb::PerturbSpec;
-use rslam_render::{load_scene, Scene};
+use rslam_render::splat::CaptureOptions;
+use rslam_render::{load_scene_scaled, Scene};
 
 use crate::plan::FramePlan;
 use crate::{JobPart, PipelineError};
@@ -29,6 +30,8 @@ pub struct SceneJob {
     /// One agent of a multi-agent render: the built-in scene's path for that agent
     /// instead of its default one; `None` for a single camera.
     pub agent: Option<usize>,
+    /// A Gaussian-splat capture's metric scale and depth rendering (meshes take the default).
+    pub capture: CaptureOptions,
 }
 
 /// A loaded scene and its content hash, hashed on first use (the viewer never needs it).
@@ -38,22 +41,31 @@ type Loaded = (Arc<Scene>, Arc<OnceLock<String>>);
 /// suite plans hundreds of jobs over a few scenes.
 #[derive(Default)]
 pub struct SceneCache {
-    loaded: Mutex<HashMap<String, Loaded>>,
+    /// By name and the bits of the capture scale.
+    loaded: Mutex<HashMap<(String, Option<u64>), Loaded>>,
 }
 
 impl SceneCache {
-    /// The scene `name_or_path` ([`load_scene`]), loaded on first use.
-    fn load(&self, name_or_path: &str) -> Result<Loaded, PipelineError> {
-        let hit = self.lock().get(name_or_path).cloned();
+    /// The scene `name_or_path` ([`load_scene_scaled`]), loaded on first use.
+    fn load(
+        &self,
+        name_or_path: &str,
+        metres_per_unit: Option<f64>,
+    ) -> Result<Loaded, PipelineError> {
+        let key = (name_or_path.to_string(), metres_per_unit.map(f64::to_bits));
+        let hit = self.lock().get(&key).cloned();
         if let Some(hit) = hit {
             return Ok(hit);
         }
-        let loaded = (Arc::new(load_scene(name_or_path)?), Arc::default());
-        self.lock().insert(name_or_path.to_string(), loaded.clone());
+        let loaded = (
+            Arc::new(load_scene_scaled(name_or_path, metres_per_unit)?),
+            Arc::default(),
+        );
+        self.lock().insert(key, loaded.clone());
         Ok(loaded)
     }
 
-    fn lock(&self) -> std::sync::MutexGuard<'_, HashMap<String, Loaded>> {
+    fn lock(&self) -> std::sync::MutexGuard<'_, HashMap<(String, Option<u64>), Loaded>> {
         // A panic elsewhere cannot leave a half-inserted entry: the map stays usable.
         self.loaded
             .lock()
@@ -78,7 +90,46 @@ impl ResolvedScene {
     }
 }
 
+/// The spec's items whose parameters are lengths: the depth corruptions, `trans`, the IMU's and
+/// the rig calibration's.
+fn items_in_metres(spec: &PerturbSpec) -> Vec<String> {
+    let depth = spec.depth.iter().map(|item| item.name.clone());
+    let trans = spec.translation.is_some().then(|| "trans".to_string());
+    let imu = (!spec.imu.is_empty()).then(|| "imu items".to_string());
+    let calibration = spec.calibration.iter().map(|c| c.name.clone());
+    depth.chain(trans).chain(imu).chain(calibration).collect()
+}
+
 impl SceneJob {
+    /// Fails when `scene` is a capture without a metric scale: `what` ("item 'trans' is", "a
+    /// rig's baselines are") needs metres.
+    pub(crate) fn require_metres(&self, scene: &Scene, what: &str) -> Result<(), PipelineError> {
+        if scene.splats.is_none() || self.capture.metres_per_unit.is_some() {
+            return Ok(());
+        }
+        Err(PipelineError::option(
+            JobPart::CaptureScale,
+            format!(
+                "'{}' is a Gaussian-splat capture without a metric scale, and {what} in metres: expected the capture's metres per unit",
+                self.scene
+            ),
+        ))
+    }
+
+    /// Writes how a capture was rendered into the manifest's `extra.capture`: its scale
+    /// (metres per unit, `null` when not stated), depth and opacity threshold. Meshes write
+    /// nothing.
+    pub(crate) fn record_capture(&self, extra: &mut serde_json::Value, scene: &Scene) {
+        if scene.splats.is_some() {
+            let settings = &self.capture.settings;
+            extra["capture"] = serde_json::json!({
+                "metres_per_unit": self.capture.metres_per_unit,
+                "depth": settings.depth.name(),
+                "min_opacity": settings.min_opacity,
+            });
+        }
+    }
+
     pub fn resolve(&self) -> Result<ResolvedScene, PipelineError> {
         self.resolve_in(&SceneCache::default())
     }
@@ -91,7 +142,7 @@ impl SceneJob {
                 format!("{}: expected a positive number of Hz", self.rate_hz),
             ));
         }
-        let loaded = scenes.load(&self.scene)?;
+        let loaded = scenes.load(&self.scene, self.capture.metres_per_unit)?;
         let clean = self.camera_path(&loaded.0)?;
         self.resolve_path(loaded, clean)
     }
@@ -111,7 +162,8 @@ impl SceneJob {
                 "expected at least one pose",
             ));
         }
-        self.resolve_path(SceneCache::default().load(&self.scene)?, poses)
+        let loaded = SceneCache::default().load(&self.scene, self.capture.metres_per_unit)?;
+        self.resolve_path(loaded, poses)
     }
 
     /// The clean path deviated by the spec's `rot`/`trans`, and the plan.
@@ -120,6 +172,16 @@ impl SceneJob {
         (scene, hash): Loaded,
         clean: Vec<Pose>,
     ) -> Result<ResolvedScene, PipelineError> {
+        if let Some(item) = items_in_metres(&self.spec).first() {
+            self.require_metres(&scene, &format!("item '{item}' is"))?;
+        }
+        let opacity = self.capture.settings.min_opacity;
+        if scene.splats.is_some() && !(0.0..=1.0).contains(&opacity) {
+            return Err(PipelineError::option(
+                JobPart::CaptureOpacity,
+                format!("{opacity}: expected an accumulated opacity from 0 to 1"),
+            ));
+        }
         let clean = rslam_core::Trajectory::from_poses_at_rate(clean, self.rate_hz);
         let deviated = rslam_perturb::trajectory::deviate(&clean, &self.spec, self.seed);
         let plan = FramePlan::rendered(deviated.len(), self.rate_hz, &self.spec, self.seed);

@@ -20,10 +20,12 @@ pub fn check(scene: &Scene, spec: &PerturbSpec) -> Result<(), PipelineError> {
         light: spec.light,
         ..PerturbSpec::default()
     };
-    let setting = Setting::any_one_camera().lacking(
-        Need::LightLayers,
-        format!("'{}' is a mesh file", scene.name),
-    );
+    let what = match scene.splats {
+        Some(_) => "a Gaussian-splat capture",
+        None => "a mesh file",
+    };
+    let setting =
+        Setting::any_one_camera().lacking(Need::LightLayers, format!("'{}' is {what}", scene.name));
     settings::check(&light_only, &setting)
 }
 

@@ -257,6 +257,7 @@ mod tests {
             },
             seed: 5,
             agent: None,
+            capture: Default::default(),
         }
     }
 
@@ -320,6 +321,7 @@ mod tests {
                 spec: spec.clone(),
                 seed,
                 agent: None,
+                capture: Default::default(),
                 ..job("")
             };
             let expected = FramesInMemory::scene(ctx, &fresh_job)

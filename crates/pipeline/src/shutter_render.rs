@@ -9,6 +9,7 @@ use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 use rslam_perturb::sensor::{CameraPath, Shutter, ShutterPass, SubRender};
 use rslam_render::Rasterizer;
 
+use crate::source::FrameLight;
 use crate::PipelineError;
 
 pub(crate) struct ShutterRender {
@@ -68,16 +69,16 @@ impl ShutterRender {
     pub fn record(
         &self,
         ctx: &GpuContext,
-        rasterizer: &Rasterizer,
+        rasterizer: &mut Rasterizer,
         renders: &[SubRender],
         encoder: &mut wgpu::CommandEncoder,
         frame: &FrameTextures,
-        light: &dyn Fn((f64, f64)) -> Result<(), PipelineError>,
+        light: &FrameLight,
     ) -> Result<(), PipelineError> {
         for render in renders {
-            light(render.light_window)?;
+            light.apply(ctx, rasterizer, render.light_window)?;
             let mut sub = ctx.device.create_command_encoder(&Default::default());
-            rasterizer.encode(ctx, &mut sub, &self.subframe, &render.world_from_camera);
+            rasterizer.encode(ctx, &mut sub, &self.subframe, &render.world_from_camera)?;
             if render.weight > 0.0 {
                 self.pass.add(
                     ctx,

@@ -18,6 +18,7 @@ use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 use rslam_perturb::light::{LightSchedule, LightSpec};
 use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
+use rslam_render::splat::SplatSettings;
 use rslam_render::{Rasterizer, Scene};
 
 use crate::lens_render::LensRender;
@@ -73,10 +74,11 @@ impl SceneSource {
         scene: &Arc<Scene>,
         camera: Intrinsics,
         poses: Vec<Pose>,
+        capture: SplatSettings,
     ) -> Result<Self, PipelineError> {
         Ok(Self {
             scene: scene.clone(),
-            rasterizer: Rasterizer::new(ctx, scene, camera)?,
+            rasterizer: Rasterizer::with_splat_settings(ctx, scene, camera, capture)?,
             camera,
             poses,
             shutter: None,
@@ -112,7 +114,7 @@ impl SceneSource {
                 .map(|lens| LensRender::new(ctx, &self.camera, lens))
                 .transpose()?;
             let drawn = self.lens.as_ref().map_or(self.camera, |l| l.wide_camera());
-            self.rasterizer.set_intrinsics(ctx, drawn);
+            self.rasterizer.set_intrinsics(ctx, drawn)?;
         }
         let shutter = Shutter::of(spec);
         let rate_hz = rate_hz * f64::from(crate::plan::speed_up(spec));
@@ -148,7 +150,7 @@ impl SceneSource {
     /// Records the view from `world_from_camera`, off the path (a free camera, at rest: no
     /// shutter effect; through the lens; in the light of the sequence's start).
     pub fn record_from(
-        &self,
+        &mut self,
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         frame: &FrameTextures,
@@ -157,7 +159,7 @@ impl SceneSource {
         self.light_for(ctx, 0.0, (0.0, 0.0))?;
         let drawn = self.lens.as_ref().map_or(frame, |l| l.wide());
         self.rasterizer
-            .encode(ctx, encoder, drawn, world_from_camera);
+            .encode(ctx, encoder, drawn, world_from_camera)?;
         self.through_lens(ctx, encoder, frame);
         Ok(())
     }
@@ -170,8 +172,11 @@ impl SceneSource {
         time: f64,
         window: (f64, f64),
     ) -> Result<(), PipelineError> {
-        let weights = (self.light.as_ref()).map(|l| l.weights(time + window.0, time + window.1));
-        Ok(self.rasterizer.set_light(ctx, weights.as_deref())?)
+        let light = FrameLight {
+            schedule: self.light.as_ref(),
+            time,
+        };
+        light.apply(ctx, &self.rasterizer, window)
     }
 
     fn through_lens(
@@ -221,19 +226,43 @@ impl FrameSource for SceneSource {
         };
         match (&self.shutter, renders.is_empty()) {
             (Some(shutter), false) => {
-                shutter.record(ctx, &self.rasterizer, &renders, encoder, drawn, &|window| {
-                    self.light_for(ctx, time, window)
-                })?
+                let light = FrameLight {
+                    schedule: self.light.as_ref(),
+                    time,
+                };
+                shutter.record(ctx, &mut self.rasterizer, &renders, encoder, drawn, &light)?
             }
             _ => {
                 let window = self.shutter.as_ref().map_or((0.0, 0.0), |s| s.window());
                 self.light_for(ctx, time, window)?;
                 self.rasterizer
-                    .encode(ctx, encoder, drawn, &self.poses[index]);
+                    .encode(ctx, encoder, drawn, &self.poses[index])?;
             }
         }
         self.through_lens(ctx, encoder, frame);
         Ok(())
+    }
+}
+
+/// The light of one frame: the light items' schedule (`None`: the baked light) around the
+/// frame's capture time.
+pub(crate) struct FrameLight<'a> {
+    schedule: Option<&'a LightSchedule>,
+    time: f64,
+}
+
+impl FrameLight<'_> {
+    /// Lights `rasterizer`'s next render with the light over `window` (seconds from the
+    /// frame's time).
+    pub fn apply(
+        &self,
+        ctx: &GpuContext,
+        rasterizer: &Rasterizer,
+        window: (f64, f64),
+    ) -> Result<(), PipelineError> {
+        let weights =
+            (self.schedule).map(|l| l.weights(self.time + window.0, self.time + window.1));
+        Ok(rasterizer.set_light(ctx, weights.as_deref())?)
     }
 }
 

@@ -46,6 +46,7 @@ fn scene_job(spec: &str) -> SceneJob {
         },
         seed: 3,
         agent: None,
+        capture: Default::default(),
     }
 }
 

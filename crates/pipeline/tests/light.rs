@@ -58,6 +58,7 @@ fn lit_plane() -> Arc<Scene> {
         mesh,
         textures: vec![Texture::white()],
         default_trajectory: None,
+        splats: None,
         lights: Some(LightLayers {
             kinds: vec![LightKind::Lamp, LightKind::Daylight],
             colours,
@@ -80,7 +81,8 @@ fn frames(spec: &str, count: usize) -> Vec<RgbImage> {
     let ctx = context();
     let spec = PerturbSpec::parse(spec).unwrap();
     let poses = vec![Pose::IDENTITY; count];
-    let mut source = SceneSource::new(ctx, &lit_plane(), CAMERA, poses).unwrap();
+    let mut source =
+        SceneSource::new(ctx, &lit_plane(), CAMERA, poses, Default::default()).unwrap();
     source.set_sensor(ctx, &spec, RATE_HZ, SEED).unwrap();
     let mut pipeline = Pipeline::new(ctx, source, &spec, SEED).unwrap();
     let mut sink = Collect(Vec::new());

@@ -42,6 +42,7 @@ fn scene_job(frames: Option<usize>) -> SceneJob {
         spec: PerturbSpec::default(),
         seed: 5,
         agent: None,
+        capture: Default::default(),
     }
 }
 

@@ -54,6 +54,7 @@ fn scene(name: &str, mesh: Mesh) -> Scene {
         mesh,
         textures: vec![Texture::white()],
         default_trajectory: None,
+        splats: None,
         lights: None,
     }
 }
@@ -97,7 +98,8 @@ fn render(scene: &Scene, poses: &[Pose], spec: &str, index: usize) -> (RgbImage,
         text => PerturbSpec::parse(text).unwrap(),
     };
     let scene = std::sync::Arc::new(scene.clone());
-    let mut source = SceneSource::new(ctx, &scene, CAMERA, poses.to_vec()).unwrap();
+    let mut source =
+        SceneSource::new(ctx, &scene, CAMERA, poses.to_vec(), Default::default()).unwrap();
     source.set_sensor(ctx, &spec, RATE_HZ, 0).unwrap();
     let mut pipeline = Pipeline::new(ctx, source, &spec, 0).unwrap();
     let mut sink = Collect(Vec::new());

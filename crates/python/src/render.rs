@@ -77,6 +77,7 @@ pub fn render<'py>(
         spec,
         seed,
         agent: None,
+        capture: Default::default(),
     };
     let frames = py.detach(|| -> Result<_, RunError> {
         let ctx = gpu::context().map_err(RunError::NoGpu)?;

@@ -19,7 +19,7 @@ fn render_benches(c: &mut Criterion) {
         ("replica_1200x680", Intrinsics::REPLICA),
         ("tum_640x480", Intrinsics::TUM),
     ] {
-        let rasterizer = Rasterizer::new(&ctx, &scene, k).expect("rasterizer");
+        let mut rasterizer = Rasterizer::new(&ctx, &scene, k).expect("rasterizer");
         let frame = FrameTextures::new(&ctx, k.width, k.height);
         let readback = FrameReadback::new(&ctx, k.width, k.height, true);
         let mut group = c.benchmark_group(format!("render_room0_{label}"));
@@ -29,7 +29,9 @@ fn render_benches(c: &mut Criterion) {
         group.bench_function("render_only", |b| {
             b.iter(|| {
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
-                rasterizer.encode(&ctx, &mut encoder, &frame, &poses[i % poses.len()]);
+                rasterizer
+                    .encode(&ctx, &mut encoder, &frame, &poses[i % poses.len()])
+                    .expect("render");
                 ctx.queue.submit([encoder.finish()]);
                 ctx.wait_idle().expect("gpu");
                 i += 7;
@@ -38,7 +40,9 @@ fn render_benches(c: &mut Criterion) {
         group.bench_function("render_and_readback", |b| {
             b.iter(|| {
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
-                rasterizer.encode(&ctx, &mut encoder, &frame, &poses[i % poses.len()]);
+                rasterizer
+                    .encode(&ctx, &mut encoder, &frame, &poses[i % poses.len()])
+                    .expect("render");
                 readback.encode_copy(&mut encoder, &frame);
                 let submission = ctx.queue.submit([encoder.finish()]);
                 readback.read(&ctx, submission).expect("readback");

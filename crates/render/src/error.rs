@@ -17,6 +17,10 @@ pub enum RenderError {
     },
     #[error("{path}: {message}")]
     BadMesh { path: PathBuf, message: String },
+    #[error("a Gaussian-splat capture has no light layers: light items need a built-in scene")]
+    CaptureLight,
+    #[error("scene '{name}': capture scale {message}")]
+    CaptureScale { name: String, message: String },
     #[error("{path}: texture '{texture}': {message}")]
     BadTexture {
         path: PathBuf,

@@ -58,12 +58,12 @@ fn every_light_at_full_strength_mixes_to_the_baked_colours() {
 }
 
 fn render(ctx: &GpuContext, scene: &Scene, pose: &Pose, weights: Option<&[[f32; 3]]>) -> RgbImage {
-    let rasterizer = Rasterizer::new(ctx, scene, CAMERA).unwrap();
+    let mut rasterizer = Rasterizer::new(ctx, scene, CAMERA).unwrap();
     rasterizer.set_light(ctx, weights).unwrap();
     let frame = FrameTextures::new(ctx, CAMERA.width, CAMERA.height);
     let readback = FrameReadback::new(ctx, CAMERA.width, CAMERA.height, false);
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    rasterizer.encode(ctx, &mut encoder, &frame, pose);
+    rasterizer.encode(ctx, &mut encoder, &frame, pose).unwrap();
     readback.encode_copy(&mut encoder, &frame);
     let submission = ctx.queue.submit([encoder.finish()]);
     readback.read(ctx, submission).unwrap().0

@@ -149,6 +149,7 @@ impl Sequence {
             spec: self.spec.clone(),
             seed: self.seed,
             agent: None,
+            capture: Default::default(),
         };
         Job {
             source: Source::Scene {

@@ -34,6 +34,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             spec: spec.clone(),
             seed: 0,
             agent: None,
+            capture: Default::default(),
         })),
         spec,
         seed: 0,

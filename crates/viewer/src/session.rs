@@ -105,6 +105,7 @@ impl Session {
                     spec: options.spec.clone(),
                     seed: options.seed,
                     agent: None,
+                    capture: Default::default(),
                     ..(**job).clone()
                 };
                 Sequence::scene(&self.ctx, &job)?

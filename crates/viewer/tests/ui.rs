@@ -43,6 +43,7 @@ fn scene_job(frames: usize) -> SceneJob {
         spec: PerturbSpec::default(),
         seed: 0,
         agent: None,
+        capture: Default::default(),
     }
 }
 

@@ -7,14 +7,28 @@ use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::{agent_folders, agent_scene_job, Job, RigPreset, SceneJob, Sensors, Source};
+use rslam_render::splat::{CaptureOptions, SplatDepth, SplatSettings};
 
 use super::make::make;
 
 #[derive(clap::Args)]
 pub struct RenderArgs {
-    /// Built-in scene (room0 room1 room2 office0 … office4) or a mesh file (.ply, .gltf, .glb, .obj).
+    /// Built-in scene (room0 room1 room2 office0 … office4), a mesh file (.ply, .gltf, .glb,
+    /// .obj) or a Gaussian-splat capture (a 3DGS .ply).
     #[arg(long)]
     scene: String,
+    /// A capture's metric scale: metres per unit of its coordinates (COLMAP and phone captures
+    /// have none of their own). Without it, items in metres (depth items, `trans`, IMU and
+    /// calibration items) are refused.
+    #[arg(long)]
+    capture_scale: Option<f64>,
+    /// A capture's depth: `expected` (Σ wᵢzᵢ / Σ wᵢ over the blended Gaussians) or `median`
+    /// (where the transmittance falls below 0.5).
+    #[arg(long, value_enum, default_value = "expected")]
+    capture_depth: CaptureDepth,
+    /// A capture's pixels whose accumulated opacity stays below this get no depth (0).
+    #[arg(long, default_value_t = 0.5)]
+    capture_min_opacity: f32,
     /// Output folder: new or empty; or the same command's unfinished output, which is resumed.
     #[arg(long)]
     out: PathBuf,
@@ -102,6 +116,13 @@ impl OutputFormat {
     }
 }
 
+/// `--capture-depth`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum CaptureDepth {
+    Expected,
+    Median,
+}
+
 /// `--camera` when not given.
 const DEFAULT_CAMERA: &str = "replica";
 
@@ -166,5 +187,15 @@ fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
         spec,
         seed: args.seed,
         agent: None,
+        capture: CaptureOptions {
+            metres_per_unit: args.capture_scale,
+            settings: SplatSettings {
+                depth: match args.capture_depth {
+                    CaptureDepth::Expected => SplatDepth::Expected,
+                    CaptureDepth::Median => SplatDepth::Median,
+                },
+                min_opacity: args.capture_min_opacity,
+            },
+        },
     })
 }

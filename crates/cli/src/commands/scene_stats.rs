@@ -174,6 +174,7 @@ fn sequence(
             spec: PerturbSpec::default(),
             seed: 0,
             agent: None,
+            capture: Default::default(),
         };
         let mut source = FramesInMemory::scene(&ctx, &job)?;
         measure(&ctx, &mut source, every)

@@ -71,6 +71,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
             spec: spec.clone(),
             seed: args.seed,
             agent: None,
+            capture: Default::default(),
         })),
         _ => bail!("give a DATASET folder or --scene NAME|MESH"),
     };

@@ -4,7 +4,9 @@
 
 mod ply;
 
-pub use ply::{parse_ply, read_mesh_bytes, read_ply};
+pub use ply::{
+    parse_ply, parse_ply_vertex_columns, ply_vertex_properties, read_mesh_bytes, read_ply,
+};
 
 /// Vertices and triangles of a mesh file, in the file's coordinates (metres for rslam).
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -98,35 +98,15 @@ pub fn read_mesh_bytes(path: &Path) -> Result<Vec<u8>, CoreError> {
 
 /// Parses a PLY file's bytes; the error is one line, without the file's name.
 pub fn parse_ply(bytes: &[u8]) -> Result<MeshGeometry, String> {
-    let header = parse_header(bytes)?;
-    let body = &bytes[header.body_start..];
-    let mut values: Box<dyn Values> = match header.encoding {
-        Encoding::Ascii => Box::new(AsciiValues::new(body)?),
-        encoding => Box::new(BinaryValues {
-            bytes: body,
-            pos: 0,
-            big: encoding == Encoding::BigEndian,
-        }),
-    };
     let mut mesh = MeshGeometry::default();
-    for element in &header.elements {
-        check_record_count(element, header.encoding, values.as_ref())?;
-        if element.properties.is_empty() && element.name != "vertex" {
-            continue; // records of nothing: no bytes to read, however many
-        }
+    read_elements(bytes, &mut |element, values| {
         match element.name.as_str() {
-            "vertex" => read_vertices(element, values.as_mut(), &mut mesh)?,
-            "face" => read_faces(element, values.as_mut(), &mut mesh)?,
-            _ => {
-                for record in 0..element.count {
-                    for p in &element.properties {
-                        read_property(p, values.as_mut())
-                            .map_err(|e| truncated(element, record, e))?;
-                    }
-                }
-            }
+            "vertex" => read_vertices(element, values, &mut mesh)?,
+            "face" => read_faces(element, values, &mut mesh)?,
+            _ => return Ok(false),
         }
-    }
+        Ok(true)
+    })?;
     let vertex_count = mesh.positions.len();
     if let Some(i) = mesh
         .indices
@@ -140,6 +120,99 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshGeometry, String> {
         ));
     }
     Ok(mesh)
+}
+
+/// The names of the 'vertex' element's scalar properties, in the file's order (from the header
+/// alone).
+pub fn ply_vertex_properties(bytes: &[u8]) -> Result<Vec<String>, String> {
+    let header = parse_header(bytes)?;
+    let vertex = header.elements.iter().find(|e| e.name == "vertex");
+    Ok(vertex
+        .into_iter()
+        .flat_map(|e| &e.properties)
+        .filter_map(|p| match p {
+            Property::Scalar { name, .. } => Some(name.clone()),
+            Property::List { .. } => None,
+        })
+        .collect())
+}
+
+/// The scalar vertex properties `names`, one column of 32-bit floats per name, in the order
+/// asked; every other property and element is skipped. Fails naming the first property the
+/// 'vertex' element lacks.
+pub fn parse_ply_vertex_columns(bytes: &[u8], names: &[&str]) -> Result<Vec<Vec<f32>>, String> {
+    let mut columns = vec![Vec::new(); names.len()];
+    let mut found = false;
+    read_elements(bytes, &mut |element, values| {
+        if element.name != "vertex" {
+            return Ok(false);
+        }
+        found = true;
+        let slots: Vec<Option<usize>> = (element.properties.iter())
+            .map(|p| match p {
+                Property::Scalar { name, .. } => names.iter().position(|n| n == name),
+                Property::List { .. } => None,
+            })
+            .collect();
+        if let Some(missing) = (0..names.len()).find(|i| !slots.contains(&Some(*i))) {
+            return Err(format!(
+                "the 'vertex' element has no '{}' property",
+                names[missing]
+            ));
+        }
+        // The count was checked against the file's size: these reservations are bounded by it.
+        columns.iter_mut().for_each(|c| c.reserve(element.count));
+        for record in 0..element.count {
+            for (p, slot) in element.properties.iter().zip(&slots) {
+                match (p, slot) {
+                    (Property::Scalar { kind, .. }, Some(i)) => {
+                        let x = values
+                            .read(*kind)
+                            .map_err(|e| truncated(element, record, e))?;
+                        columns[*i].push(x as f32);
+                    }
+                    _ => read_property(p, values).map_err(|e| truncated(element, record, e))?,
+                }
+            }
+        }
+        Ok(true)
+    })?;
+    if !found {
+        return Err("the file has no 'vertex' element".into());
+    }
+    Ok(columns)
+}
+
+/// Reads every element's records in order: `read` takes an element and returns whether it read
+/// its records; the records of the others are skipped.
+fn read_elements(
+    bytes: &[u8],
+    read: &mut dyn FnMut(&Element, &mut dyn Values) -> Result<bool, String>,
+) -> Result<(), String> {
+    let header = parse_header(bytes)?;
+    let body = &bytes[header.body_start..];
+    let mut values: Box<dyn Values> = match header.encoding {
+        Encoding::Ascii => Box::new(AsciiValues::new(body)?),
+        encoding => Box::new(BinaryValues {
+            bytes: body,
+            pos: 0,
+            big: encoding == Encoding::BigEndian,
+        }),
+    };
+    for element in &header.elements {
+        check_record_count(element, header.encoding, values.as_ref())?;
+        if element.properties.is_empty() && element.name != "vertex" {
+            continue; // records of nothing: no bytes to read, however many
+        }
+        if !read(element, values.as_mut())? {
+            for record in 0..element.count {
+                for p in &element.properties {
+                    read_property(p, values.as_mut()).map_err(|e| truncated(element, record, e))?;
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Where the header ends: the start of the `end_header` line and the first byte after it. The

@@ -117,6 +117,7 @@ pub(crate) fn plan<'a>(
     };
     let perturbed = PerturbedRig::new(&rig, &scene.spec, scene.seed)?;
     let resolved = scene.resolve_in(scenes)?;
+    scene.require_metres(&resolved.scene, "a rig's extrinsics and IMU are")?;
     let spline = motion_spline(&body_path(
         &resolved.clean.timestamps,
         &resolved.poses,
@@ -168,6 +169,7 @@ pub(crate) fn plan<'a>(
         })),
     });
     record_agent(&mut extra, scene);
+    scene.record_capture(&mut extra, &resolved.scene);
     scene_light::record(
         &mut extra,
         &resolved.scene,
@@ -303,7 +305,13 @@ impl RigRender<'_> {
                 |k| perturbed.body_from_camera(i, k),
                 &run.times_s,
             )?;
-            let mut source = SceneSource::new(ctx, &self.resolved.scene, camera.intrinsics, poses)?;
+            let mut source = SceneSource::new(
+                ctx,
+                &self.resolved.scene,
+                camera.intrinsics,
+                poses,
+                self.scene.capture.settings,
+            )?;
             source.set_times(run.times_s.clone());
             source.set_sensor(ctx, &run.spec, camera.rate_hz, self.scene.seed)?;
             let mut pipeline = Pipeline::new(ctx, source, &run.spec, run.seed)?;

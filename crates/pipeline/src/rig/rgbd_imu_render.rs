@@ -110,6 +110,7 @@ pub(crate) fn plan<'a>(
     let frame_spec = camera_frame_spec(spec, &camera.name);
     let perturbed = PerturbedRig::new(&rig, spec, scene.seed)?;
     let resolved = scene.resolve_in(scenes)?;
+    scene.require_metres(&resolved.scene, "a rig's extrinsics and IMU are")?;
     let spline = motion_spline(&body_path(
         &resolved.clean.timestamps,
         &resolved.poses,
@@ -148,6 +149,7 @@ pub(crate) fn plan<'a>(
         })),
     });
     record_agent(&mut extra, scene);
+    scene.record_capture(&mut extra, &resolved.scene);
     scene_light::record(
         &mut extra,
         &resolved.scene,
@@ -247,6 +249,7 @@ impl Planned for RgbdImuRender<'_> {
             &self.resolved.scene,
             camera.intrinsics,
             self.poses.clone(),
+            self.scene.capture.settings,
         )?;
         source.set_times(self.times_s.clone());
         source.set_sensor(ctx, &self.frame_spec, camera.rate_hz, self.scene.seed)?;

@@ -219,6 +219,7 @@ fn checker_scene() -> Scene {
         mesh,
         textures: vec![Texture::white(), checker],
         default_trajectory: None,
+        splats: None,
         lights: None,
     }
 }
@@ -326,6 +327,7 @@ fn surface_edges_mark_layer_plane_and_silhouette_changes_only() {
         mesh,
         textures: vec![Texture::white(); 3],
         default_trajectory: None,
+        splats: None,
         lights: None,
     };
     let rc = RayCaster::new(&scene);

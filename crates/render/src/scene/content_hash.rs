@@ -1,5 +1,5 @@
 //! A content hash of a scene for the dataset manifest: FNV-1a 64 over an explicit little-endian
-//! serialisation of the mesh and textures, so it is the same on every run, platform and Rust version.
+//! serialisation of the mesh and textures (and a capture's Gaussians), so it is the same on every run, platform and Rust version.
 
 use rslam_core::hash::Fnv1a64;
 
@@ -23,7 +23,7 @@ impl ContentHasher {
 }
 
 impl Scene {
-    /// 16 hex digits identifying the geometry, colours and textures (not the name, not the default
+    /// 16 hex digits identifying the geometry, colours, textures and Gaussians (not the name, not the default
     /// trajectory): two scenes with the same hash render the same images from the same poses.
     pub fn content_hash(&self) -> String {
         let mut h = ContentHasher(Fnv1a64::default());
@@ -41,6 +41,17 @@ impl Scene {
             h.u32(t.width);
             h.u32(t.height);
             h.bytes(&t.rgba);
+        }
+        // Only captures hash their Gaussians, so that every mesh keeps its hash.
+        if let Some(cloud) = &self.splats {
+            h.u32(cloud.len() as u32);
+            h.u32(cloud.sh_degree);
+            let floats = (cloud.means.iter().flatten())
+                .chain(cloud.sh.iter().flatten())
+                .chain(&cloud.opacity_logits)
+                .chain(cloud.log_scales.iter().flatten())
+                .chain(cloud.rotations.iter().flatten());
+            floats.for_each(|&v| h.f32(v));
         }
         format!("{:016x}", h.0.finish())
     }
@@ -66,6 +77,7 @@ mod tests {
             },
             textures: vec![Texture::white()],
             default_trajectory: None,
+            splats: None,
             lights: None,
         }
     }
@@ -89,6 +101,39 @@ mod tests {
         retextured.textures[0].rgba[3] = 0;
         for changed in [moved, recoloured, reindexed, retextured] {
             assert_ne!(changed.content_hash(), hash);
+        }
+    }
+
+    #[test]
+    fn captures_hash_every_gaussian_property() {
+        let cloud = rslam_core::splat_io::SplatCloud {
+            means: vec![[0.0, 0.0, 1.0]],
+            sh_degree: 0,
+            sh: vec![[0.1, 0.2, 0.3]],
+            opacity_logits: vec![1.0],
+            log_scales: vec![[-2.0; 3]],
+            rotations: vec![[1.0, 0.0, 0.0, 0.0]],
+        };
+        let capture = |change: &dyn Fn(&mut rslam_core::splat_io::SplatCloud)| {
+            let mut cloud = cloud.clone();
+            change(&mut cloud);
+            Scene {
+                mesh: Mesh::default(),
+                splats: Some(std::sync::Arc::new(cloud)),
+                ..one_triangle()
+            }
+            .content_hash()
+        };
+        let hash = capture(&|_| {});
+        let changes: [&dyn Fn(&mut rslam_core::splat_io::SplatCloud); 5] = [
+            &|c| c.means[0][2] = 1.5,
+            &|c| c.sh[0][1] = 0.0,
+            &|c| c.opacity_logits[0] = 0.0,
+            &|c| c.log_scales[0][0] = -1.0,
+            &|c| c.rotations[0][3] = 0.5,
+        ];
+        for change in changes {
+            assert_ne!(capture(change), hash);
         }
     }
 }

@@ -96,6 +96,7 @@ mod tests {
             },
             textures: vec![Texture::white(), checker],
             default_trajectory: None,
+            splats: None,
             lights: None,
         };
         let dir = tempfile::tempdir().unwrap();

@@ -1,7 +1,8 @@
-//! Scenes: one triangle mesh with baked, view-independent colour, plus the textures it samples.
-//! Built-in procedural scenes (`room0` … `office4`) and user meshes (PLY, glTF/GLB, OBJ) all load
-//! into the same [`Scene`]: [`load_scene`] picks the source from the name or file extension,
-//! [`export`] writes the ground-truth mesh as PLY.
+//! Scenes: one triangle mesh with baked, view-independent colour, plus the textures it samples,
+//! or a Gaussian-splat capture. Built-in procedural scenes (`room0` … `office4`), user meshes
+//! (PLY, glTF/GLB, OBJ) and captures (3DGS PLY) all load into the same [`Scene`]: [`load_scene`]
+//! picks the source from the name, the file extension and a PLY's header; [`export`] writes the
+//! ground-truth mesh as PLY.
 
 mod builtin;
 mod content_hash;
@@ -15,8 +16,11 @@ pub(crate) mod srgb;
 
 pub use builtin::{agent_trajectory, builtin_path_length, BUILTIN_SCENES};
 pub use light_layers::{LightKind, LightLayers, MAX_LIGHT_LAYERS};
-pub use load::load_scene;
+pub use load::{load_scene, load_scene_scaled};
 
+use std::sync::Arc;
+
+use rslam_core::splat_io::SplatCloud;
 use rslam_core::Trajectory;
 
 /// One mesh vertex. Final surface colour = `color` (sRGB, baked lighting) × `textures[layer]` at `uv`
@@ -70,6 +74,8 @@ pub struct Scene {
     /// Each light's share of the vertex colours, for the light items; `None` for user meshes,
     /// whose light is baked in.
     pub lights: Option<LightLayers>,
+    /// A Gaussian-splat capture: the scene is its Gaussians, and `mesh` is empty.
+    pub splats: Option<Arc<SplatCloud>>,
 }
 
 impl Mesh {

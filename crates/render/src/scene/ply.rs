@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use rslam_core::mesh_io::{parse_ply, read_mesh_bytes};
+use rslam_core::mesh_io::parse_ply;
 
 use super::{Mesh, Vertex};
 use crate::RenderError;
@@ -11,10 +11,9 @@ use crate::RenderError;
 /// Vertex colour when the file has none.
 const DEFAULT_COLOR: [u8; 3] = [200, 200, 200];
 
-/// Reads the triangles and vertex colours of a PLY file.
-pub fn read_ply(path: &Path) -> Result<Mesh, RenderError> {
-    let bytes = read_mesh_bytes(path)?;
-    let geometry = parse_ply(&bytes).map_err(|message| RenderError::bad_mesh(path, message))?;
+/// The triangles and vertex colours of the PLY file `path`, whose bytes are `bytes`.
+pub fn mesh_from_ply(path: &Path, bytes: &[u8]) -> Result<Mesh, RenderError> {
+    let geometry = parse_ply(bytes).map_err(|message| RenderError::bad_mesh(path, message))?;
     let color = |i: usize| {
         let [r, g, b] = geometry.colors.as_ref().map_or(DEFAULT_COLOR, |c| c[i]);
         [r, g, b, 255]

@@ -93,6 +93,7 @@ impl SceneBuilder {
             mesh,
             textures,
             default_trajectory: Some(trajectory),
+            splats: None,
             lights: Some(lights),
         }
     }

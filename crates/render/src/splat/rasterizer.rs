@@ -1,0 +1,336 @@
+use rslam_core::splat_io::SplatCloud;
+use rslam_core::{Intrinsics, Pose};
+use rslam_gpu::compute::{bind_group, dispatch_linear, storage_buffer, uniform_buffer};
+use rslam_gpu::{read_buffer, FrameTextures, GpuContext, RadixSort, Scan};
+use wgpu::util::DeviceExt;
+
+use super::camera::{tiles, SplatCamera};
+use super::gaussians::{pack, sh_values};
+use super::SplatSettings;
+use crate::RenderError;
+
+const PROJECT: &str = "render/splat/project.wgsl";
+const TILES: &str = "render/splat/tiles.wgsl";
+const BLEND: &str = "render/splat/blend.wgsl";
+/// Bytes of one `Splat` in shaders/render/splat/types.wgsl.
+const SPLAT_BYTES: u64 = 64;
+const GROUP: u32 = 256;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct InstanceCount {
+    n: u32,
+    pad: [u32; 3],
+}
+
+/// A splat capture uploaded once, and the passes that draw it into [`FrameTextures`] of one size.
+pub struct SplatRasterizer {
+    intrinsics: Intrinsics,
+    settings: SplatSettings,
+    count: u32,
+    sh_degree: u32,
+    camera: wgpu::Buffer,
+    pipelines: Pipelines,
+    /// Per Gaussian: projected splats, and the depth sort's keys and Gaussian indices.
+    splats: wgpu::Buffer,
+    depth_sort: RadixSort,
+    project: wgpu::BindGroup,
+    /// Per depth-sorted Gaussian its first instance slot, and the total at `[count]`.
+    offsets: wgpu::Buffer,
+    offsets_scan: Scan,
+    count_tiles: wgpu::BindGroup,
+    total: wgpu::Buffer,
+    /// Everything sized by the frame and by the number of instances.
+    instances: Instances,
+}
+
+struct Pipelines {
+    project: wgpu::ComputePipeline,
+    count_tiles: wgpu::ComputePipeline,
+    duplicate: wgpu::ComputePipeline,
+    tile_ranges: wgpu::ComputePipeline,
+    blend: wgpu::ComputePipeline,
+}
+
+/// The tile sort and per-tile ranges, rebuilt when the instances outgrow them or the frame size
+/// changes.
+struct Instances {
+    sort: RadixSort,
+    count: wgpu::Buffer,
+    ranges: wgpu::Buffer,
+    duplicate: wgpu::BindGroup,
+    tile_ranges: wgpu::BindGroup,
+}
+
+impl SplatRasterizer {
+    pub fn new(
+        ctx: &GpuContext,
+        cloud: &SplatCloud,
+        intrinsics: Intrinsics,
+        settings: SplatSettings,
+    ) -> Result<Self, RenderError> {
+        let device = &ctx.device;
+        let count = cloud.len() as u32;
+        let pipelines = Pipelines {
+            project: ctx.compute_pipeline(PROJECT)?,
+            count_tiles: ctx.compute_pipeline_entry(TILES, "count_tiles")?,
+            duplicate: ctx.compute_pipeline_entry(TILES, "duplicate")?,
+            tile_ranges: ctx.compute_pipeline_entry(TILES, "tile_ranges")?,
+            blend: ctx.compute_pipeline(BLEND)?,
+        };
+        let init = |label, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let gaussians = init("splat gaussians", bytemuck::cast_slice(&pack(cloud)));
+        let sh = init("splat harmonics", bytemuck::cast_slice(&sh_values(cloud)));
+        let camera = uniform_buffer::<SplatCamera>(ctx, "splat camera");
+        let splats = storage_buffer(ctx, "splats", count as u64 * SPLAT_BYTES);
+        let depth_sort = RadixSort::new(ctx, count, 32)?;
+        let project = bind_group(
+            ctx,
+            &pipelines.project,
+            "splat project",
+            &[
+                Some(camera.as_entire_binding()),
+                Some(gaussians.as_entire_binding()),
+                Some(sh.as_entire_binding()),
+                Some(splats.as_entire_binding()),
+                Some(depth_sort.keys().as_entire_binding()),
+                Some(depth_sort.values().as_entire_binding()),
+            ],
+        );
+        let offsets = storage_buffer(ctx, "splat instance offsets", (count as u64 + 1) * 4);
+        let offsets_scan = Scan::new(ctx, &offsets, count + 1)?;
+        let count_tiles = bind_group(
+            ctx,
+            &pipelines.count_tiles,
+            "splat count tiles",
+            &[
+                Some(camera.as_entire_binding()),
+                Some(splats.as_entire_binding()),
+                Some(depth_sort.values().as_entire_binding()),
+                Some(offsets.as_entire_binding()),
+            ],
+        );
+        let total = storage_buffer(ctx, "splat instance total", 4);
+        let instances = Instances::new(
+            ctx,
+            &pipelines,
+            &intrinsics,
+            count.max(1024),
+            [&camera, &splats, depth_sort.values(), &offsets],
+        )?;
+        Ok(Self {
+            intrinsics,
+            settings,
+            count,
+            sh_degree: cloud.sh_degree,
+            camera,
+            pipelines,
+            splats,
+            depth_sort,
+            project,
+            offsets,
+            offsets_scan,
+            count_tiles,
+            total,
+            instances,
+        })
+    }
+
+    pub fn intrinsics(&self) -> &Intrinsics {
+        &self.intrinsics
+    }
+
+    pub fn settings(&self) -> &SplatSettings {
+        &self.settings
+    }
+
+    /// Draws with `intrinsics` from now on (frames of its size); the capture stays uploaded.
+    pub fn set_intrinsics(
+        &mut self,
+        ctx: &GpuContext,
+        intrinsics: Intrinsics,
+    ) -> Result<(), RenderError> {
+        let resized = tiles(&intrinsics) != tiles(&self.intrinsics);
+        self.intrinsics = intrinsics;
+        if resized {
+            self.instances = self.instances_for(ctx, self.instances.sort.capacity())?;
+        }
+        Ok(())
+    }
+
+    fn instances_for(&self, ctx: &GpuContext, capacity: u32) -> Result<Instances, RenderError> {
+        Instances::new(
+            ctx,
+            &self.pipelines,
+            &self.intrinsics,
+            capacity,
+            [
+                &self.camera,
+                &self.splats,
+                self.depth_sort.values(),
+                &self.offsets,
+            ],
+        )
+    }
+
+    /// Records the render of the view from `world_from_camera` into `frame` (colour as the
+    /// capture's display values, z-depth; pixels that see nothing get black and depth 0).
+    /// Projection and depth sort are submitted now and the instance count read back; the tile
+    /// sort and blending go into `encoder`. Submit it before encoding the next frame.
+    pub fn encode(
+        &mut self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameTextures,
+        world_from_camera: &Pose,
+    ) -> Result<(), RenderError> {
+        let uniform = SplatCamera::new(
+            world_from_camera,
+            &self.intrinsics,
+            self.count,
+            self.sh_degree,
+            &self.settings,
+        );
+        ctx.queue
+            .write_buffer(&self.camera, 0, bytemuck::bytes_of(&uniform));
+        let instances = self.count_instances(ctx)?;
+        if instances > self.instances.sort.capacity() {
+            self.instances = self.instances_for(ctx, instances.next_power_of_two())?;
+        }
+        let i = &self.instances;
+        ctx.queue.write_buffer(
+            &i.count,
+            0,
+            bytemuck::bytes_of(&InstanceCount {
+                n: instances,
+                pad: [0; 3],
+            }),
+        );
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            let groups = self.count.div_ceil(GROUP);
+            dispatch_linear(&mut pass, &self.pipelines.duplicate, &i.duplicate, groups);
+        }
+        i.sort.encode(ctx, encoder, instances);
+        encoder.clear_buffer(&i.ranges, 0, None);
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            let groups = instances.div_ceil(GROUP);
+            dispatch_linear(
+                &mut pass,
+                &self.pipelines.tile_ranges,
+                &i.tile_ranges,
+                groups,
+            );
+            let blend = bind_group(
+                ctx,
+                &self.pipelines.blend,
+                "splat blend",
+                &[
+                    Some(self.camera.as_entire_binding()),
+                    Some(self.splats.as_entire_binding()),
+                    Some(i.sort.values().as_entire_binding()),
+                    Some(i.ranges.as_entire_binding()),
+                    Some(wgpu::BindingResource::TextureView(frame.color_view())),
+                    Some(wgpu::BindingResource::TextureView(frame.depth_view())),
+                ],
+            );
+            let [tiles_x, tiles_y] = tiles(&self.intrinsics);
+            pass.set_pipeline(&self.pipelines.blend);
+            pass.set_bind_group(0, &blend, &[]);
+            pass.dispatch_workgroups(tiles_x, tiles_y, 1);
+        }
+        Ok(())
+    }
+
+    /// Projects, sorts by depth and counts the tile instances: submitted, and the count read
+    /// back (it sizes the tile sort).
+    fn count_instances(&self, ctx: &GpuContext) -> Result<u32, RenderError> {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            let groups = self.count.div_ceil(GROUP);
+            dispatch_linear(&mut pass, &self.pipelines.project, &self.project, groups);
+        }
+        self.depth_sort.encode(ctx, &mut encoder, self.count);
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            let groups = (self.count + 1).div_ceil(GROUP);
+            dispatch_linear(
+                &mut pass,
+                &self.pipelines.count_tiles,
+                &self.count_tiles,
+                groups,
+            );
+        }
+        self.offsets_scan.encode(ctx, &mut encoder, self.count + 1);
+        encoder.copy_buffer_to_buffer(
+            &self.offsets,
+            self.count as u64 * 4,
+            &self.total,
+            0,
+            Some(4),
+        );
+        ctx.queue.submit([encoder.finish()]);
+        let bytes = read_buffer(ctx, &self.total)?;
+        Ok(u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes")))
+    }
+}
+
+impl Instances {
+    fn new(
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        intrinsics: &Intrinsics,
+        capacity: u32,
+        [camera, splats, depth_order, offsets]: [&wgpu::Buffer; 4],
+    ) -> Result<Self, RenderError> {
+        let [tiles_x, tiles_y] = tiles(intrinsics);
+        let tile_count = tiles_x * tiles_y;
+        let key_bits = u32::BITS - tile_count.saturating_sub(1).leading_zeros();
+        let sort = RadixSort::new(ctx, capacity, key_bits)?;
+        let count = uniform_buffer::<InstanceCount>(ctx, "splat instance count");
+        let ranges = storage_buffer(ctx, "splat tile ranges", tile_count as u64 * 8);
+        let duplicate = bind_group(
+            ctx,
+            &pipelines.duplicate,
+            "splat duplicate",
+            &[
+                Some(camera.as_entire_binding()),
+                Some(splats.as_entire_binding()),
+                Some(depth_order.as_entire_binding()),
+                Some(offsets.as_entire_binding()),
+                Some(sort.keys().as_entire_binding()),
+                Some(sort.values().as_entire_binding()),
+            ],
+        );
+        let tile_ranges = bind_group(
+            ctx,
+            &pipelines.tile_ranges,
+            "splat tile ranges",
+            &[
+                None,
+                None,
+                None,
+                None,
+                Some(sort.keys().as_entire_binding()),
+                None,
+                Some(ranges.as_entire_binding()),
+                Some(count.as_entire_binding()),
+            ],
+        );
+        Ok(Self {
+            sort,
+            count,
+            ranges,
+            duplicate,
+            tile_ranges,
+        })
+    }
+}

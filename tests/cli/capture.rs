@@ -1,0 +1,277 @@
+//! `rslam render --scene capture.ply`: a Gaussian-splat capture made by the test (a box room of
+//! flat Gaussians), rendered along a path file into a dataset, its scale and depth settings in
+//! the manifest, and the items it refuses.
+
+use rslam_core::dataset::decode_depth_png;
+use rslam_core::splat_io::{write_splat_ply, SplatCloud};
+
+use crate::dataset_check::{files, manifest};
+use crate::harness::Workspace;
+use crate::render::SMALL_CAMERA;
+
+/// A 4 × 3 × 2.5 m room (x, y, z; z up) of flat Gaussians 4 cm apart on its walls, each wall in
+/// 0.5 m squares of two colours, as a capture in metres.
+fn room_capture() -> SplatCloud {
+    const SPACING: f32 = 0.04;
+    let (min, max) = ([-2.0f32, -1.5, 0.0], [2.0f32, 1.5, 2.5]);
+    let mut cloud = SplatCloud::default();
+    for axis in 0..3 {
+        let [a, b] = [[1, 2], [0, 2], [0, 1]][axis];
+        for at in [min[axis], max[axis]] {
+            let count = |k: usize| ((max[k] - min[k]) / SPACING).round() as usize;
+            for i in 0..count(a) {
+                for j in 0..count(b) {
+                    let mut mean = [0.0; 3];
+                    mean[axis] = at;
+                    mean[a] = min[a] + SPACING * (i as f32 + 0.5);
+                    mean[b] = min[b] + SPACING * (j as f32 + 0.5);
+                    let square =
+                        ((mean[a] - min[a]) / 0.5) as usize + ((mean[b] - min[b]) / 0.5) as usize;
+                    let grey = if square.is_multiple_of(2) { 0.25 } else { 0.75 };
+                    let mut scale = [0.03f32.ln(); 3];
+                    scale[axis] = 0.002f32.ln();
+                    cloud.means.push(mean);
+                    cloud.log_scales.push(scale);
+                    cloud.rotations.push([1.0, 0.0, 0.0, 0.0]);
+                    cloud.opacity_logits.push(4.0);
+                    cloud.sh.push([(grey - 0.5) / 0.282_094_8; 3]);
+                }
+            }
+        }
+    }
+    cloud
+}
+
+/// A TUM path of 6 poses from the room's middle, turning about the vertical, every length
+/// times `scale`.
+fn path(scale: f64) -> String {
+    // OpenCV camera looking along world +x with z up, turned by yaw about z.
+    (0..6)
+        .map(|i| {
+            let yaw = 0.2 * i as f64;
+            let (s, c) = ((0.5 * yaw).sin(), (0.5 * yaw).cos());
+            // q_yaw · q_look, with q_look = (x, y, z, w) = (-0.5, 0.5, -0.5, 0.5).
+            let q_look = [-0.5, 0.5, -0.5, 0.5];
+            let q_yaw = [0.0, 0.0, s, c];
+            let [x1, y1, z1, w1] = q_yaw;
+            let [x2, y2, z2, w2] = q_look;
+            let q = [
+                w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+                w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+                w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+                w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+            ];
+            let p = [-0.5 * scale, 0.1 * i as f64 * scale, 1.2 * scale];
+            format!(
+                "{:.6} {} {} {} {} {} {} {}\n",
+                i as f64 / 30.0,
+                p[0],
+                p[1],
+                p[2],
+                q[0],
+                q[1],
+                q[2],
+                q[3]
+            )
+        })
+        .collect()
+}
+
+fn capture_workspace() -> Workspace {
+    let ws = Workspace::new();
+    std::fs::write(ws.path("room.ply"), write_splat_ply(&room_capture())).unwrap();
+    std::fs::write(
+        ws.path("half.ply"),
+        write_splat_ply(&room_capture().scaled(0.5)),
+    )
+    .unwrap();
+    ws.write("path.txt", &path(1.0));
+    ws.write("half_path.txt", &path(0.5));
+    ws
+}
+
+fn render(
+    ws: &Workspace,
+    out: &str,
+    scene: &str,
+    traj: &str,
+    extra: &[&str],
+) -> crate::harness::Run {
+    let args = [
+        &[
+            "render",
+            "--scene",
+            scene,
+            "--traj",
+            traj,
+            "--format",
+            "tum",
+            "--camera",
+            SMALL_CAMERA,
+            "--out",
+            out,
+        ][..],
+        extra,
+    ]
+    .concat();
+    ws.rslam(&args)
+}
+
+fn depths(ws: &Workspace, out: &str) -> Vec<Vec<f32>> {
+    files(&ws.path(out).join("depth"), "")
+        .iter()
+        .map(|p| decode_depth_png(p, 5000.0).unwrap().data)
+        .collect()
+}
+
+#[test]
+fn a_capture_renders_along_a_path_into_a_tum_dataset() {
+    let ws = capture_workspace();
+    render(&ws, "clean", "room.ply", "path.txt", &[]).success();
+    render(&ws, "fog", "room.ply", "path.txt", &["--perturb", "fog:3"]).success();
+    let m = manifest(&ws.path("fog"));
+    assert_eq!(m.frame_count, 6);
+    assert!(m.source.ends_with("room.ply"));
+    let capture = &m.extra["capture"];
+    assert_eq!(capture["depth"], "expected");
+    assert_eq!(capture["min_opacity"], 0.5);
+    assert!(capture["metres_per_unit"].is_null(), "{capture}");
+    // The camera stands inside a closed room: every pixel sees a wall, 0.5 to 4.5 m away.
+    for frame in depths(&ws, "fog") {
+        assert!(
+            frame.iter().all(|&z| (0.5..4.5).contains(&z)),
+            "depth outside the room"
+        );
+    }
+    let clean = files(&ws.path("clean").join("rgb"), "");
+    let fog = files(&ws.path("fog").join("rgb"), "");
+    assert_eq!(clean.len(), 6);
+    assert_ne!(
+        std::fs::read(&clean[0]).unwrap(),
+        std::fs::read(&fog[0]).unwrap()
+    );
+}
+
+#[test]
+fn the_capture_scale_scales_depth_and_is_recorded() {
+    let ws = capture_workspace();
+    // The room at half size, seen from the path at half size: every depth halves.
+    render(
+        &ws,
+        "metres",
+        "room.ply",
+        "path.txt",
+        &["--capture-scale", "1"],
+    )
+    .success();
+    render(
+        &ws,
+        "half",
+        "half.ply",
+        "half_path.txt",
+        &["--capture-scale", "1"],
+    )
+    .success();
+    render(
+        &ws,
+        "stated",
+        "room.ply",
+        "half_path.txt",
+        &["--capture-scale", "0.5"],
+    )
+    .success();
+    assert_eq!(
+        manifest(&ws.path("stated")).extra["capture"]["metres_per_unit"],
+        0.5
+    );
+    let metres = depths(&ws, "metres");
+    for out in ["half", "stated"] {
+        for (full, half) in metres.iter().zip(depths(&ws, out)) {
+            let worst = full
+                .iter()
+                .zip(&half)
+                .map(|(f, h)| (0.5 * f - h).abs())
+                .fold(0.0f32, f32::max);
+            // Two steps of the TUM depth PNG (0.2 mm).
+            assert!(worst <= 0.0004, "{out}: depth off half by {worst} m");
+        }
+    }
+    render(
+        &ws,
+        "median",
+        "room.ply",
+        "path.txt",
+        &["--capture-depth", "median", "--capture-min-opacity", "0.9"],
+    )
+    .success();
+    let capture = &manifest(&ws.path("median")).extra["capture"];
+    assert_eq!(
+        (capture["depth"].as_str(), capture["min_opacity"].as_f64()),
+        (Some("median"), Some(0.9f32 as f64))
+    );
+}
+
+#[test]
+fn a_capture_refuses_items_in_metres_without_a_scale_and_light_items() {
+    let ws = capture_workspace();
+    render(
+        &ws,
+        "a",
+        "room.ply",
+        "path.txt",
+        &["--perturb", "depth_noise:2"],
+    )
+    .fails_with(2, &["--capture-scale", "room.ply", "depth_noise", "metres"]);
+    render(
+        &ws,
+        "b",
+        "room.ply",
+        "path.txt",
+        &["--perturb", "trans:0.01"],
+    )
+    .fails_with(2, &["--capture-scale", "'trans'"]);
+    render(
+        &ws,
+        "c",
+        "room.ply",
+        "path.txt",
+        &["--perturb", "depth_noise:2", "--capture-scale", "1"],
+    )
+    .success();
+    render(
+        &ws,
+        "d",
+        "room.ply",
+        "path.txt",
+        &["--perturb", "lights:1/0.4/0.3"],
+    )
+    .fails_with(2, &["Gaussian-splat capture", "light"]);
+    render(&ws, "e", "room.ply", "path.txt", &["--capture-scale=-1"])
+        .fails_with(2, &["room.ply", "-1", "positive"]);
+    render(
+        &ws,
+        "f",
+        "room.ply",
+        "path.txt",
+        &["--capture-min-opacity", "1.5"],
+    )
+    .fails_with(2, &["--capture-min-opacity", "1.5"]);
+    assert!(
+        !ws.path("a").exists() && !ws.path("d").exists(),
+        "nothing written for a refused job"
+    );
+}
+
+#[test]
+fn a_bad_capture_is_refused_naming_the_file_and_property() {
+    let ws = capture_workspace();
+    let bytes = write_splat_ply(&room_capture());
+    let text = String::from_utf8_lossy(&bytes[..400]).to_string();
+    let header_end = text.find("end_header\n").unwrap() + "end_header\n".len();
+    let header =
+        text[..header_end].replace("property float scale_1\n", "property float scale_one\n");
+    let mut renamed = header.into_bytes();
+    renamed.extend(&bytes[header_end..]);
+    std::fs::write(ws.path("renamed.ply"), renamed).unwrap();
+    render(&ws, "out", "renamed.ply", "path.txt", &[]).fails_with(2, &["renamed.ply", "'scale_1'"]);
+}
