@@ -5,12 +5,13 @@
 #   scripts/bench-gpu.sh BIN_DIR [WORK_DIR [bench_corruptions.py options]]
 #
 # BIN_DIR holds `rslam`, `png_roundtrip` (cargo build --release -p rslam-core --example
-# png_roundtrip) and the bench binaries `render` and `corruptions` (cargo bench --no-run -p
+# png_roundtrip), `splat_fps` (cargo build --release -p rslam-render --example splat_fps) and the
+# bench binaries `render` and `corruptions` (cargo bench --no-run -p
 # rslam-render -p rslam-perturb; copied out of target/release/deps without their hash suffix).
 # `rslam` links fontconfig and freetype (plot fonts): a machine without them needs libfontconfig1
 # and libfreetype6 unpacked somewhere on LD_LIBRARY_PATH.
 # Prints, in order: GPU time per corruption at severity 3 and the readbacks; render only and
-# render + readback of room0; whole `rslam render` of room0's 2000 frames in the Replica and TUM
+# render + readback of room0; a capture of room0 as 0.5 M and 3 M Gaussians; whole `rslam render` of room0's 2000 frames in the Replica and TUM
 # layouts (frames/s and bytes per frame, encoding on all cores); shard 0 of 200 of the robust-slam
 # matrix (its frames/s times 1,966,000 frames is the whole matrix's time); then, where this python has
 # imagecorruptions and albumentations, scripts/bench_corruptions.py over 20 of those frames, 600
@@ -33,6 +34,9 @@ echo "== GPU work per corruption (record, submit, wait), severity 3; readbacks"
 "$bin/corruptions" --bench 'gpu_1200x680/.*/3$|readback' 2>&1 | tee "$work/corruptions.log" | summary
 echo "== room0 render (render bench)"
 "$bin/render" --bench 2>&1 | tee "$work/render.log" | summary
+echo "== a capture of room0 at 1200x680 (splat_fps)"
+"$bin/splat_fps" 500000 100
+"$bin/splat_fps" 3000000 50
 
 for layout in replica tum; do
     out=$work/room0-$layout

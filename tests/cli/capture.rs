@@ -2,6 +2,7 @@
 //! flat Gaussians), rendered along a path file into a dataset, its scale and depth settings in
 //! the manifest, and the items it refuses.
 
+use glam::{DQuat, DVec3};
 use rslam_core::dataset::decode_depth_png;
 use rslam_core::splat_io::{write_splat_ply, SplatCloud};
 
@@ -42,39 +43,102 @@ fn room_capture() -> SplatCloud {
     cloud
 }
 
-/// A TUM path of 6 poses from the room's middle, turning about the vertical, every length
-/// times `scale`.
-fn path(scale: f64) -> String {
-    // OpenCV camera looking along world +x with z up, turned by yaw about z.
+/// 6 camera-to-world poses from the room's middle, turning about the vertical, every length
+/// times `scale`: OpenCV camera axes, looking along world +x with z up, turned by yaw about z.
+fn poses(scale: f64) -> Vec<(DQuat, DVec3)> {
+    let look_x = DQuat::from_mat3(&glam::DMat3::from_cols(
+        DVec3::new(0.0, -1.0, 0.0),
+        DVec3::new(0.0, 0.0, -1.0),
+        DVec3::new(1.0, 0.0, 0.0),
+    ));
     (0..6)
         .map(|i| {
-            let yaw = 0.2 * i as f64;
-            let (s, c) = ((0.5 * yaw).sin(), (0.5 * yaw).cos());
-            // q_yaw · q_look, with q_look = (x, y, z, w) = (-0.5, 0.5, -0.5, 0.5).
-            let q_look = [-0.5, 0.5, -0.5, 0.5];
-            let q_yaw = [0.0, 0.0, s, c];
-            let [x1, y1, z1, w1] = q_yaw;
-            let [x2, y2, z2, w2] = q_look;
-            let q = [
-                w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-                w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-                w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-                w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-            ];
-            let p = [-0.5 * scale, 0.1 * i as f64 * scale, 1.2 * scale];
+            let rotation = DQuat::from_rotation_z(0.2 * i as f64) * look_x;
+            (rotation, scale * DVec3::new(-0.5, 0.1 * i as f64, 1.2))
+        })
+        .collect()
+}
+
+fn tum_path(scale: f64) -> String {
+    (poses(scale).iter().enumerate())
+        .map(|(i, (q, p))| {
+            let t = i as f64 / 30.0;
             format!(
-                "{:.6} {} {} {} {} {} {} {}\n",
-                i as f64 / 30.0,
-                p[0],
-                p[1],
-                p[2],
-                q[0],
-                q[1],
-                q[2],
-                q[3]
+                "{t:.6} {} {} {} {} {} {} {}\n",
+                p.x, p.y, p.z, q.x, q.y, q.z, q.w
             )
         })
         .collect()
+}
+
+/// The same poses as COLMAP writes them: world-to-camera, a line of (no) points after each.
+fn colmap_images(scale: f64) -> String {
+    let mut text = "# Image list with two lines of data per image:\n".to_string();
+    for (i, (q, p)) in poses(scale).iter().enumerate() {
+        let (r, t) = (q.inverse(), -(q.inverse() * *p));
+        text += &format!(
+            "{} {} {} {} {} {} {} {} 1 frame{i:04}.jpg\n\n",
+            i + 1,
+            r.w,
+            r.x,
+            r.y,
+            r.z,
+            t.x,
+            t.y,
+            t.z
+        );
+    }
+    text
+}
+
+/// Row-major camera-to-world numbers with OpenGL camera axes (nerfstudio's) of an OpenCV pose.
+fn opengl_rows(rotation: DQuat, position: DVec3) -> Vec<f64> {
+    let r =
+        glam::DMat3::from_quat(rotation) * glam::DMat3::from_diagonal(DVec3::new(1.0, -1.0, -1.0));
+    let c = r.to_cols_array_2d();
+    (0..3)
+        .flat_map(|row| [c[0][row], c[1][row], c[2][row], position[row]])
+        .chain([0.0, 0.0, 0.0, 1.0])
+        .collect()
+}
+
+/// The path as nerfstudio's viewer writes a camera path, in the capture's frame.
+fn camera_path_json() -> String {
+    let cameras: Vec<String> = (poses(1.0).iter())
+        .map(|(q, p)| {
+            format!(
+                "{{\"camera_to_world\": {:?}, \"fov\": 70}}",
+                opengl_rows(*q, *p)
+            )
+        })
+        .collect();
+    format!("{{\"fps\": 30, \"camera_path\": [{}]}}", cameras.join(", "))
+}
+
+/// The path as a nerfstudio `transforms.json` in an original frame, and the
+/// `dataparser_transforms.json` (a quarter turn about z, a shift, a scale of 2) that moves it
+/// into the capture's frame.
+fn transforms_json() -> (String, String) {
+    let turn = DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2);
+    let (shift, scale) = (DVec3::new(1.0, 2.0, 3.0), 2.0);
+    let frames: Vec<String> = (poses(1.0).iter().enumerate())
+        .map(|(i, (q, p))| {
+            let original = (turn.inverse() * *q, turn.inverse() * (*p / scale - shift));
+            let rows = opengl_rows(original.0, original.1);
+            let matrix: Vec<&[f64]> = rows.chunks(4).collect();
+            format!(
+                "{{\"file_path\": \"images/frame_{i:05}.png\", \"transform_matrix\": {matrix:?}}}"
+            )
+        })
+        .collect();
+    let m = glam::DMat3::from_quat(turn).to_cols_array_2d();
+    let transform: Vec<[f64; 4]> = (0..3)
+        .map(|r| [m[0][r], m[1][r], m[2][r], shift[r]])
+        .collect();
+    (
+        format!("{{\"frames\": [{}]}}", frames.join(", ")),
+        format!("{{\"transform\": {transform:?}, \"scale\": {scale}}}"),
+    )
 }
 
 fn capture_workspace() -> Workspace {
@@ -85,8 +149,13 @@ fn capture_workspace() -> Workspace {
         write_splat_ply(&room_capture().scaled(0.5)),
     )
     .unwrap();
-    ws.write("path.txt", &path(1.0));
-    ws.write("half_path.txt", &path(0.5));
+    ws.write("path.txt", &tum_path(1.0));
+    ws.write("half_path.txt", &tum_path(0.5));
+    ws.write("images.txt", &colmap_images(1.0));
+    ws.write("camera_path.json", &camera_path_json());
+    let (transforms, dataparser) = transforms_json();
+    ws.write("transforms.json", &transforms);
+    ws.write("dataparser_transforms.json", &dataparser);
     ws
 }
 
@@ -184,8 +253,17 @@ fn the_capture_scale_scales_depth_and_is_recorded() {
         manifest(&ws.path("stated")).extra["capture"]["metres_per_unit"],
         0.5
     );
+    // The capture's own COLMAP path is in its units and is scaled with it.
+    render(
+        &ws,
+        "colmap",
+        "room.ply",
+        "images.txt",
+        &["--capture-scale", "0.5"],
+    )
+    .success();
     let metres = depths(&ws, "metres");
-    for out in ["half", "stated"] {
+    for out in ["half", "stated", "colmap"] {
         for (full, half) in metres.iter().zip(depths(&ws, out)) {
             let worst = full
                 .iter()
@@ -256,6 +334,11 @@ fn a_capture_refuses_items_in_metres_without_a_scale_and_light_items() {
         &["--capture-min-opacity", "1.5"],
     )
     .fails_with(2, &["--capture-min-opacity", "1.5"]);
+    ws.rslam(&["scene", "export", "room.ply", "--out", "mesh.ply"])
+        .fails_with(
+            2,
+            &["room.ply", "Gaussian-splat capture", "no triangle mesh"],
+        );
     assert!(
         !ws.path("a").exists() && !ws.path("d").exists(),
         "nothing written for a refused job"
@@ -274,4 +357,41 @@ fn a_bad_capture_is_refused_naming_the_file_and_property() {
     renamed.extend(&bytes[header_end..]);
     std::fs::write(ws.path("renamed.ply"), renamed).unwrap();
     render(&ws, "out", "renamed.ply", "path.txt", &[]).fails_with(2, &["renamed.ply", "'scale_1'"]);
+}
+
+#[test]
+fn nerfstudio_paths_render_the_views_of_the_same_poses() {
+    let ws = capture_workspace();
+    render(&ws, "tum", "room.ply", "path.txt", &[]).success();
+    render(&ws, "camera_path", "room.ply", "camera_path.json", &[]).success();
+    render(
+        &ws,
+        "transforms",
+        "room.ply",
+        "transforms.json",
+        &["--dataparser-transforms", "dataparser_transforms.json"],
+    )
+    .success();
+    let tum = depths(&ws, "tum");
+    for out in ["camera_path", "transforms"] {
+        for (a, b) in tum.iter().zip(depths(&ws, out)) {
+            let worst = a
+                .iter()
+                .zip(&b)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0f32, f32::max);
+            assert!(worst <= 0.0004, "{out}: depth off by {worst} m");
+        }
+    }
+    // Without the dataparser's move, the transforms.json cameras stand elsewhere.
+    render(&ws, "unmoved", "room.ply", "transforms.json", &[]).success();
+    assert_ne!(depths(&ws, "unmoved")[0], tum[0]);
+    render(
+        &ws,
+        "wrong",
+        "room.ply",
+        "path.txt",
+        &["--dataparser-transforms", "dataparser_transforms.json"],
+    )
+    .fails_with(2, &["path.txt", "dataparser"]);
 }

@@ -217,7 +217,10 @@ fn bad_flags_and_degenerate_input_are_clear_errors() {
     ws.rslam(&["eval", "gt.txt", "gt.txt", "--align", "se2"])
         .fails_with(2, &["se2", "se3, sim3 or none"]);
     ws.rslam(&["eval", "gt.txt", "gt.txt", "--format", "csv"])
-        .fails_with(2, &["expected tum, replica, kitti, euroc, colmap or ros2"]);
+        .fails_with(
+            2,
+            &["expected tum, replica, kitti, euroc, colmap, ros2 or nerfstudio"],
+        );
     ws.rslam(&["eval", "gt.txt", "gt.txt", "--delta", "1.5"])
         .fails_with(2, &["delta = 1.5: expected a whole number of frames >= 1"]);
     ws.rslam(&["eval", "gt.txt", "gt.txt", "--delta", "500"])

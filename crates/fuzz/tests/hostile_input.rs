@@ -78,6 +78,7 @@ hostile_input_properties!(
     shard,
     trajectory,
     ply,
+    splat_ply,
     obj,
     mtl,
     gltf,

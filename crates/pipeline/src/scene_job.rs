@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use rslam_core::trajectory_io::read_trajectory;
+use rslam_core::trajectory_io::{read_trajectory_with, ReadOptions, TrajectoryFormat};
 use rslam_core::{Intrinsics, Pose};
 use rslam_perturb::PerturbSpec;
 use rslam_render::splat::CaptureOptions;
@@ -202,7 +202,21 @@ impl SceneJob {
                     "every agent would follow the one trajectory file: leave it out, each agent walks a path of its own in a built-in scene",
                 ))
             }
-            (Some(path), None) => read_trajectory(path, None)?.trajectory.poses,
+            (Some(path), None) => {
+                let options = ReadOptions {
+                    dataparser_transforms: self.capture.dataparser_transforms.clone(),
+                    ..ReadOptions::default()
+                };
+                let file = read_trajectory_with(path, &options)?;
+                let mut poses = file.trajectory.poses;
+                // A COLMAP images.txt comes from the capture's own reconstruction, in its units.
+                if let (TrajectoryFormat::Colmap, Some(scale)) =
+                    (file.format, self.capture.metres_per_unit)
+                {
+                    poses.iter_mut().for_each(|p| p.translation *= scale);
+                }
+                poses
+            }
             (None, Some(agent)) => rslam_render::agent_trajectory(&self.scene, agent)
                 .ok_or_else(|| {
                     PipelineError::option(

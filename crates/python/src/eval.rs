@@ -94,6 +94,7 @@ pub fn evaluate_json(
         replica_rate_hz: rate,
         kitti_times: None,
         topic: None,
+        dataparser_transforms: None,
     };
     let with_topic = |topic: Option<String>| ReadOptions {
         topic,

@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 use rslam_core::Pose;
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::{FramesInMemory, SceneJob};
+use rslam_render::splat::{CaptureOptions, SplatDepth, SplatSettings};
 
 use crate::arrays::{colors_to_numpy, depth_to_numpy, ColorLayout, DepthUnits};
 use crate::camera;
@@ -34,8 +35,8 @@ pub(crate) fn pose_of_matrix(m: &[[f64; 4]; 4]) -> Pose {
 /// Renders a scene along camera poses on the GPU.
 ///
 /// Args:
-///     scene: a built-in scene (room0-room2, office0-office4) or a mesh file (.ply, .glb,
-///         .gltf, .obj), as ``rslam render --scene``.
+///     scene: a built-in scene (room0-room2, office0-office4), a mesh file (.ply, .glb,
+///         .gltf, .obj) or a Gaussian-splat capture (3DGS .ply), as ``rslam render --scene``.
 ///     poses: Nx4x4 camera-to-world matrices (metres; camera x right, y down, z forward), as
 ///         Replica ``traj.txt`` rows; e.g. ``rslam.scene_poses('room0')[:10]``.
 ///     camera: 'replica' (1200x680, default), 'tum', "W,H,FX,FY,CX,CY" or a 6-tuple.
@@ -43,13 +44,28 @@ pub(crate) fn pose_of_matrix(m: &[[f64; 4]; 4]) -> Pose {
 ///         the poses, image and depth corruptions follow, fast/misalign choose output frames).
 ///     seed: seed of the perturbations.
 ///     rate: frame rate of the poses in Hz (timestamps i / rate).
+///     capture_scale: a capture's metres per unit (``--capture-scale``); without it, items in
+///         metres are refused on a capture.
+///     capture_depth: a capture's depth, 'expected' (default) or 'median'.
+///     capture_min_opacity: a capture's pixels under this accumulated opacity get depth 0.
 ///
 /// Returns:
 ///     (rgb, depth): uint8 NxHxWx3 sRGB and float32 NxHxW z-depth in metres (0 = nothing hit),
 ///     one frame per output frame (N poses, fewer under fast:K). N frames are held in memory:
 ///     1200x680 costs about 5.7 MB a frame.
 #[pyfunction]
-#[pyo3(signature = (scene, poses, camera = None, perturb = None, seed = 0, rate = 20.0))]
+#[pyo3(signature = (
+    scene,
+    poses,
+    camera = None,
+    perturb = None,
+    seed = 0,
+    rate = 20.0,
+    capture_scale = None,
+    capture_depth = "expected",
+    capture_min_opacity = 0.5,
+))]
+#[allow(clippy::too_many_arguments)] // Python's keyword arguments
 pub fn render<'py>(
     py: Python<'py>,
     scene: &str,
@@ -58,7 +74,19 @@ pub fn render<'py>(
     perturb: Option<&str>,
     seed: u64,
     rate: f64,
+    capture_scale: Option<f64>,
+    capture_depth: &str,
+    capture_min_opacity: f32,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let depth = match capture_depth {
+        "expected" => SplatDepth::Expected,
+        "median" => SplatDepth::Median,
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "capture_depth '{other}': expected 'expected' or 'median'"
+            )))
+        }
+    };
     let poses = poses_from(poses)?;
     let camera = match camera {
         Some(c) => camera::intrinsics(c)?,
@@ -77,7 +105,14 @@ pub fn render<'py>(
         spec,
         seed,
         agent: None,
-        capture: Default::default(),
+        capture: CaptureOptions {
+            metres_per_unit: capture_scale,
+            settings: SplatSettings {
+                depth,
+                min_opacity: capture_min_opacity,
+            },
+            dataparser_transforms: None,
+        },
     };
     let frames = py.detach(|| -> Result<_, RunError> {
         let ctx = gpu::context().map_err(RunError::NoGpu)?;

@@ -19,6 +19,10 @@ pub enum RenderError {
     BadMesh { path: PathBuf, message: String },
     #[error("a Gaussian-splat capture has no light layers: light items need a built-in scene")]
     CaptureLight,
+    #[error("a Gaussian-splat capture of no Gaussians: nothing to render")]
+    EmptyCapture,
+    #[error("'{name}' is a Gaussian-splat capture: it has no triangle mesh to export")]
+    CaptureMesh { name: String },
     #[error("scene '{name}': capture scale {message}")]
     CaptureScale { name: String, message: String },
     #[error("{path}: texture '{texture}': {message}")]

@@ -5,11 +5,13 @@
 #include "render/splat/types.wgsl"
 
 @group(0) @binding(0) var<uniform> camera: SplatCamera;
-@group(0) @binding(1) var<storage, read> splats: array<Splat>;
-@group(0) @binding(2) var<storage, read> instance_gaussians: array<u32>;
-@group(0) @binding(3) var<storage, read> ranges: array<vec2<u32>>;
-@group(0) @binding(4) var color_out: texture_storage_2d<rgba8unorm, write>;
-@group(0) @binding(5) var depth_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(1) var<storage, read> splat_position: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> splat_conic: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> splat_color: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read> instance_gaussians: array<u32>;
+@group(0) @binding(5) var<storage, read> ranges: array<vec2<u32>>;
+@group(0) @binding(6) var color_out: texture_storage_2d<rgba8unorm, write>;
+@group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;
 
 // pixel.xy, depth, opacity
 var<workgroup> batch_position: array<vec4<f32>, 256>;
@@ -44,10 +46,10 @@ fn main(
         workgroupBarrier();
         let slot = range.x + round * 256u + t;
         if slot < range.y {
-            let s = splats[instance_gaussians[slot]];
-            batch_position[t] = vec4<f32>(s.pixel, s.depth, s.opacity);
-            batch_conic[t] = s.conic;
-            batch_color[t] = s.color;
+            let gaussian = instance_gaussians[slot];
+            batch_position[t] = splat_position[gaussian];
+            batch_conic[t] = splat_conic[gaussian].xyz;
+            batch_color[t] = splat_color[gaussian].xyz;
         }
         workgroupBarrier();
         let batch = min(256u, total - round * 256u);

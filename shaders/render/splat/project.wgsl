@@ -1,32 +1,33 @@
 // Projects each Gaussian (EWA splatting with the reference implementation's 0.3-pixel low-pass
-// dilation), evaluates its colour from its spherical harmonics for the view direction, and
-// writes its depth key (the float's bits, ordered like the depth) for the depth sort.
+// dilation) and evaluates its colour from its spherical harmonics for the view direction.
 #include "common/linear_group.wgsl"
 #include "render/splat/types.wgsl"
 
-// A Gaussian as uploaded: mean, opacity (activated), 3D covariance (xx xy xz, yy yz zz).
-struct Gaussian {
-    mean: vec3<f32>,
-    opacity: f32,
-    cov_a: vec3<f32>,
-    pad0: f32,
-    cov_b: vec3<f32>,
-    pad1: f32,
+// The capture as uploaded, per Gaussian: mean and activated opacity, and the 3D covariance
+// (xx xy xz, yy yz zz). The harmonics are bound a chunk of Gaussians at a time, from `chunk.first`.
+struct Chunk {
+    first: u32,
+    count: u32,
 }
 
 @group(0) @binding(0) var<uniform> camera: SplatCamera;
-@group(0) @binding(1) var<storage, read> gaussians: array<Gaussian>;
-@group(0) @binding(2) var<storage, read> sh: array<f32>;
-@group(0) @binding(3) var<storage, read_write> splats: array<Splat>;
-@group(0) @binding(4) var<storage, read_write> depth_keys: array<u32>;
-@group(0) @binding(5) var<storage, read_write> order: array<u32>;
+@group(0) @binding(1) var<storage, read> mean_opacity: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> cov_a: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> cov_b: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read> sh: array<f32>;
+@group(0) @binding(5) var<storage, read_write> splat_position: array<vec4<f32>>;
+@group(0) @binding(6) var<storage, read_write> splat_conic: array<vec4<f32>>;
+@group(0) @binding(7) var<storage, read_write> splat_color: array<vec4<f32>>;
+@group(0) @binding(8) var<storage, read_write> splat_tiles: array<vec2<u32>>;
+@group(0) @binding(9) var<uniform> chunk: Chunk;
 
 // Gaussians nearer than this to the camera plane are culled (the reference implementation's).
 const NEAR_CULL: f32 = 0.2;
 
-fn coefficient(gaussian: u32, k: u32) -> vec3<f32> {
+// Coefficient k of the chunk's Gaussian `local`.
+fn coefficient(local: u32, k: u32) -> vec3<f32> {
     let count = (camera.sh_degree + 1u) * (camera.sh_degree + 1u);
-    let at = (gaussian * count + k) * 3u;
+    let at = (local * count + k) * 3u;
     return vec3<f32>(sh[at], sh[at + 1u], sh[at + 2u]);
 }
 
@@ -63,9 +64,7 @@ fn sh_color(gaussian: u32, dir: vec3<f32>) -> vec3<f32> {
 }
 
 fn culled(i: u32) {
-    splats[i].tile_min = vec2<u32>(0u);
-    splats[i].tile_max = vec2<u32>(0u);
-    depth_keys[i] = 0xffffffffu;
+    splat_tiles[i] = vec2<u32>(0u);
 }
 
 @compute @workgroup_size(256)
@@ -74,13 +73,15 @@ fn main(
     @builtin(workgroup_id) group: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    let i = linear_group(group, groups) * 256u + t;
-    if i >= camera.count {
+    let local = linear_group(group, groups) * 256u + t;
+    if local >= chunk.count {
         return;
     }
-    order[i] = i;
-    let g = gaussians[i];
-    let p = (camera.camera_from_world * vec4<f32>(g.mean, 1.0)).xyz;
+    let i = chunk.first + local;
+    let mean = mean_opacity[i].xyz;
+    let a3 = cov_a[i].xyz;
+    let b3 = cov_b[i].xyz;
+    let p = (camera.camera_from_world * vec4<f32>(mean, 1.0)).xyz;
     if p.z <= NEAR_CULL {
         culled(i);
         return;
@@ -98,9 +99,9 @@ fn main(
         camera.camera_from_world[2].xyz,
     );
     let cov = mat3x3<f32>(
-        vec3<f32>(g.cov_a.x, g.cov_a.y, g.cov_a.z),
-        vec3<f32>(g.cov_a.y, g.cov_b.x, g.cov_b.y),
-        vec3<f32>(g.cov_a.z, g.cov_b.y, g.cov_b.z),
+        vec3<f32>(a3.x, a3.y, a3.z),
+        vec3<f32>(a3.y, b3.x, b3.y),
+        vec3<f32>(a3.z, b3.y, b3.z),
     );
     let view_cov = rotation * cov * transpose(rotation);
     let a = dot(j0, view_cov * j0) + 0.3;
@@ -122,17 +123,9 @@ fn main(
         culled(i);
         return;
     }
-    let dir = normalize(g.mean - camera.position);
-    splats[i] = Splat(
-        pixel,
-        p.z,
-        g.opacity,
-        vec3<f32>(c, -b, a) / det,
-        0.0,
-        sh_color(i, dir),
-        0.0,
-        tile_min,
-        tile_max,
-    );
-    depth_keys[i] = bitcast<u32>(p.z);
+    let dir = normalize(mean - camera.position);
+    splat_position[i] = vec4<f32>(pixel, p.z, mean_opacity[i].w);
+    splat_conic[i] = vec4<f32>(vec3<f32>(c, -b, a) / det, 0.0);
+    splat_color[i] = vec4<f32>(sh_color(local, dir), 0.0);
+    splat_tiles[i] = vec2<u32>(tile_pair(tile_min), tile_pair(tile_max));
 }

@@ -21,20 +21,19 @@ struct SplatCamera {
     pad: u32,
 }
 
-// A Gaussian projected into the frame: pixel position (OpenCV convention, pixel centres at
-// integers), z-depth, opacity, the inverse 2D covariance (conic: xx, xy, yy), view-dependent
-// colour (display values), and the rectangle of 16×16 tiles it touches ([min, max) in tiles;
-// empty when culled).
-struct Splat {
-    pixel: vec2<f32>,
-    depth: f32,
-    opacity: f32,
-    conic: vec3<f32>,
-    pad0: f32,
-    color: vec3<f32>,
-    pad1: f32,
-    tile_min: vec2<u32>,
-    tile_max: vec2<u32>,
+// A Gaussian projected into the frame is kept as four arrays (each under the 128 MiB a binding
+// may hold on some adapters, for captures of millions): `splat_position` (pixel in the OpenCV
+// convention, pixel centres at integers; z-depth; opacity), `splat_conic` (the inverse 2D
+// covariance: xx, xy, yy), `splat_color` (view-dependent colour, display values) and
+// `splat_tiles` (the rectangle of 16×16 tiles it touches, [min, max), x in the low and y in the
+// high 16 bits; empty when culled).
+
+fn tile_pair(t: vec2<u32>) -> u32 {
+    return t.x | (t.y << 16u);
+}
+
+fn tile_of(pair: u32) -> vec2<u32> {
+    return vec2<u32>(pair & 0xffffu, pair >> 16u);
 }
 
 const TILE: u32 = 16u;

@@ -108,8 +108,9 @@ pub struct EvalArgs {
     /// mav0/state_groundtruth_estimate0/data.csv or mav0/mocap0/data.csv.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["runs", "plot"])]
     agents: Option<PathBuf>,
-    /// Force the file format instead of detecting it: tum, replica, kitti, euroc or colmap (a
-    /// COLMAP images.txt); a ROS 2 bag folder is read as ros2.
+    /// Force the file format instead of detecting it: tum, replica, kitti, euroc, colmap (a
+    /// COLMAP images.txt) or nerfstudio (a camera_path.json or transforms.json); a ROS 2 bag
+    /// folder is read as ros2.
     #[arg(long)]
     format: Option<TrajectoryFormat>,
     /// When EST is a ROS 2 bag: its topic of PoseStamped, PoseWithCovarianceStamped or Odometry
@@ -188,6 +189,7 @@ pub fn run(args: EvalArgs) -> anyhow::Result<ExitCode> {
         replica_rate_hz: args.rate,
         kitti_times: args.kitti_times.clone(),
         topic: None,
+        dataparser_transforms: None,
     };
     let options = EvalOptions {
         matching: Matching::Time {

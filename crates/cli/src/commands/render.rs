@@ -29,10 +29,15 @@ pub struct RenderArgs {
     /// A capture's pixels whose accumulated opacity stays below this get no depth (0).
     #[arg(long, default_value_t = 0.5)]
     capture_min_opacity: f32,
+    /// nerfstudio's dataparser_transforms.json: moves a --traj transforms.json (the capture's
+    /// own cameras) into the frame its splats were trained in.
+    #[arg(long)]
+    dataparser_transforms: Option<PathBuf>,
     /// Output folder: new or empty; or the same command's unfinished output, which is resumed.
     #[arg(long)]
     out: PathBuf,
-    /// Camera path: Replica traj.txt or a TUM trajectory; default: the scene's own.
+    /// Camera path: Replica traj.txt, a TUM or EuRoC trajectory, COLMAP images.txt or nerfstudio's
+    /// camera_path.json / transforms.json; default: the scene's own.
     #[arg(long)]
     traj: Option<PathBuf>,
     /// Render only the first N poses.
@@ -196,6 +201,7 @@ fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
                 },
                 min_opacity: args.capture_min_opacity,
             },
+            dataparser_transforms: args.dataparser_transforms.clone(),
         },
     })
 }

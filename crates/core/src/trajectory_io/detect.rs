@@ -2,15 +2,18 @@
 
 use std::path::Path;
 
-use super::colmap;
 use super::lines::{data_lines, LineRef};
 use super::TrajectoryFormat;
+use super::{colmap, nerfstudio};
 use crate::CoreError;
 
-/// The format of `text` judged by its first data line: comma-separated is EuRoC, two integer ids
+/// The format of `text`: a JSON object is nerfstudio's; otherwise judged by its first data line: comma-separated is EuRoC, two integer ids
 /// around seven numbers and a name COLMAP's `images.txt`, otherwise the count of
 /// whitespace-separated fields (8 TUM, 12 KITTI, 16 Replica).
 pub(super) fn detect(path: &Path, text: &str) -> Result<TrajectoryFormat, CoreError> {
+    if nerfstudio::is_json(text) {
+        return Ok(TrajectoryFormat::Nerfstudio);
+    }
     let Some((line, content)) = data_lines(text).next() else {
         return Err(CoreError::bad_file(
             path,

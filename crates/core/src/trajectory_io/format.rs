@@ -19,16 +19,20 @@ pub enum TrajectoryFormat {
     Colmap,
     /// A pose or TF topic of a ROS 2 bag (a rosbag2 folder, [`ReadOptions::topic`]).
     Ros2,
+    /// nerfstudio JSON: a `camera_path.json` or a dataset's `transforms.json` (OpenGL camera
+    /// axes, converted), the latter moved by [`ReadOptions::dataparser_transforms`].
+    Nerfstudio,
 }
 
 impl TrajectoryFormat {
-    pub const ALL: [TrajectoryFormat; 6] = [
+    pub const ALL: [TrajectoryFormat; 7] = [
         Self::Tum,
         Self::Replica,
         Self::Kitti,
         Self::Euroc,
         Self::Colmap,
         Self::Ros2,
+        Self::Nerfstudio,
     ];
 
     pub fn name(self) -> &'static str {
@@ -39,6 +43,7 @@ impl TrajectoryFormat {
             Self::Euroc => "euroc",
             Self::Colmap => "colmap",
             Self::Ros2 => "ros2",
+            Self::Nerfstudio => "nerfstudio",
         }
     }
 
@@ -51,6 +56,7 @@ impl TrajectoryFormat {
             Self::Euroc => "at least 8 comma-separated numbers 't[ns],px,py,pz,qw,qx,qy,qz'",
             Self::Colmap => "an image line 'IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME' (world-to-camera), then its points line",
             Self::Ros2 => "a message of a pose topic",
+            Self::Nerfstudio => "a camera_path.json or transforms.json of nerfstudio",
         }
     }
 }
@@ -63,7 +69,7 @@ impl fmt::Display for TrajectoryFormat {
 
 /// The text is not one of the format names.
 #[derive(Debug, thiserror::Error)]
-#[error("unknown trajectory format '{text}': expected tum, replica, kitti, euroc, colmap or ros2")]
+#[error("unknown trajectory format '{text}': expected tum, replica, kitti, euroc, colmap, ros2 or nerfstudio")]
 pub struct UnknownFormat {
     pub text: String,
 }
@@ -86,7 +92,8 @@ impl FromStr for TrajectoryFormat {
 pub enum TimeSource {
     /// Read from the file (TUM, EuRoC) or from a KITTI times file.
     File,
-    /// Synthesised as `i / hz` (Replica `traj.txt`, COLMAP `images.txt`).
+    /// Synthesised as `i / hz` (Replica `traj.txt`, COLMAP `images.txt`, a nerfstudio camera
+    /// path at its `fps`).
     Rate { hz: f64 },
     /// No time at all (KITTI without a times file): the timestamps hold the frame index
     /// `0, 1, 2, …`, and such a trajectory is matched to another by index.
@@ -107,6 +114,9 @@ pub struct ReadOptions {
     /// The topic of a ROS 2 bag to read: `TOPIC`, or `TOPIC:CHILD` for a TF topic's transforms
     /// to frame `CHILD`; `None` for the bag's one pose topic.
     pub topic: Option<String>,
+    /// nerfstudio's `dataparser_transforms.json`, which moves a `transforms.json`'s cameras into
+    /// the frame of the model trained on them (and of its exported splats).
+    pub dataparser_transforms: Option<PathBuf>,
 }
 
 impl ReadOptions {
@@ -120,6 +130,7 @@ impl Default for ReadOptions {
             replica_rate_hz: Self::DEFAULT_REPLICA_RATE_HZ,
             kitti_times: None,
             topic: None,
+            dataparser_transforms: None,
         }
     }
 }
@@ -148,7 +159,7 @@ mod tests {
         let err = "csv".parse::<TrajectoryFormat>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "unknown trajectory format 'csv': expected tum, replica, kitti, euroc, colmap or ros2"
+            "unknown trajectory format 'csv': expected tum, replica, kitti, euroc, colmap, ros2 or nerfstudio"
         );
     }
 }

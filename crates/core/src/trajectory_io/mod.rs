@@ -1,4 +1,5 @@
-//! Trajectory file formats (TUM, Replica traj.txt, KITTI, EuRoC, COLMAP images.txt): readers
+//! Trajectory file formats (TUM, Replica traj.txt, KITTI, EuRoC, COLMAP images.txt, nerfstudio's
+//! camera paths and transforms.json): readers
 //! with auto-detection, and writers (TUM, Replica).
 //!
 //! Readers are lenient on layout (tabs, repeated blanks, trailing blanks, `#` comments, a byte
@@ -12,6 +13,7 @@ pub(crate) mod euroc;
 mod format;
 mod kitti;
 pub(crate) mod lines;
+mod nerfstudio;
 mod read;
 mod replica;
 mod tum;

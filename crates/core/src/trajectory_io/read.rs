@@ -2,7 +2,7 @@ use std::path::Path;
 
 use super::detect::detect;
 use super::lines::check_line_count;
-use super::{colmap, euroc, kitti, replica, tum};
+use super::{colmap, euroc, kitti, nerfstudio, replica, tum};
 use super::{ReadOptions, TimeSource, TrajectoryFile, TrajectoryFormat};
 use crate::dataset::ros2::read_pose_topic;
 use crate::{read_text_file, CoreError, Trajectory};
@@ -54,6 +54,12 @@ pub fn read_trajectory_with(
         Some(format) => format,
         None => detect(path, &text)?,
     };
+    if options.dataparser_transforms.is_some() && format != TrajectoryFormat::Nerfstudio {
+        return Err(CoreError::bad_file(
+            path,
+            format!("a {format} trajectory, but dataparser transforms move a nerfstudio transforms.json"),
+        ));
+    }
     let (trajectory, time_source) = match format {
         TrajectoryFormat::Tum => (tum::parse(path, &text)?, TimeSource::File),
         TrajectoryFormat::Euroc => (euroc::parse(path, &text)?, TimeSource::File),
@@ -65,6 +71,15 @@ pub fn read_trajectory_with(
             colmap::parse(path, &text, rate)?,
             TimeSource::Rate { hz: rate },
         ),
+        TrajectoryFormat::Nerfstudio => {
+            let dataparser = options.dataparser_transforms.as_deref();
+            let trajectory = nerfstudio::parse(path, &text, rate, dataparser)?;
+            let hz = match trajectory.timestamps.get(1) {
+                Some(t) => 1.0 / t,
+                None => rate,
+            };
+            (trajectory, TimeSource::Rate { hz })
+        }
         TrajectoryFormat::Kitti => read_kitti(path, &text, options.kitti_times.as_deref())?,
         TrajectoryFormat::Ros2 => {
             return Err(CoreError::bad_file(

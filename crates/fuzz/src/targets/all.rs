@@ -35,6 +35,12 @@ pub static TARGETS: &[Target] = &[
         check: mesh::ply,
     },
     Target {
+        name: "splat_ply",
+        file: Some(mesh::CAPTURE),
+        prepare: nothing,
+        check: mesh::capture,
+    },
+    Target {
         name: "obj",
         file: Some(mesh::OBJ),
         prepare: mesh::prepare_obj,

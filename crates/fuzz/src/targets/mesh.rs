@@ -1,4 +1,5 @@
-//! Mesh files as `rslam render --scene FILE` loads them: PLY, OBJ with its MTL, glTF and GLB.
+//! Mesh files as `rslam render --scene FILE` loads them: PLY, OBJ with its MTL, glTF and GLB;
+//! and Gaussian-splat captures (3DGS PLY).
 
 use std::path::Path;
 
@@ -8,6 +9,7 @@ use rslam_render::{load_scene, Scene};
 use crate::Scratch;
 
 pub const PLY: &str = "mesh.ply";
+pub const CAPTURE: &str = "capture.ply";
 pub const OBJ: &str = "mesh.obj";
 pub const MTL: &str = "mesh.mtl";
 pub const GLTF: &str = "mesh.gltf";
@@ -34,6 +36,46 @@ pub fn prepare_mtl(dir: &Path) -> std::io::Result<()> {
 
 pub fn ply(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
     load(scratch, PLY, input)
+}
+
+/// A capture, which the renderer can draw when accepted: finite values, a degree of 0 to 3 with
+/// its coefficients, a rotation that is not zero, one of each per Gaussian.
+pub fn capture(scratch: &Scratch, input: &[u8]) -> Result<(), String> {
+    let path = scratch.write(CAPTURE, input)?;
+    let scene = load_scene(&path.display().to_string()).map_err(|e| e.to_string())?;
+    check_scene(&scene);
+    let Some(cloud) = &scene.splats else {
+        return Ok(()); // read as a mesh: checked above
+    };
+    let n = cloud.len();
+    assert!(n > 0, "accepted a capture of no Gaussians");
+    assert!(cloud.sh_degree <= 3, "accepted degree {}", cloud.sh_degree);
+    assert_eq!(
+        cloud.sh.len(),
+        n * cloud.coefficients(),
+        "coefficients per Gaussian"
+    );
+    let lengths = [
+        cloud.opacity_logits.len(),
+        cloud.log_scales.len(),
+        cloud.rotations.len(),
+    ];
+    assert_eq!(lengths, [n; 3], "one of each per Gaussian");
+    let values = (cloud.means.iter().flatten())
+        .chain(cloud.sh.iter().flatten())
+        .chain(&cloud.opacity_logits)
+        .chain(cloud.log_scales.iter().flatten())
+        .chain(cloud.rotations.iter().flatten());
+    assert!(
+        values.clone().all(|v| v.is_finite()),
+        "accepted a value that is not finite"
+    );
+    let zero = cloud
+        .rotations
+        .iter()
+        .position(|q| q.iter().all(|&c| c == 0.0));
+    assert!(zero.is_none(), "accepted a zero rotation at {zero:?}");
+    Ok(())
 }
 
 pub fn obj(scratch: &Scratch, input: &[u8]) -> Result<(), String> {

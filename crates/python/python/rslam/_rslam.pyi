@@ -61,6 +61,9 @@ def render(
     perturb: Optional[str] = None,
     seed: int = 0,
     rate: float = 20.0,
+    capture_scale: Optional[float] = None,
+    capture_depth: str = "expected",
+    capture_min_opacity: float = 0.5,
 ) -> Tuple[npt.NDArray[np.uint8], npt.NDArray[np.float32]]:
     """(rgb NxHxWx3 uint8, depth NxHxW float32 metres) along Nx4x4 camera-to-world poses."""
 

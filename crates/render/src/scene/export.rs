@@ -12,8 +12,13 @@ use super::srgb::{linear_to_srgb, srgb_to_linear};
 use super::{Scene, Texture};
 use crate::RenderError;
 
-/// Writes the scene's triangle mesh to `path` as PLY.
+/// Writes the scene's triangle mesh to `path` as PLY; a capture has none and is refused.
 pub fn write_ply(scene: &Scene, path: &Path) -> Result<(), RenderError> {
+    if scene.splats.is_some() {
+        return Err(RenderError::CaptureMesh {
+            name: scene.name.clone(),
+        });
+    }
     let io = |e| RenderError::io(path, e);
     let file = std::fs::File::create(path).map_err(io)?;
     let mut out = std::io::BufWriter::new(file);

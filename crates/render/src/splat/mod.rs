@@ -49,11 +49,15 @@ impl Default for SplatSettings {
     }
 }
 
-/// How a capture enters a job: its metric scale and how its depth is rendered.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// How a capture enters a job: its metric scale, how its depth is rendered, and the transform
+/// its path file needs.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct CaptureOptions {
     /// Metres per unit of the capture's coordinates; `None`: not stated (COLMAP and phone
     /// captures have no scale of their own), and items in metres are refused.
     pub metres_per_unit: Option<f64>,
     pub settings: SplatSettings,
+    /// nerfstudio's `dataparser_transforms.json`, which moves a `transforms.json` path into the
+    /// frame the capture was trained (and exported) in.
+    pub dataparser_transforms: Option<std::path::PathBuf>,
 }

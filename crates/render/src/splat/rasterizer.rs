@@ -12,8 +12,6 @@ use crate::RenderError;
 const PROJECT: &str = "render/splat/project.wgsl";
 const TILES: &str = "render/splat/tiles.wgsl";
 const BLEND: &str = "render/splat/blend.wgsl";
-/// Bytes of one `Splat` in shaders/render/splat/types.wgsl.
-const SPLAT_BYTES: u64 = 64;
 const GROUP: u32 = 256;
 
 #[repr(C)]
@@ -21,6 +19,41 @@ const GROUP: u32 = 256;
 struct InstanceCount {
     n: u32,
     pad: [u32; 3],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct ChunkUniform {
+    first: u32,
+    count: u32,
+    pad: [u32; 2],
+}
+
+/// The projected Gaussians, one array per part (shaders/render/splat/types.wgsl).
+struct Splats {
+    position: wgpu::Buffer,
+    conic: wgpu::Buffer,
+    color: wgpu::Buffer,
+    tiles: wgpu::Buffer,
+}
+
+impl Splats {
+    fn new(ctx: &GpuContext, count: u32) -> Self {
+        let array = |label, bytes: u64| storage_buffer(ctx, label, count as u64 * bytes);
+        Self {
+            position: array("splat positions", 16),
+            conic: array("splat conics", 16),
+            color: array("splat colours", 16),
+            tiles: array("splat tiles", 8),
+        }
+    }
+}
+
+/// One projection dispatch: the Gaussians whose harmonics fit one binding.
+struct ProjectChunk {
+    count: u32,
+    bind_group: wgpu::BindGroup,
+    _uniform: wgpu::Buffer,
 }
 
 /// A splat capture uploaded once, and the passes that draw it into [`FrameTextures`] of one size.
@@ -32,9 +65,10 @@ pub struct SplatRasterizer {
     camera: wgpu::Buffer,
     pipelines: Pipelines,
     /// Per Gaussian: projected splats, and the depth sort's keys and Gaussian indices.
-    splats: wgpu::Buffer,
+    splats: Splats,
     depth_sort: RadixSort,
-    project: wgpu::BindGroup,
+    project: Vec<ProjectChunk>,
+    depth_keys: wgpu::BindGroup,
     /// Per depth-sorted Gaussian its first instance slot, and the total at `[count]`.
     offsets: wgpu::Buffer,
     offsets_scan: Scan,
@@ -46,6 +80,7 @@ pub struct SplatRasterizer {
 
 struct Pipelines {
     project: wgpu::ComputePipeline,
+    depth_keys: wgpu::ComputePipeline,
     count_tiles: wgpu::ComputePipeline,
     duplicate: wgpu::ComputePipeline,
     tile_ranges: wgpu::ComputePipeline,
@@ -69,10 +104,26 @@ impl SplatRasterizer {
         intrinsics: Intrinsics,
         settings: SplatSettings,
     ) -> Result<Self, RenderError> {
+        let max_binding = ctx.device.limits().max_storage_buffer_binding_size;
+        Self::with_binding_limit(ctx, cloud, intrinsics, settings, max_binding)
+    }
+
+    /// Like [`SplatRasterizer::new`], the harmonics bound at most `max_binding` bytes at a time.
+    fn with_binding_limit(
+        ctx: &GpuContext,
+        cloud: &SplatCloud,
+        intrinsics: Intrinsics,
+        settings: SplatSettings,
+        max_binding: u64,
+    ) -> Result<Self, RenderError> {
+        if cloud.is_empty() {
+            return Err(RenderError::EmptyCapture);
+        }
         let device = &ctx.device;
         let count = cloud.len() as u32;
         let pipelines = Pipelines {
             project: ctx.compute_pipeline(PROJECT)?,
+            depth_keys: ctx.compute_pipeline_entry(TILES, "depth_keys")?,
             count_tiles: ctx.compute_pipeline_entry(TILES, "count_tiles")?,
             duplicate: ctx.compute_pipeline_entry(TILES, "duplicate")?,
             tile_ranges: ctx.compute_pipeline_entry(TILES, "tile_ranges")?,
@@ -85,20 +136,73 @@ impl SplatRasterizer {
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
-        let gaussians = init("splat gaussians", bytemuck::cast_slice(&pack(cloud)));
+        let packed = pack(cloud);
+        let mean_opacity = init("splat means", bytemuck::cast_slice(&packed.mean_opacity));
+        let cov_a = init("splat covariances", bytemuck::cast_slice(&packed.cov_a));
+        let cov_b = init("splat covariances", bytemuck::cast_slice(&packed.cov_b));
         let sh = init("splat harmonics", bytemuck::cast_slice(&sh_values(cloud)));
         let camera = uniform_buffer::<SplatCamera>(ctx, "splat camera");
-        let splats = storage_buffer(ctx, "splats", count as u64 * SPLAT_BYTES);
+        let splats = Splats::new(ctx, count);
         let depth_sort = RadixSort::new(ctx, count, 32)?;
-        let project = bind_group(
+        // The harmonics of a capture of millions outgrow one binding (128 MiB on some adapters):
+        // each chunk binds its own range, a multiple of 256 Gaussians (the offset alignment).
+        let sh_bytes = cloud.coefficients() as u64 * 12;
+        let per_chunk = ((max_binding / sh_bytes) / 256 * 256).max(256) as u32;
+        let project = (0..count)
+            .step_by(per_chunk as usize)
+            .map(|first| {
+                let chunk_count = per_chunk.min(count - first);
+                let uniform = uniform_buffer::<ChunkUniform>(ctx, "splat chunk");
+                let chunk = ChunkUniform {
+                    first,
+                    count: chunk_count,
+                    pad: [0; 2],
+                };
+                ctx.queue
+                    .write_buffer(&uniform, 0, bytemuck::bytes_of(&chunk));
+                let harmonics = wgpu::BufferBinding {
+                    buffer: &sh,
+                    offset: first as u64 * sh_bytes,
+                    size: std::num::NonZeroU64::new(chunk_count as u64 * sh_bytes),
+                };
+                let bind_group = bind_group(
+                    ctx,
+                    &pipelines.project,
+                    "splat project",
+                    &[
+                        Some(camera.as_entire_binding()),
+                        Some(mean_opacity.as_entire_binding()),
+                        Some(cov_a.as_entire_binding()),
+                        Some(cov_b.as_entire_binding()),
+                        Some(wgpu::BindingResource::Buffer(harmonics)),
+                        Some(splats.position.as_entire_binding()),
+                        Some(splats.conic.as_entire_binding()),
+                        Some(splats.color.as_entire_binding()),
+                        Some(splats.tiles.as_entire_binding()),
+                        Some(uniform.as_entire_binding()),
+                    ],
+                );
+                ProjectChunk {
+                    count: chunk_count,
+                    bind_group,
+                    _uniform: uniform,
+                }
+            })
+            .collect();
+        let depth_keys = bind_group(
             ctx,
-            &pipelines.project,
-            "splat project",
+            &pipelines.depth_keys,
+            "splat depth keys",
             &[
                 Some(camera.as_entire_binding()),
-                Some(gaussians.as_entire_binding()),
-                Some(sh.as_entire_binding()),
-                Some(splats.as_entire_binding()),
+                Some(splats.tiles.as_entire_binding()),
+                None,
+                None,
+                None,
+                None,
+                None,
+                None,
+                Some(splats.position.as_entire_binding()),
                 Some(depth_sort.keys().as_entire_binding()),
                 Some(depth_sort.values().as_entire_binding()),
             ],
@@ -111,7 +215,7 @@ impl SplatRasterizer {
             "splat count tiles",
             &[
                 Some(camera.as_entire_binding()),
-                Some(splats.as_entire_binding()),
+                Some(splats.tiles.as_entire_binding()),
                 Some(depth_sort.values().as_entire_binding()),
                 Some(offsets.as_entire_binding()),
             ],
@@ -122,7 +226,7 @@ impl SplatRasterizer {
             &pipelines,
             &intrinsics,
             count.max(1024),
-            [&camera, &splats, depth_sort.values(), &offsets],
+            [&camera, &splats.tiles, depth_sort.values(), &offsets],
         )?;
         Ok(Self {
             intrinsics,
@@ -134,6 +238,7 @@ impl SplatRasterizer {
             splats,
             depth_sort,
             project,
+            depth_keys,
             offsets,
             offsets_scan,
             count_tiles,
@@ -172,7 +277,7 @@ impl SplatRasterizer {
             capacity,
             [
                 &self.camera,
-                &self.splats,
+                &self.splats.tiles,
                 self.depth_sort.values(),
                 &self.offsets,
             ],
@@ -234,7 +339,9 @@ impl SplatRasterizer {
                 "splat blend",
                 &[
                     Some(self.camera.as_entire_binding()),
-                    Some(self.splats.as_entire_binding()),
+                    Some(self.splats.position.as_entire_binding()),
+                    Some(self.splats.conic.as_entire_binding()),
+                    Some(self.splats.color.as_entire_binding()),
                     Some(i.sort.values().as_entire_binding()),
                     Some(i.ranges.as_entire_binding()),
                     Some(wgpu::BindingResource::TextureView(frame.color_view())),
@@ -255,8 +362,22 @@ impl SplatRasterizer {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
+            for chunk in &self.project {
+                let groups = chunk.count.div_ceil(GROUP);
+                dispatch_linear(
+                    &mut pass,
+                    &self.pipelines.project,
+                    &chunk.bind_group,
+                    groups,
+                );
+            }
             let groups = self.count.div_ceil(GROUP);
-            dispatch_linear(&mut pass, &self.pipelines.project, &self.project, groups);
+            dispatch_linear(
+                &mut pass,
+                &self.pipelines.depth_keys,
+                &self.depth_keys,
+                groups,
+            );
         }
         self.depth_sort.encode(ctx, &mut encoder, self.count);
         {
@@ -289,7 +410,7 @@ impl Instances {
         pipelines: &Pipelines,
         intrinsics: &Intrinsics,
         capacity: u32,
-        [camera, splats, depth_order, offsets]: [&wgpu::Buffer; 4],
+        [camera, splat_tiles, depth_order, offsets]: [&wgpu::Buffer; 4],
     ) -> Result<Self, RenderError> {
         let [tiles_x, tiles_y] = tiles(intrinsics);
         let tile_count = tiles_x * tiles_y;
@@ -303,7 +424,7 @@ impl Instances {
             "splat duplicate",
             &[
                 Some(camera.as_entire_binding()),
-                Some(splats.as_entire_binding()),
+                Some(splat_tiles.as_entire_binding()),
                 Some(depth_order.as_entire_binding()),
                 Some(offsets.as_entire_binding()),
                 Some(sort.keys().as_entire_binding()),
@@ -334,3 +455,6 @@ impl Instances {
         })
     }
 }
+
+#[cfg(test)]
+mod tests;
