@@ -395,3 +395,40 @@ fn nerfstudio_paths_render_the_views_of_the_same_poses() {
     )
     .fails_with(2, &["path.txt", "dataparser"]);
 }
+
+#[test]
+fn a_capture_of_a_built_in_scene_renders_along_its_path() {
+    let ws = capture_workspace();
+    ws.rslam(&[
+        "scene",
+        "export",
+        "room0",
+        "--gaussians",
+        "20000",
+        "--out",
+        "room0.ply",
+    ])
+    .success();
+    ws.rslam(&["scene", "traj", "room0", "--out", "room0.txt"])
+        .success();
+    render(&ws, "splats", "room0.ply", "room0.txt", &["--frames", "2"]).success();
+    let m = manifest(&ws.path("splats"));
+    assert_eq!(m.frame_count, 2);
+    // room0's walls enclose its path: every pixel sees a Gaussian.
+    for frame in depths(&ws, "splats") {
+        assert!(
+            frame.iter().all(|&z| z > 0.1 && z < 10.0),
+            "a pixel without depth"
+        );
+    }
+    ws.rslam(&[
+        "scene",
+        "export",
+        "room0.ply",
+        "--gaussians",
+        "10",
+        "--out",
+        "again.ply",
+    ])
+    .fails_with(2, &["room0.ply", "capture already"]);
+}

@@ -3,8 +3,10 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
+use rslam_core::splat_io::write_splat_ply;
 use rslam_render::load_scene;
 use rslam_render::scene::{export, BUILTIN_SCENES};
+use rslam_render::splat::capture_of_mesh;
 
 #[derive(Args)]
 pub struct SceneArgs {
@@ -15,12 +17,17 @@ pub struct SceneArgs {
 #[derive(Subcommand)]
 enum SceneCommand {
     /// Write a scene's ground-truth triangle mesh: world frame, metres, binary PLY with vertex
-    /// colours (textures baked to their mean colour).
+    /// colours (textures baked to their mean colour); with --gaussians, a Gaussian-splat capture
+    /// of it instead.
     Export {
         /// Built-in scene (room0 … office4) or a mesh file (.ply, .gltf, .glb, .obj).
         scene: String,
         #[arg(long)]
         out: PathBuf,
+        /// Write a capture of about N Gaussians (3DGS PLY, metres): flat discs sampled over the
+        /// surfaces by area, as wide as their spacing, coloured by the surface under each.
+        #[arg(long)]
+        gaussians: Option<usize>,
     },
     /// Write a built-in scene's default trajectory as a Replica traj.txt (2000 poses, 20 Hz).
     Traj {
@@ -38,7 +45,31 @@ enum SceneCommand {
 
 pub fn run(args: SceneArgs) -> anyhow::Result<ExitCode> {
     match args.command {
-        SceneCommand::Export { scene, out } => {
+        SceneCommand::Export {
+            scene,
+            out,
+            gaussians: Some(count),
+        } => {
+            let loaded = load_scene(&scene)?;
+            anyhow::ensure!(count > 0, "--gaussians 0: expected at least one Gaussian");
+            anyhow::ensure!(
+                loaded.splats.is_none(),
+                "'{scene}' is a Gaussian-splat capture already: --gaussians samples a mesh"
+            );
+            let cloud = capture_of_mesh(&loaded, count);
+            std::fs::write(&out, write_splat_ply(&cloud))
+                .with_context(|| format!("writing {}", out.display()))?;
+            println!(
+                "wrote {}: a capture of {} Gaussians of '{scene}'",
+                out.display(),
+                cloud.len()
+            );
+        }
+        SceneCommand::Export {
+            scene,
+            out,
+            gaussians: None,
+        } => {
             let loaded = load_scene(&scene)?;
             export::write_ply(&loaded, &out)
                 .with_context(|| format!("exporting scene '{scene}'"))?;

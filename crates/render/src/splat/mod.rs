@@ -7,9 +7,11 @@
 //! is the duplicates' count, which sizes the tile sort.
 
 mod camera;
+mod from_mesh;
 mod gaussians;
 mod rasterizer;
 
+pub use from_mesh::capture_of_mesh;
 pub use rasterizer::SplatRasterizer;
 
 /// Which depth a splat render writes per pixel.
