@@ -1,5 +1,6 @@
-//! Small helpers for compute passes over buffers: storage and uniform buffers, a bind group of
-//! resources numbered from 0, and dispatches of more workgroups than one grid row holds.
+//! Small helpers for compute passes, shared by the perturbations and the splat rasteriser:
+//! storage and uniform buffers, bind groups of derived layouts (resources numbered from 0, or
+//! numbered explicitly), and dispatches of more workgroups than one grid row holds.
 
 use crate::GpuContext;
 
@@ -22,26 +23,38 @@ pub fn storage_buffer(ctx: &GpuContext, label: &str, size: u64) -> wgpu::Buffer 
 pub fn uniform_buffer<T: bytemuck::Pod>(ctx: &GpuContext, label: &str) -> wgpu::Buffer {
     ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
-        size: std::mem::size_of::<T>().next_multiple_of(16) as u64,
+        size: std::mem::size_of::<T>() as u64,
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
 }
 
-/// A bind group for group 0 of `pipeline`, `resources[i]` at binding `i` (`None`: a binding the
-/// entry point does not use, absent from its derived layout).
+/// A bind group for group 0 of `pipeline`, binding `resources[i]` at binding `i`.
 pub fn bind_group(
     ctx: &GpuContext,
     pipeline: &wgpu::ComputePipeline,
     label: &str,
-    resources: &[Option<wgpu::BindingResource>],
+    resources: &[wgpu::BindingResource],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = (resources.iter().enumerate())
-        .filter_map(|(i, r)| {
-            r.clone().map(|resource| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource,
-            })
+    let numbered: Vec<(u32, wgpu::BindingResource)> = (resources.iter().enumerate())
+        .map(|(i, resource)| (i as u32, resource.clone()))
+        .collect();
+    bind_group_at(ctx, pipeline, label, &numbered)
+}
+
+/// A bind group for group 0 of `pipeline` with explicit binding numbers, for entry points that
+/// use only some of their shader's bindings (the layout derived for them has only those).
+pub fn bind_group_at(
+    ctx: &GpuContext,
+    pipeline: &wgpu::ComputePipeline,
+    label: &str,
+    resources: &[(u32, wgpu::BindingResource)],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = resources
+        .iter()
+        .map(|(binding, resource)| wgpu::BindGroupEntry {
+            binding: *binding,
+            resource: resource.clone(),
         })
         .collect();
     ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {

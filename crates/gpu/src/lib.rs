@@ -28,6 +28,6 @@ pub use frame_ring::{FrameRing, ReadFrame};
 pub use frame_uploads::{FilledUpload, FrameUploads, UploadFiller};
 pub use mapped_frame::{MappedColor, MappedDepth, MappedFrame};
 pub use radix_sort::RadixSort;
-pub use readback::{read_buffer, read_texels, FrameReadback};
+pub use readback::{read_buffer, read_texels, BufferReadback, FrameReadback};
 pub use scan::Scan;
 pub use wgpu;

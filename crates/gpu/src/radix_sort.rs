@@ -3,7 +3,7 @@
 //! scatter. Pairs with equal keys keep their order, so sorting by depth and then stably by tile
 //! leaves each tile's pairs in depth order.
 
-use crate::compute::{bind_group, dispatch_linear, storage_buffer, uniform_buffer};
+use crate::compute::{bind_group, bind_group_at, dispatch_linear, storage_buffer, uniform_buffer};
 use crate::scan::Scan;
 use crate::{GpuContext, GpuError};
 
@@ -61,19 +61,22 @@ impl RadixSort {
             .map(|p| {
                 let (from, to) = ((p % 2) as usize, ((p + 1) % 2) as usize);
                 let params = uniform_buffer::<SortParams>(ctx, "sort params");
-                let resources = |with_values: bool| {
-                    [
-                        Some(params.as_entire_binding()),
-                        Some(keys[from].as_entire_binding()),
-                        with_values.then(|| values[from].as_entire_binding()),
-                        Some(histogram.as_entire_binding()),
-                        with_values.then(|| keys[to].as_entire_binding()),
-                        with_values.then(|| values[to].as_entire_binding()),
-                    ]
-                };
+                let count = [
+                    (0, params.as_entire_binding()),
+                    (1, keys[from].as_entire_binding()),
+                    (3, histogram.as_entire_binding()),
+                ];
+                let scatter_resources = [
+                    params.as_entire_binding(),
+                    keys[from].as_entire_binding(),
+                    values[from].as_entire_binding(),
+                    histogram.as_entire_binding(),
+                    keys[to].as_entire_binding(),
+                    values[to].as_entire_binding(),
+                ];
                 Pass {
-                    count: bind_group(ctx, &count_digits, "sort count", &resources(false)),
-                    scatter: bind_group(ctx, &scatter, "sort scatter", &resources(true)),
+                    count: bind_group_at(ctx, &count_digits, "sort count", &count),
+                    scatter: bind_group(ctx, &scatter, "sort scatter", &scatter_resources),
                     params,
                 }
             })

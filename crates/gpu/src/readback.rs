@@ -113,17 +113,51 @@ fn unpack<T>(buffer: &wgpu::Buffer, read: impl FnOnce(&[u8]) -> T) -> Result<T, 
 /// Reads a whole buffer (made with `COPY_SRC`) back to the CPU; blocks until the GPU is done.
 /// For small logs kept on the GPU during a run and read once at its end.
 pub fn read_buffer(ctx: &GpuContext, source: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
-    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback buffer"),
-        size: source.size(),
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
+    let readback = BufferReadback::new(ctx, source.size());
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    encoder.copy_buffer_to_buffer(source, 0, &staging, 0, None);
+    readback.encode_copy(&mut encoder, source, 0);
     let submission = ctx.queue.submit([encoder.finish()]);
-    map_and_wait(ctx, [&staging], submission)?;
-    unpack(&staging, <[u8]>::to_vec)
+    readback.read(ctx, submission)
+}
+
+/// A few bytes of a buffer read back to the CPU through one staging buffer, kept for every read:
+/// a value computed on the GPU that sizes the next step of a frame.
+pub struct BufferReadback {
+    staging: wgpu::Buffer,
+}
+
+impl BufferReadback {
+    /// Reads of `size` bytes.
+    pub fn new(ctx: &GpuContext, size: u64) -> Self {
+        Self {
+            staging: ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("readback buffer"),
+                size,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            }),
+        }
+    }
+
+    /// Records the copy of the bytes of `source` from `offset` (made with `COPY_SRC`).
+    pub fn encode_copy(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        source: &wgpu::Buffer,
+        offset: u64,
+    ) {
+        encoder.copy_buffer_to_buffer(source, offset, &self.staging, 0, self.staging.size());
+    }
+
+    /// The bytes copied by `submission`; blocks until it has run.
+    pub fn read(
+        &self,
+        ctx: &GpuContext,
+        submission: wgpu::SubmissionIndex,
+    ) -> Result<Vec<u8>, GpuError> {
+        map_and_wait(ctx, [&self.staging], submission)?;
+        unpack(&self.staging, <[u8]>::to_vec)
+    }
 }
 
 /// Reads single texels of 4-byte formats (`Rgba8Unorm`, `R32Float`): each `(texture, x, y)` in

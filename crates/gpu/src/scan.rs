@@ -14,7 +14,7 @@ struct ScanParams {
     pad: [u32; 3],
 }
 
-/// One level: its values' count, the blocks' totals, and the bind groups over them.
+/// One level: its size (a uniform) and the bind groups over its values and its blocks' totals.
 struct Level {
     params: wgpu::Buffer,
     scan: wgpu::BindGroup,
@@ -53,9 +53,9 @@ impl Scan {
                     pipeline,
                     "scan",
                     &[
-                        Some(params.as_entire_binding()),
-                        Some(level_data.as_entire_binding()),
-                        Some(sums[sums.len() - 1].as_entire_binding()),
+                        params.as_entire_binding(),
+                        level_data.as_entire_binding(),
+                        sums[sums.len() - 1].as_entire_binding(),
                     ],
                 )
             };

@@ -2,7 +2,7 @@
 
 use bytemuck::Pod;
 use rslam_core::Intrinsics;
-use rslam_gpu::{FrameTextures, GpuContext};
+use rslam_gpu::{compute, FrameTextures, GpuContext};
 use serde::Serialize;
 
 use crate::rng::RngKey;
@@ -235,12 +235,7 @@ impl Kit<'_> {
     /// pass reads at every pixel are copied into one of these first: on lavapipe per-pixel
     /// storage-buffer reads cost as much as the rest of such a pass, uniform reads nothing.
     pub fn uniform_buffer<T: Pod>(&self, label: &str) -> wgpu::Buffer {
-        self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(label),
-            size: std::mem::size_of::<T>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        })
+        compute::uniform_buffer::<T>(self.ctx, label)
     }
 
     pub fn write_uniform<T: Pod>(&self, buffer: &wgpu::Buffer, value: &T) {
@@ -251,14 +246,7 @@ impl Kit<'_> {
 
     /// A storage buffer of `size` bytes that stays on the GPU (reductions, counters).
     pub fn storage_buffer(&self, label: &str, size: u64) -> wgpu::Buffer {
-        self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(label),
-            size,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_DST
-                | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        })
+        compute::storage_buffer(self.ctx, label, size)
     }
 
     /// A bind group for group 0 of `pipeline`, binding `resources[i]` at binding `i`.
@@ -268,12 +256,7 @@ impl Kit<'_> {
         label: &str,
         resources: &[wgpu::BindingResource],
     ) -> wgpu::BindGroup {
-        let numbered: Vec<(u32, wgpu::BindingResource)> = resources
-            .iter()
-            .enumerate()
-            .map(|(i, resource)| (i as u32, resource.clone()))
-            .collect();
-        self.bind_group_at(pipeline, label, &numbered)
+        compute::bind_group(self.ctx, pipeline, label, resources)
     }
 
     /// A bind group for group 0 of `pipeline` with explicit binding numbers, for entry points
@@ -284,7 +267,7 @@ impl Kit<'_> {
         label: &str,
         resources: &[(u32, wgpu::BindingResource)],
     ) -> wgpu::BindGroup {
-        bind_group_at(self.ctx, pipeline, label, resources)
+        compute::bind_group_at(self.ctx, pipeline, label, resources)
     }
 
     /// Copies `frame.color` into `scratch.color`, for a pass that reads it while writing the frame.
@@ -338,27 +321,6 @@ impl Kit<'_> {
     ) {
         dispatch_workgroups(encoder, pipeline, bind_group, label, workgroups);
     }
-}
-
-/// A bind group for group 0 of `pipeline` with explicit binding numbers.
-pub(crate) fn bind_group_at(
-    ctx: &GpuContext,
-    pipeline: &wgpu::ComputePipeline,
-    label: &str,
-    resources: &[(u32, wgpu::BindingResource)],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = resources
-        .iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: *binding,
-            resource: resource.clone(),
-        })
-        .collect();
-    ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
 }
 
 /// One compute pass covering a `width`×`height` grid with 8×8 workgroups.

@@ -78,15 +78,8 @@ pub fn render<'py>(
     capture_depth: &str,
     capture_min_opacity: f32,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let depth = match capture_depth {
-        "expected" => SplatDepth::Expected,
-        "median" => SplatDepth::Median,
-        other => {
-            return Err(PyValueError::new_err(format!(
-                "capture_depth '{other}': expected 'expected' or 'median'"
-            )))
-        }
-    };
+    let depth: SplatDepth =
+        (capture_depth.parse()).map_err(|e| PyValueError::new_err(format!("capture_depth {e}")))?;
     let poses = poses_from(poses)?;
     let camera = match camera {
         Some(c) => camera::intrinsics(c)?,

@@ -24,8 +24,8 @@ pub struct RenderArgs {
     capture_scale: Option<f64>,
     /// A capture's depth: `expected` (Σ wᵢzᵢ / Σ wᵢ over the blended Gaussians) or `median`
     /// (where the transmittance falls below 0.5).
-    #[arg(long, value_enum, default_value = "expected")]
-    capture_depth: CaptureDepth,
+    #[arg(long, default_value = "expected")]
+    capture_depth: SplatDepth,
     /// A capture's pixels whose accumulated opacity stays below this get no depth (0).
     #[arg(long, default_value_t = 0.5)]
     capture_min_opacity: f32,
@@ -121,13 +121,6 @@ impl OutputFormat {
     }
 }
 
-/// `--capture-depth`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum CaptureDepth {
-    Expected,
-    Median,
-}
-
 /// `--camera` when not given.
 const DEFAULT_CAMERA: &str = "replica";
 
@@ -195,10 +188,7 @@ fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
         capture: CaptureOptions {
             metres_per_unit: args.capture_scale,
             settings: SplatSettings {
-                depth: match args.capture_depth {
-                    CaptureDepth::Expected => SplatDepth::Expected,
-                    CaptureDepth::Median => SplatDepth::Median,
-                },
+                depth: args.capture_depth,
                 min_opacity: args.capture_min_opacity,
             },
             dataparser_transforms: args.dataparser_transforms.clone(),

@@ -2,12 +2,13 @@
 //! the lens map into the frame, colour and depth. Its CPU twin is [`twin`].
 
 use rslam_core::{DepthImage, RgbImage};
+use rslam_gpu::compute::bind_group_at;
 use rslam_gpu::{FrameTextures, GpuContext};
 use wgpu::util::DeviceExt;
 
 use super::LensView;
 use crate::image_f32::{linear_to_srgb, srgb_to_linear};
-use crate::perturbation::{bind_group_at, dispatch_grid, view};
+use crate::perturbation::{dispatch_grid, view};
 use crate::PerturbError;
 
 pub const SHADER: &str = "perturb/sensor/distortion.wgsl";

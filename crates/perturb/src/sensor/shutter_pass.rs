@@ -6,10 +6,11 @@ use std::ops::Range;
 
 use bytemuck::{Pod, Zeroable};
 use rslam_core::RgbImage;
+use rslam_gpu::compute::bind_group_at;
 use rslam_gpu::{FrameTextures, GpuContext};
 
 use crate::image_f32::{linear_to_srgb, srgb_to_linear};
-use crate::perturbation::{bind_group_at, dispatch_grid, view};
+use crate::perturbation::{dispatch_grid, view};
 use crate::uniform_layout::{rust_layout, RustLayout, UniformLayout};
 use crate::PerturbError;
 

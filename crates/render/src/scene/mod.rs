@@ -4,7 +4,7 @@
 //! picks the source from the name, the file extension and a PLY's header; [`export`] writes the
 //! ground-truth mesh as PLY.
 
-mod builtin;
+pub(crate) mod builtin;
 mod content_hash;
 pub mod export;
 mod gltf;

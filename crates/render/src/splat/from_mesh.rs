@@ -7,6 +7,7 @@
 use glam::{Quat, Vec2, Vec3};
 use rslam_core::splat_io::SplatCloud;
 
+use crate::scene::builtin::rng::{seed_from_name, Rng};
 use crate::scene::srgb::{linear_to_srgb, srgb_to_linear};
 use crate::{Scene, Texture};
 
@@ -17,7 +18,8 @@ const OPACITY_LOGIT: f32 = 2.944_439;
 /// Thickness across the surface, as a share of the width.
 const FLATNESS: f32 = 0.05;
 
-/// About `count` Gaussians over `scene`'s mesh (the same draws for the same scene and count).
+/// About `count` Gaussians over `scene`'s mesh (the same draws for the same scene name and
+/// count).
 pub fn capture_of_mesh(scene: &Scene, count: usize) -> SplatCloud {
     let mesh = &scene.mesh;
     let corner = |t: usize, k: usize| &mesh.vertices[mesh.indices[3 * t + k] as usize];
@@ -29,7 +31,7 @@ pub fn capture_of_mesh(scene: &Scene, count: usize) -> SplatCloud {
         .collect();
     let total: f32 = areas.iter().sum();
     let width = (total / count.max(1) as f32).sqrt();
-    let mut random = Xorshift(0x9e37_79b9_7f4a_7c15);
+    let mut random = Rng::new(seed_from_name(&scene.name)).fork("capture");
     let mut cloud = SplatCloud::default();
     let mut owed = 0.0;
     for (t, area) in areas.iter().enumerate() {
@@ -41,7 +43,7 @@ pub fn capture_of_mesh(scene: &Scene, count: usize) -> SplatCloud {
         let texture = &scene.textures[corner(t, 0).layer as usize];
         while owed >= 1.0 {
             owed -= 1.0;
-            let (mut u, mut v) = (random.unit(), random.unit());
+            let (mut u, mut v) = (random.f32(), random.f32());
             if u + v > 1.0 {
                 (u, v) = (1.0 - u, 1.0 - v);
             }
@@ -77,18 +79,6 @@ fn texel(texture: &Texture, uv: Vec2) -> [u8; 3] {
     let y = ((uv.y.rem_euclid(1.0) * h) as usize).min(texture.height as usize - 1);
     let at = 4 * (y * texture.width as usize + x);
     [texture.rgba[at], texture.rgba[at + 1], texture.rgba[at + 2]]
-}
-
-/// xorshift64, in [0, 1).
-struct Xorshift(u64);
-
-impl Xorshift {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
 }
 
 #[cfg(test)]

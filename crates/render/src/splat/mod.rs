@@ -26,11 +26,23 @@ pub enum SplatDepth {
 }
 
 impl SplatDepth {
+    pub const ALL: [SplatDepth; 2] = [SplatDepth::Expected, SplatDepth::Median];
+
     pub fn name(self) -> &'static str {
         match self {
             SplatDepth::Expected => "expected",
             SplatDepth::Median => "median",
         }
+    }
+}
+
+impl std::str::FromStr for SplatDepth {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        (Self::ALL.into_iter())
+            .find(|depth| depth.name() == text)
+            .ok_or_else(|| format!("'{text}': expected 'expected' or 'median'"))
     }
 }
 

@@ -1,7 +1,9 @@
 use rslam_core::splat_io::SplatCloud;
 use rslam_core::{Intrinsics, Pose};
-use rslam_gpu::compute::{bind_group, dispatch_linear, storage_buffer, uniform_buffer};
-use rslam_gpu::{read_buffer, FrameTextures, GpuContext, RadixSort, Scan};
+use rslam_gpu::compute::{
+    bind_group, bind_group_at, dispatch_linear, storage_buffer, uniform_buffer,
+};
+use rslam_gpu::{BufferReadback, FrameTextures, GpuContext, RadixSort, Scan};
 use wgpu::util::DeviceExt;
 
 use super::camera::{tiles, SplatCamera};
@@ -73,7 +75,8 @@ pub struct SplatRasterizer {
     offsets: wgpu::Buffer,
     offsets_scan: Scan,
     count_tiles: wgpu::BindGroup,
-    total: wgpu::Buffer,
+    /// Reads the total back.
+    total: BufferReadback,
     /// Everything sized by the frame and by the number of instances.
     instances: Instances,
 }
@@ -170,16 +173,16 @@ impl SplatRasterizer {
                     &pipelines.project,
                     "splat project",
                     &[
-                        Some(camera.as_entire_binding()),
-                        Some(mean_opacity.as_entire_binding()),
-                        Some(cov_a.as_entire_binding()),
-                        Some(cov_b.as_entire_binding()),
-                        Some(wgpu::BindingResource::Buffer(harmonics)),
-                        Some(splats.position.as_entire_binding()),
-                        Some(splats.conic.as_entire_binding()),
-                        Some(splats.color.as_entire_binding()),
-                        Some(splats.tiles.as_entire_binding()),
-                        Some(uniform.as_entire_binding()),
+                        camera.as_entire_binding(),
+                        mean_opacity.as_entire_binding(),
+                        cov_a.as_entire_binding(),
+                        cov_b.as_entire_binding(),
+                        wgpu::BindingResource::Buffer(harmonics),
+                        splats.position.as_entire_binding(),
+                        splats.conic.as_entire_binding(),
+                        splats.color.as_entire_binding(),
+                        splats.tiles.as_entire_binding(),
+                        uniform.as_entire_binding(),
                     ],
                 );
                 ProjectChunk {
@@ -189,22 +192,16 @@ impl SplatRasterizer {
                 }
             })
             .collect();
-        let depth_keys = bind_group(
+        let depth_keys = bind_group_at(
             ctx,
             &pipelines.depth_keys,
             "splat depth keys",
             &[
-                Some(camera.as_entire_binding()),
-                Some(splats.tiles.as_entire_binding()),
-                None,
-                None,
-                None,
-                None,
-                None,
-                None,
-                Some(splats.position.as_entire_binding()),
-                Some(depth_sort.keys().as_entire_binding()),
-                Some(depth_sort.values().as_entire_binding()),
+                (0, camera.as_entire_binding()),
+                (1, splats.tiles.as_entire_binding()),
+                (8, splats.position.as_entire_binding()),
+                (9, depth_sort.keys().as_entire_binding()),
+                (10, depth_sort.values().as_entire_binding()),
             ],
         );
         let offsets = storage_buffer(ctx, "splat instance offsets", (count as u64 + 1) * 4);
@@ -214,13 +211,13 @@ impl SplatRasterizer {
             &pipelines.count_tiles,
             "splat count tiles",
             &[
-                Some(camera.as_entire_binding()),
-                Some(splats.tiles.as_entire_binding()),
-                Some(depth_sort.values().as_entire_binding()),
-                Some(offsets.as_entire_binding()),
+                camera.as_entire_binding(),
+                splats.tiles.as_entire_binding(),
+                depth_sort.values().as_entire_binding(),
+                offsets.as_entire_binding(),
             ],
         );
-        let total = storage_buffer(ctx, "splat instance total", 4);
+        let total = BufferReadback::new(ctx, 4);
         let instances = Instances::new(
             ctx,
             &pipelines,
@@ -338,14 +335,14 @@ impl SplatRasterizer {
                 &self.pipelines.blend,
                 "splat blend",
                 &[
-                    Some(self.camera.as_entire_binding()),
-                    Some(self.splats.position.as_entire_binding()),
-                    Some(self.splats.conic.as_entire_binding()),
-                    Some(self.splats.color.as_entire_binding()),
-                    Some(i.sort.values().as_entire_binding()),
-                    Some(i.ranges.as_entire_binding()),
-                    Some(wgpu::BindingResource::TextureView(frame.color_view())),
-                    Some(wgpu::BindingResource::TextureView(frame.depth_view())),
+                    self.camera.as_entire_binding(),
+                    self.splats.position.as_entire_binding(),
+                    self.splats.conic.as_entire_binding(),
+                    self.splats.color.as_entire_binding(),
+                    i.sort.values().as_entire_binding(),
+                    i.ranges.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(frame.color_view()),
+                    wgpu::BindingResource::TextureView(frame.depth_view()),
                 ],
             );
             let [tiles_x, tiles_y] = tiles(&self.intrinsics);
@@ -391,15 +388,10 @@ impl SplatRasterizer {
             );
         }
         self.offsets_scan.encode(ctx, &mut encoder, self.count + 1);
-        encoder.copy_buffer_to_buffer(
-            &self.offsets,
-            self.count as u64 * 4,
-            &self.total,
-            0,
-            Some(4),
-        );
-        ctx.queue.submit([encoder.finish()]);
-        let bytes = read_buffer(ctx, &self.total)?;
+        self.total
+            .encode_copy(&mut encoder, &self.offsets, self.count as u64 * 4);
+        let submission = ctx.queue.submit([encoder.finish()]);
+        let bytes = self.total.read(ctx, submission)?;
         Ok(u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes")))
     }
 }
@@ -423,27 +415,22 @@ impl Instances {
             &pipelines.duplicate,
             "splat duplicate",
             &[
-                Some(camera.as_entire_binding()),
-                Some(splat_tiles.as_entire_binding()),
-                Some(depth_order.as_entire_binding()),
-                Some(offsets.as_entire_binding()),
-                Some(sort.keys().as_entire_binding()),
-                Some(sort.values().as_entire_binding()),
+                camera.as_entire_binding(),
+                splat_tiles.as_entire_binding(),
+                depth_order.as_entire_binding(),
+                offsets.as_entire_binding(),
+                sort.keys().as_entire_binding(),
+                sort.values().as_entire_binding(),
             ],
         );
-        let tile_ranges = bind_group(
+        let tile_ranges = bind_group_at(
             ctx,
             &pipelines.tile_ranges,
             "splat tile ranges",
             &[
-                None,
-                None,
-                None,
-                None,
-                Some(sort.keys().as_entire_binding()),
-                None,
-                Some(ranges.as_entire_binding()),
-                Some(count.as_entire_binding()),
+                (4, sort.keys().as_entire_binding()),
+                (6, ranges.as_entire_binding()),
+                (7, count.as_entire_binding()),
             ],
         );
         Ok(Self {

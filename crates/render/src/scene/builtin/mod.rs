@@ -9,7 +9,7 @@ mod furniture;
 mod layouts;
 mod lighting;
 mod mesh_builder;
-mod rng;
+pub(crate) mod rng;
 mod scene_builder;
 mod textures;
 mod trajectory;
