@@ -161,6 +161,7 @@ proptest! {
             textures: vec![Texture::white()],
             default_trajectory: None,
             splats: None,
+            floor: None,
             lights: None,
         };
         let read = parse_ply(&ply_bytes(&scene)).map_err(TestCaseError::fail)?;

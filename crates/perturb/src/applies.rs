@@ -33,6 +33,8 @@ pub enum Need {
     Imu,
     /// Changes a scene's lights: a built-in scene, whose light is kept as layers.
     LightLayers,
+    /// Places people and objects on a scene's free floor: a built-in scene, which knows it.
+    FreeFloor,
 }
 
 impl Need {
@@ -49,6 +51,7 @@ impl Need {
             Need::CaptureOrder => "frames in capture order",
             Need::Imu => "an IMU",
             Need::LightLayers => "a built-in scene (its lights as layers)",
+            Need::FreeFloor => "a built-in scene (its free floor)",
         }
     }
 }
@@ -212,6 +215,7 @@ impl PerturbSpec {
             self.deviation_items(),
             self.sensor_items(),
             self.light.items(),
+            self.world.items(),
         ]
         .concat();
         let after_frames = [self.stream_items(), self.imu.items()].concat();
@@ -262,6 +266,7 @@ fn missing(need: Need, item: &Written, clause: &str, setting: &Setting) -> Strin
         Need::Lens => format!("{} does not support a lens yet; the one-camera render and the EuRoC rigs (radtan) do", setting.input),
         Need::CaptureOrder => format!("{name} carries its state from frame to frame, so its frames must run in capture order from the first, and {clause}: make a dataset of them instead (render or perturb to a folder)"),
         Need::LightLayers => format!("{name} changes the scene's lamps and daylight, which only the built-in scenes keep apart (a mesh's light is baked into its colours), and {clause}"),
+        Need::FreeFloor => format!("{name} walks people over the scene's free floor, which only the built-in scenes know, and {clause}"),
         Need::Imu => format!("IMU items need an IMU, and {clause}; render a rig with an IMU (stereo-imu in the EuRoC layout, rgbd-imu in the TUM layout, a rig file with [imu]) or perturb a EuRoC dataset with imu0/"),
     }
 }

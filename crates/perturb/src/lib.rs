@@ -47,6 +47,7 @@ mod twin;
 pub mod uniform_layout;
 #[cfg(test)]
 mod uniform_layout_tests;
+pub mod world;
 
 pub use applies::{ItemEntry, Lenses, Need, Setting};
 pub use catalogue::{find, names, CATALOGUE};

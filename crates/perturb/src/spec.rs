@@ -13,6 +13,7 @@
 //!          ['@calibration' | '@dynamic']                       (`@dynamic`: cameras only)
 //!        | 'distortion:' ('radtan' | 'equidistant') '(' C ',' C ',' C ',' C ')'
 //!        | 'lights:' S | 'flicker:' HZ ['/' DEPTH] | 'daylight:' S  light items (crate::light)
+//!        | 'actors:' S | 'actors:' COUNT '/' SPEED '/' NEAR            world items (crate::world)
 //! SENSOR := 'cam' N | 'imu' N                               a rig's sensor: cam0, cam1, imu0
 //! SEVERITY := 1..5 | low | mid | high                      (= 1, 3, 5)
 //! ```
@@ -44,6 +45,7 @@ use crate::sensor::{self, Exposure, RollingShutter, SENSOR_ITEMS};
 use crate::severity::Severity;
 use crate::stream::STREAM_ITEMS;
 use crate::trajectory::TRAJECTORY_ITEMS;
+use crate::world::{self, WorldSpec, WORLD_ITEMS};
 use crate::{Group, PerturbError};
 
 /// A parsed `--perturb` string; serialisable for the manifest, `Display` gives the canonical form.
@@ -80,6 +82,9 @@ pub struct PerturbSpec {
     /// `lights`, `flicker`, `daylight`: the scene's light over time. Left out without one.
     #[serde(default, skip_serializing_if = "LightSpec::is_empty")]
     pub light: LightSpec,
+    /// `actors`: what moves in the scene. Left out without one.
+    #[serde(default, skip_serializing_if = "WorldSpec::is_empty")]
+    pub world: WorldSpec,
 }
 
 /// One image or depth corruption of a spec.
@@ -232,6 +237,7 @@ impl PerturbSpec {
             }
             name if imu::is_imu_item(name) => self.imu.add(name, value, mode).map_err(err)?,
             name if light::is_light_item(name) => self.light.add(name, value, mode).map_err(err)?,
+            name if world::is_world_item(name) => self.world.add(name, value, mode).map_err(err)?,
             sensor::distortion::NAME => {
                 self.distortion = Some(sensor::distortion::parse(value, mode).map_err(err)?)
             }
@@ -303,6 +309,7 @@ impl PerturbSpec {
         let mut items = self.deviation_items();
         items.extend(self.sensor_items());
         items.extend(self.light.items());
+        items.extend(self.world.items());
         items
     }
 
@@ -550,7 +557,7 @@ impl fmt::Display for FrameItem {
 
 impl fmt::Display for PerturbSpec {
     /// Canonical pipeline order: calibration items, rot, trans, exposure, rolling_shutter,
-    /// distortion, light items, image items, depth items, fast, misalign, IMU items.
+    /// distortion, light items, world items, image items, depth items, fast, misalign, IMU items.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut parts: Vec<String> = self.calibration.iter().map(|i| i.to_string()).collect();
         parts.extend(self.scene_items());
@@ -562,12 +569,13 @@ impl fmt::Display for PerturbSpec {
 }
 
 /// The entries of every item that is not a frame corruption, in the order `rslam list` shows
-/// them: trajectory, stream, sensor, light, calibration, IMU.
-pub const ITEM_TABLES: [(&str, &[ItemEntry]); 6] = [
+/// them: trajectory, stream, sensor, light, world, calibration, IMU.
+pub const ITEM_TABLES: [(&str, &[ItemEntry]); 7] = [
     ("trajectory", TRAJECTORY_ITEMS),
     ("stream", STREAM_ITEMS),
     ("sensor", SENSOR_ITEMS),
     ("light", LIGHT_ITEMS),
+    ("world", WORLD_ITEMS),
     ("calibration", CALIBRATION_ITEMS),
     ("imu", IMU_ITEMS),
 ];

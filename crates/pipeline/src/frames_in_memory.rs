@@ -68,6 +68,7 @@ impl FramesInMemory<SceneSource> {
             job.camera,
             resolved.poses,
             job.capture.settings,
+            resolved.actors,
         )?;
         source.set_sensor(ctx, &job.spec, job.rate_hz, job.seed)?;
         Ok(Self {

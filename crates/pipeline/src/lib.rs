@@ -37,6 +37,7 @@ mod plan;
 mod progress;
 mod render;
 pub mod rig;
+mod scene_actors;
 mod scene_job;
 mod scene_light;
 pub mod settings;

@@ -12,9 +12,9 @@ use crate::job::{Planned, Streams, Writing};
 use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
-use crate::scene_light;
 use crate::source::SceneSource;
 use crate::PipelineError;
+use crate::{scene_actors, scene_light};
 
 /// A one-camera render, planned: the scene loaded, its poses deviated, the frame plan made.
 pub(crate) struct CameraRender<'a> {
@@ -45,6 +45,13 @@ pub(crate) fn plan<'a>(
         scene.seed,
         &resolved.plan,
     )?;
+    scene_actors::record(
+        &mut extra,
+        resolved.actors.as_deref(),
+        &scene.spec,
+        scene.rate_hz,
+        &resolved.plan,
+    );
     let manifest = ManifestParts {
         command,
         source: resolved.scene.name.clone(),
@@ -87,6 +94,7 @@ impl Planned for CameraRender<'_> {
             scene.camera,
             resolved.poses.clone(),
             scene.capture.settings,
+            resolved.actors.clone(),
         )?;
         source.set_sensor(ctx, &scene.spec, scene.rate_hz, scene.seed)?;
         let pipeline = Pipeline::new(ctx, source, &scene.spec, scene.seed)?;

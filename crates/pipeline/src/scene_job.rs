@@ -9,11 +9,12 @@ use std::sync::{Arc, Mutex, OnceLock};
 use rslam_core::trajectory_io::{read_trajectory_with, ReadOptions, TrajectoryFormat};
 use rslam_core::{Intrinsics, Pose};
 use rslam_perturb::PerturbSpec;
+use rslam_render::actors::Actors;
 use rslam_render::splat::CaptureOptions;
 use rslam_render::{load_scene_scaled, Scene};
 
 use crate::plan::FramePlan;
-use crate::{JobPart, PipelineError};
+use crate::{scene_actors, JobPart, PipelineError};
 
 #[derive(Clone, Debug)]
 pub struct SceneJob {
@@ -81,6 +82,8 @@ pub struct ResolvedScene {
     pub clean: rslam_core::Trajectory,
     pub poses: Vec<Pose>,
     pub plan: FramePlan,
+    /// The people the spec's world items put in the scene, planned along `poses`.
+    pub actors: Option<Arc<Actors>>,
 }
 
 impl ResolvedScene {
@@ -185,12 +188,15 @@ impl SceneJob {
         let clean = rslam_core::Trajectory::from_poses_at_rate(clean, self.rate_hz);
         let deviated = rslam_perturb::trajectory::deviate(&clean, &self.spec, self.seed);
         let plan = FramePlan::rendered(deviated.len(), self.rate_hz, &self.spec, self.seed);
+        let actors =
+            scene_actors::plan(&scene, &self.spec, self.seed, &deviated.poses, self.rate_hz)?;
         Ok(ResolvedScene {
             scene,
             hash,
             clean,
             poses: deviated.poses,
             plan,
+            actors,
         })
     }
 

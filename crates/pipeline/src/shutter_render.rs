@@ -63,7 +63,7 @@ impl ShutterRender {
     }
 
     /// Records `renders` into `frame`, the final encoding into `encoder`; `light` lights each
-    /// render with the light of its window. The rasterizer's camera and light and the pass's
+    /// render with the light of its window, and the actors stand where they are at its middle. The rasterizer's camera and light and the pass's
     /// parameters are uniforms written at record time, so each render is its own submission;
     /// the queue runs them in order before `encoder`'s.
     pub fn record(
@@ -77,6 +77,7 @@ impl ShutterRender {
     ) -> Result<(), PipelineError> {
         for render in renders {
             light.apply(ctx, rasterizer, render.light_window)?;
+            rasterizer.pose_actors(ctx, light.instant(render.light_window));
             let mut sub = ctx.device.create_command_encoder(&Default::default());
             rasterizer.encode(ctx, &mut sub, &self.subframe, &render.world_from_camera)?;
             if render.weight > 0.0 {

@@ -18,6 +18,7 @@ use rslam_gpu::{wgpu, FrameTextures, GpuContext};
 use rslam_perturb::light::{LightSchedule, LightSpec};
 use rslam_perturb::sensor::Shutter;
 use rslam_perturb::PerturbSpec;
+use rslam_render::actors::Actors;
 use rslam_render::splat::SplatSettings;
 use rslam_render::{Rasterizer, Scene};
 
@@ -49,7 +50,8 @@ pub trait FrameSource {
 
 /// A mesh drawn along a path: source frame `i` is the view from `poses[i]`, or under a shutter
 /// the views from the poses around it during capture; under a lens, drawn wider and resampled;
-/// under light items, each render lit by the light of the time it exposes.
+/// under light items, each render lit by the light of the time it exposes; with actors, each
+/// render shows them where they are at the middle of what it exposes.
 pub struct SceneSource {
     scene: Arc<Scene>,
     /// Draws with `camera`, or under a lens with the lens view's wider pinhole.
@@ -75,10 +77,11 @@ impl SceneSource {
         camera: Intrinsics,
         poses: Vec<Pose>,
         capture: SplatSettings,
+        actors: Option<Arc<Actors>>,
     ) -> Result<Self, PipelineError> {
         Ok(Self {
             scene: scene.clone(),
-            rasterizer: Rasterizer::with_splat_settings(ctx, scene, camera, capture)?,
+            rasterizer: Rasterizer::with_actors(ctx, scene, camera, capture, actors)?,
             camera,
             poses,
             shutter: None,
@@ -176,7 +179,9 @@ impl SceneSource {
             schedule: self.light.as_ref(),
             time,
         };
-        light.apply(ctx, &self.rasterizer, window)
+        light.apply(ctx, &self.rasterizer, window)?;
+        self.rasterizer.pose_actors(ctx, light.instant(window));
+        Ok(())
     }
 
     fn through_lens(
@@ -252,6 +257,12 @@ pub(crate) struct FrameLight<'a> {
 }
 
 impl FrameLight<'_> {
+    /// The middle of `window` (seconds from the frame's time), in seconds from the start: the
+    /// instant a render of that window shows the actors at.
+    pub fn instant(&self, window: (f64, f64)) -> f64 {
+        self.time + (window.0 + window.1) / 2.0
+    }
+
     /// Lights `rasterizer`'s next render with the light over `window` (seconds from the
     /// frame's time).
     pub fn apply(

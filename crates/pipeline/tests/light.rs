@@ -59,6 +59,7 @@ fn lit_plane() -> Arc<Scene> {
         textures: vec![Texture::white()],
         default_trajectory: None,
         splats: None,
+        floor: None,
         lights: Some(LightLayers {
             kinds: vec![LightKind::Lamp, LightKind::Daylight],
             colours,
@@ -82,7 +83,7 @@ fn frames(spec: &str, count: usize) -> Vec<RgbImage> {
     let spec = PerturbSpec::parse(spec).unwrap();
     let poses = vec![Pose::IDENTITY; count];
     let mut source =
-        SceneSource::new(ctx, &lit_plane(), CAMERA, poses, Default::default()).unwrap();
+        SceneSource::new(ctx, &lit_plane(), CAMERA, poses, Default::default(), None).unwrap();
     source.set_sensor(ctx, &spec, RATE_HZ, SEED).unwrap();
     let mut pipeline = Pipeline::new(ctx, source, &spec, SEED).unwrap();
     let mut sink = Collect(Vec::new());

@@ -55,6 +55,7 @@ fn scene(name: &str, mesh: Mesh) -> Scene {
         textures: vec![Texture::white()],
         default_trajectory: None,
         splats: None,
+        floor: None,
         lights: None,
     }
 }
@@ -98,8 +99,15 @@ fn render(scene: &Scene, poses: &[Pose], spec: &str, index: usize) -> (RgbImage,
         text => PerturbSpec::parse(text).unwrap(),
     };
     let scene = std::sync::Arc::new(scene.clone());
-    let mut source =
-        SceneSource::new(ctx, &scene, CAMERA, poses.to_vec(), Default::default()).unwrap();
+    let mut source = SceneSource::new(
+        ctx,
+        &scene,
+        CAMERA,
+        poses.to_vec(),
+        Default::default(),
+        None,
+    )
+    .unwrap();
     source.set_sensor(ctx, &spec, RATE_HZ, 0).unwrap();
     let mut pipeline = Pipeline::new(ctx, source, &spec, 0).unwrap();
     let mut sink = Collect(Vec::new());

@@ -19,6 +19,8 @@ pub enum RenderError {
     BadMesh { path: PathBuf, message: String },
     #[error("a Gaussian-splat capture has no light layers: light items need a built-in scene")]
     CaptureLight,
+    #[error("scene '{name}': {message}")]
+    Actors { name: String, message: String },
     #[error("a Gaussian-splat capture of no Gaussians: nothing to render")]
     EmptyCapture,
     #[error("'{name}' is a Gaussian-splat capture: it has no triangle mesh to export")]

@@ -5,6 +5,7 @@
 //! the frame textures of `rslam-gpu` (a mesh through the render pipeline, a capture through the
 //! [`splat`] passes), where perturbations pick them up.
 
+pub mod actors;
 mod error;
 pub mod raster;
 pub mod raycast;
@@ -14,6 +15,6 @@ pub mod splat;
 pub use error::RenderError;
 pub use raster::Rasterizer;
 pub use scene::{
-    agent_trajectory, builtin_path_length, load_scene, load_scene_scaled, LightKind, LightLayers,
-    Mesh, Scene, Texture, Vertex, BUILTIN_SCENES, MAX_LIGHT_LAYERS,
+    agent_trajectory, builtin_path_length, load_scene, load_scene_scaled, FreeFloor, LightKind,
+    LightLayers, Mesh, Scene, Texture, Vertex, BUILTIN_SCENES, MAX_LIGHT_LAYERS,
 };

@@ -124,6 +124,7 @@ fn mesh_scene(cells: &[Cell]) -> Scene {
         default_trajectory: None,
         lights: None,
         splats: None,
+        floor: None,
     }
 }
 

@@ -39,6 +39,7 @@ fn gpu_render(cloud: &SplatCloud, pose: &Pose, settings: SplatSettings) -> (RgbI
         default_trajectory: None,
         lights: None,
         splats: Some(Arc::new(cloud.clone())),
+        floor: None,
     };
     let mut rasterizer =
         Rasterizer::with_splat_settings(ctx, &scene, CAMERA, settings).expect("upload capture");

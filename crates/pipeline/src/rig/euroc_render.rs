@@ -311,6 +311,7 @@ impl RigRender<'_> {
                 camera.intrinsics,
                 poses,
                 self.scene.capture.settings,
+                self.resolved.actors.clone(),
             )?;
             source.set_times(run.times_s.clone());
             source.set_sensor(ctx, &run.spec, camera.rate_hz, self.scene.seed)?;

@@ -250,6 +250,7 @@ impl Planned for RgbdImuRender<'_> {
             camera.intrinsics,
             self.poses.clone(),
             self.scene.capture.settings,
+            self.resolved.actors.clone(),
         )?;
         source.set_times(self.times_s.clone());
         source.set_sensor(ctx, &self.frame_spec, camera.rate_hz, self.scene.seed)?;

@@ -25,7 +25,13 @@ pub(super) struct LightMix {
 }
 
 impl LightMix {
-    pub fn new(ctx: &GpuContext, scene: &Scene) -> Result<Self, RenderError> {
+    /// The scene's layers, with room for the layers of `actor_vertices` more vertices after
+    /// its own ([`LightMix::set_actor_light`]).
+    pub fn new(
+        ctx: &GpuContext,
+        scene: &Scene,
+        actor_vertices: usize,
+    ) -> Result<Self, RenderError> {
         let device = &ctx.device;
         let empty = LightLayers {
             kinds: Vec::new(),
@@ -44,13 +50,17 @@ impl LightMix {
             .iter()
             .map(|c| [c[0], c[1], c[2], 0.0])
             .collect();
+        colours.resize(
+            colours.len() + actor_vertices * lights.kinds.len(),
+            [0.0; 4],
+        );
         if colours.is_empty() {
             colours.push([0.0; 4]);
         }
         let layers = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("light layers"),
             contents: bytemuck::cast_slice(&colours),
-            usage: wgpu::BufferUsages::STORAGE,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
         let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("light mix"),
@@ -62,6 +72,15 @@ impl LightMix {
             uniform,
             layers,
         })
+    }
+
+    /// Sets the layers of the vertices from `first_vertex` on (the actors') to `light`, linear
+    /// RGB per vertex and layer, vertex-major.
+    pub fn set_actor_light(&self, ctx: &GpuContext, first_vertex: usize, light: &[[f32; 3]]) {
+        let padded: Vec<[f32; 4]> = light.iter().map(|c| [c[0], c[1], c[2], 0.0]).collect();
+        let offset = (first_vertex * self.layer_count * std::mem::size_of::<[f32; 4]>()) as u64;
+        ctx.queue
+            .write_buffer(&self.layers, offset, bytemuck::cast_slice(&padded));
     }
 
     /// Mixes the layers with `weights` (one per layer) in the renders submitted from now on;

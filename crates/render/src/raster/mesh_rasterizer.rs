@@ -1,3 +1,5 @@
+use std::sync::Arc;
+
 use rslam_core::{Intrinsics, Pose};
 use rslam_gpu::{FrameTextures, GpuContext};
 use wgpu::util::DeviceExt;
@@ -5,7 +7,8 @@ use wgpu::util::DeviceExt;
 use super::camera::CameraUniform;
 use super::light_mix::LightMix;
 use super::texture_array;
-use crate::{RenderError, Scene};
+use crate::actors::Actors;
+use crate::{RenderError, Scene, Vertex};
 
 const SHADER: &str = "render/mesh.wgsl";
 const DEPTH_BUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -23,7 +26,9 @@ const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x2, 2 => Unorm8x4, 3 => Uint32];
 
 /// The scene uploaded once (vertices, indices, texture array) and the pipeline that draws it
-/// into [`FrameTextures`] of one size.
+/// into [`FrameTextures`] of one size. With actors, their posed vertices follow the scene's in
+/// the same buffers (their light layers too) and are written before each render
+/// ([`MeshRasterizer::pose_actors`]); one draw covers both.
 pub(crate) struct MeshRasterizer {
     intrinsics: Intrinsics,
     pipeline: wgpu::RenderPipeline,
@@ -34,6 +39,14 @@ pub(crate) struct MeshRasterizer {
     indices: wgpu::Buffer,
     index_count: u32,
     depth_buffer: wgpu::TextureView,
+    actors: Option<SceneActors>,
+}
+
+/// The actors drawn with the scene and where their vertices start.
+struct SceneActors {
+    actors: Arc<Actors>,
+    first_vertex: usize,
+    vertex_count: usize,
 }
 
 impl MeshRasterizer {
@@ -41,8 +54,11 @@ impl MeshRasterizer {
         ctx: &GpuContext,
         scene: &Scene,
         intrinsics: Intrinsics,
+        actors: Option<Arc<Actors>>,
     ) -> Result<Self, RenderError> {
         let device = &ctx.device;
+        let at_start = actors.as_ref().map(|a| a.mesh_at(0.0)).unwrap_or_default();
+        let first_actor_vertex = scene.mesh.vertices.len();
         // The shader clamps an out-of-range array index to the last layer: a silent wrong texture.
         if let Some((vertex, v)) = (scene.mesh.vertices.iter().enumerate())
             .find(|(_, v)| v.layer as usize >= scene.textures.len())
@@ -54,28 +70,29 @@ impl MeshRasterizer {
                 count: scene.textures.len(),
             });
         }
-        let gpu_vertices: Vec<GpuVertex> = scene
-            .mesh
-            .vertices
-            .iter()
-            .map(|v| GpuVertex {
-                position: v.position,
-                uv: v.uv,
-                color: v.color,
-                layer: v.layer,
-            })
+        let gpu_vertices: Vec<GpuVertex> = (scene.mesh.vertices.iter())
+            .chain(&at_start.mesh.vertices)
+            .map(gpu_vertex)
+            .collect();
+        let first = first_actor_vertex as u32;
+        let all_indices: Vec<u32> = (scene.mesh.indices.iter().copied())
+            .chain(at_start.mesh.indices.iter().map(|i| first + i))
             .collect();
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene vertices"),
             contents: bytemuck::cast_slice(&gpu_vertices),
-            usage: wgpu::BufferUsages::VERTEX,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
         });
         let indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene indices"),
-            contents: bytemuck::cast_slice(&scene.mesh.indices),
+            contents: bytemuck::cast_slice(&all_indices),
             usage: wgpu::BufferUsages::INDEX,
         });
-        let textures = texture_array::upload(ctx, &scene.name, &scene.textures)?;
+        let actor_textures = actors.as_ref().map(|a| a.textures()).unwrap_or_default();
+        let all_textures: Vec<crate::Texture> = (scene.textures.iter().chain(actor_textures))
+            .cloned()
+            .collect();
+        let textures = texture_array::upload(ctx, &scene.name, &all_textures)?;
         let camera = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("camera"),
             size: std::mem::size_of::<CameraUniform>() as u64,
@@ -91,7 +108,8 @@ impl MeshRasterizer {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let light_mix = LightMix::new(ctx, scene)?;
+        let light_mix = LightMix::new(ctx, scene, at_start.mesh.vertices.len())?;
+        light_mix.set_actor_light(ctx, first_actor_vertex, &at_start.light);
         let module = ctx.shader_module(SHADER)?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -178,9 +196,34 @@ impl MeshRasterizer {
             light_mix,
             vertices,
             indices,
-            index_count: scene.mesh.indices.len() as u32,
+            index_count: all_indices.len() as u32,
             depth_buffer,
+            actors: actors.map(|actors| SceneActors {
+                actors,
+                first_vertex: first_actor_vertex,
+                vertex_count: at_start.mesh.vertices.len(),
+            }),
         })
+    }
+
+    /// Poses the actors as they are `t` seconds from the start for the renders submitted from
+    /// now on (a buffer write, like the camera's).
+    pub fn pose_actors(&self, ctx: &GpuContext, t: f64) {
+        let Some(scene_actors) = &self.actors else {
+            return;
+        };
+        let posed = scene_actors.actors.mesh_at(t);
+        assert_eq!(
+            posed.mesh.vertices.len(),
+            scene_actors.vertex_count,
+            "a walker's mesh keeps its vertices in every pose"
+        );
+        let vertices: Vec<GpuVertex> = posed.mesh.vertices.iter().map(gpu_vertex).collect();
+        let offset = (scene_actors.first_vertex * std::mem::size_of::<GpuVertex>()) as u64;
+        ctx.queue
+            .write_buffer(&self.vertices, offset, bytemuck::cast_slice(&vertices));
+        self.light_mix
+            .set_actor_light(ctx, scene_actors.first_vertex, &posed.light);
     }
 
     pub fn intrinsics(&self) -> &Intrinsics {
@@ -258,6 +301,15 @@ impl MeshRasterizer {
         pass.set_vertex_buffer(0, self.vertices.slice(..));
         pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..self.index_count, 0, 0..1);
+    }
+}
+
+fn gpu_vertex(v: &Vertex) -> GpuVertex {
+    GpuVertex {
+        position: v.position,
+        uv: v.uv,
+        color: v.color,
+        layer: v.layer,
     }
 }
 

@@ -1,7 +1,10 @@
+use std::sync::Arc;
+
 use rslam_core::{Intrinsics, Pose};
 use rslam_gpu::{FrameTextures, GpuContext};
 
 use super::mesh_rasterizer::MeshRasterizer;
+use crate::actors::Actors;
 use crate::splat::{SplatRasterizer, SplatSettings};
 use crate::{RenderError, Scene};
 
@@ -35,13 +38,41 @@ impl Rasterizer {
         intrinsics: Intrinsics,
         settings: SplatSettings,
     ) -> Result<Self, RenderError> {
-        let drawer = match &scene.splats {
-            Some(cloud) => Drawer::Splats(Box::new(SplatRasterizer::new(
+        Self::with_actors(ctx, scene, intrinsics, settings, None)
+    }
+
+    /// Like [`Rasterizer::with_splat_settings`], with `actors` drawn into every render where
+    /// [`Rasterizer::pose_actors`] last put them. A capture takes no actors.
+    pub fn with_actors(
+        ctx: &GpuContext,
+        scene: &Scene,
+        intrinsics: Intrinsics,
+        settings: SplatSettings,
+        actors: Option<Arc<Actors>>,
+    ) -> Result<Self, RenderError> {
+        let drawer = match (&scene.splats, actors) {
+            (Some(_), Some(_)) => {
+                return Err(RenderError::Actors {
+                    name: scene.name.clone(),
+                    message: "a Gaussian-splat capture cannot draw people into it".into(),
+                })
+            }
+            (Some(cloud), None) => Drawer::Splats(Box::new(SplatRasterizer::new(
                 ctx, cloud, intrinsics, settings,
             )?)),
-            None => Drawer::Mesh(Box::new(MeshRasterizer::new(ctx, scene, intrinsics)?)),
+            (None, actors) => Drawer::Mesh(Box::new(MeshRasterizer::new(
+                ctx, scene, intrinsics, actors,
+            )?)),
         };
         Ok(Self { drawer })
+    }
+
+    /// Poses the actors as they are `t` seconds from the sequence's start for the renders
+    /// submitted from now on; nothing without actors.
+    pub fn pose_actors(&self, ctx: &GpuContext, t: f64) {
+        if let Drawer::Mesh(mesh) = &self.drawer {
+            mesh.pose_actors(ctx, t);
+        }
     }
 
     pub fn intrinsics(&self) -> &Intrinsics {

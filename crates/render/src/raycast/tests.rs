@@ -220,6 +220,7 @@ fn checker_scene() -> Scene {
         textures: vec![Texture::white(), checker],
         default_trajectory: None,
         splats: None,
+        floor: None,
         lights: None,
     }
 }
@@ -328,6 +329,7 @@ fn surface_edges_mark_layer_plane_and_silhouette_changes_only() {
         textures: vec![Texture::white(); 3],
         default_trajectory: None,
         splats: None,
+        floor: None,
         lights: None,
     };
     let rc = RayCaster::new(&scene);

@@ -78,6 +78,7 @@ mod tests {
             textures: vec![Texture::white()],
             default_trajectory: None,
             splats: None,
+            floor: None,
             lights: None,
         }
     }

@@ -102,6 +102,7 @@ mod tests {
             textures: vec![Texture::white(), checker],
             default_trajectory: None,
             splats: None,
+            floor: None,
             lights: None,
         };
         let dir = tempfile::tempdir().unwrap();

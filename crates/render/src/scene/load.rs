@@ -75,6 +75,7 @@ fn load_unscaled(name_or_path: &str) -> Result<Scene, RenderError> {
             default_trajectory: None,
             lights: None,
             splats: Some(Arc::new(cloud)),
+            floor: None,
         });
     }
     let (mesh, textures) = match (extension.as_str(), ply_bytes) {
@@ -97,6 +98,7 @@ fn load_unscaled(name_or_path: &str) -> Result<Scene, RenderError> {
         textures,
         default_trajectory: None,
         splats: None,
+        floor: None,
         lights: None,
     };
     if scene.mesh.indices.is_empty() {

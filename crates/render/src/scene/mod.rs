@@ -76,6 +76,19 @@ pub struct Scene {
     pub lights: Option<LightLayers>,
     /// A Gaussian-splat capture: the scene is its Gaussians, and `mesh` is empty.
     pub splats: Option<Arc<SplatCloud>>,
+    /// Where people can walk: the built-in scenes' floor; `None` for files.
+    pub floor: Option<FreeFloor>,
+}
+
+/// A built-in room's floor, metres, z = 0: the room spans ±`room_half` about the origin, and the
+/// rectangle `free_centre` ± `free_half` is kept clear of anything taller than a table (the
+/// default paths walk it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FreeFloor {
+    pub room_half: [f32; 2],
+    pub free_centre: [f32; 2],
+    pub free_half: [f32; 2],
+    pub ceiling: f32,
 }
 
 impl Mesh {

@@ -110,6 +110,7 @@ mod tests {
             default_trajectory: None,
             lights: None,
             splats: None,
+            floor: None,
         }
     }
 

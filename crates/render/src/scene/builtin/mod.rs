@@ -20,7 +20,7 @@ mod checks;
 use glam::Vec2;
 use rslam_core::Trajectory;
 
-use crate::Scene;
+use crate::{FreeFloor, Scene};
 use cache_root::cache_root;
 use furniture::Style;
 use lighting::Lighting;
@@ -73,6 +73,18 @@ fn track(plan: &layouts::Blueprint) -> Track {
     }
 }
 
+/// What people walking through a scene wear: two fabrics (tops, trousers) and a leather (shoes)
+/// of the upholstery family, painted or read from the texture cache like a scene's textures.
+pub(crate) fn clothing_textures() -> [crate::Texture; 3] {
+    use textures::{Pattern, TextureSpec};
+    [
+        (Pattern::Fabric, 0x70),
+        (Pattern::Fabric, 0x7a),
+        (Pattern::Leather, 0x5e),
+    ]
+    .map(|(pattern, seed)| textures::cache::texture(&TextureSpec { pattern, seed }))
+}
+
 /// The built-in scene of that name, or `None`.
 pub fn build(name: &str) -> Option<Scene> {
     let plan = layouts::blueprint(name)?;
@@ -95,6 +107,14 @@ pub fn build(name: &str) -> Option<Scene> {
         room.ceiling_light(&mut b, &fixture, x, y, plan.panel_lights);
     }
     (plan.furnish)(&mut b, &style, &room);
-    let trajectory = trajectory::default_trajectory(&track(&plan), path_seed(seed, 0), 0.0);
-    Some(b.finish(name, trajectory))
+    let track = track(&plan);
+    let trajectory = trajectory::default_trajectory(&track, path_seed(seed, 0), 0.0);
+    let mut scene = b.finish(name, trajectory);
+    scene.floor = Some(FreeFloor {
+        room_half: track.room_half.into(),
+        free_centre: track.centre.into(),
+        free_half: track.half.into(),
+        ceiling: track.height,
+    });
+    Some(scene)
 }

@@ -94,6 +94,7 @@ impl SceneBuilder {
             textures,
             default_trajectory: Some(trajectory),
             splats: None,
+            floor: None,
             lights: Some(lights),
         }
     }

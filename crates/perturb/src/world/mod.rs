@@ -1,0 +1,63 @@
+//! Items that change the world a scene's camera films, not the camera or its frames
+//! (docs/src/perturbations.md, "A world that moves"): people walking through the scene
+//! ([`walkers`]). A job draws them into every render at the render's instant, so every sensor,
+//! shutter and lens sees them where they are.
+
+pub mod walkers;
+
+use serde::{Deserialize, Serialize};
+
+pub use walkers::Walkers;
+
+use crate::applies::{ItemEntry, Need};
+
+pub static WORLD_ITEMS: &[ItemEntry] = &[ItemEntry {
+    name: walkers::NAME,
+    syntax: "actors:1-5 | actors:COUNT/SPEED/NEAR",
+    description: "people walking through the scene: COUNT articulated walkers at SPEED m/s on curved paths over the free floor that keep clear of the furniture, each other and the camera, entering and leaving the view and passing within NEAR m of the camera; severities 1-5 = 1/0.6/2, 1/1/1.2, 2/1.1/0.8, 2/1.2/0.5, 3/1.4/0.4 (like TUM fr3 sitting, walking_static, walking_xyz, Bonn person_tracking, crowd)",
+    needs: &[Need::Scene, Need::FreeFloor],
+}];
+
+/// The world items of a spec.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct WorldSpec {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub actors: Option<Walkers>,
+}
+
+/// Whether `name` is a world item.
+pub fn is_world_item(name: &str) -> bool {
+    WORLD_ITEMS.iter().any(|e| e.name == name)
+}
+
+impl WorldSpec {
+    /// Takes the world item `name` with its value; the error says what was expected.
+    pub fn add(&mut self, name: &str, value: &str, mode: Option<&str>) -> Result<(), String> {
+        if let Some(m) = mode {
+            return Err(format!("{name} takes no mode, got '@{m}'"));
+        }
+        debug_assert_eq!(name, walkers::NAME);
+        self.actors = Some(Walkers::parse(value)?);
+        Ok(())
+    }
+
+    pub fn is_empty(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The items as written canonically.
+    pub fn items(&self) -> Vec<String> {
+        self.actors.iter().map(|w| w.to_string()).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_description_states_the_severity_table() {
+        let table = format!("severities 1-5 = {}", Walkers::severities());
+        assert!(WORLD_ITEMS[0].description.contains(&table), "{table}");
+    }
+}

@@ -1,0 +1,196 @@
+//! Actors: people who walk through a scene while it is filmed. Each walker is an articulated body
+//! ([`WalkerBody`]) on a closed path over the scene's free floor ([`WalkPath`]), planned so that
+//! no walker ever touches the scene, another walker or the camera ([`plan`]). At any instant
+//! [`Actors::mesh_at`] gives their posed triangles, lit by the scene's light layers
+//! ([`light_probe`]), for the rasterizer and the ray-cast oracle alike.
+
+mod floor_map;
+mod footprint;
+mod light_probe;
+mod plan;
+mod walk_path;
+mod walker;
+
+pub use floor_map::FloorMap;
+pub use footprint::Footprint;
+pub use plan::{CameraTrack, WalkerParams, CAMERA_CLEARANCE};
+pub use walk_path::{Route, Stride, WalkPath};
+pub use walker::{BodyMaterial, PosedMesh, WalkerBody, MAX_STRIDE};
+
+use glam::{Quat, Vec2, Vec3};
+
+use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
+use crate::{Mesh, RenderError, Scene, Texture, Vertex};
+use light_probe::{cube_light, AmbientCube, LightProbe};
+
+/// Metres of cloth per texture repeat.
+const CLOTH_REPEAT_M: f32 = 0.5;
+/// Heights of a walker's light probes, metres: light between them is interpolated.
+const PROBE_HEIGHTS: [f32; 3] = [0.3, 0.9, 1.5];
+
+/// One walker: its body, its path and what it wears.
+#[derive(Clone, Debug)]
+pub struct Walker {
+    pub body: WalkerBody,
+    /// What it covers of the floor at its stride.
+    pub footprint: Footprint,
+    pub path: WalkPath,
+    /// Step length, metres.
+    pub stride: f32,
+    /// Colour of each [`BodyMaterial`], sRGB in [0, 1].
+    pub colours: [[f32; 3]; 5],
+}
+
+/// Where a walker is at an instant, for the manifest.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WalkerPose {
+    /// The body's axis on the floor, metres.
+    pub position: Vec2,
+    /// Direction of travel, radians from +x towards +y.
+    pub heading: f32,
+    /// Gait phase, turns.
+    pub phase: f32,
+    /// Step length now, metres: the walker's stride, shorter as it slows, 0 standing.
+    pub step: f32,
+}
+
+/// The walkers of a job and what lights them.
+pub struct Actors {
+    walkers: Vec<Walker>,
+    probe: LightProbe,
+    /// Texture layer of the first clothing texture: the scene's own come first.
+    first_cloth: u32,
+    textures: Vec<Texture>,
+}
+
+/// The actors' triangles at an instant: scene vertices (texture layers after the scene's), and
+/// their light as layers like the scene's (`light[v * layers + l]`, linear RGB).
+#[derive(Clone, Debug, Default)]
+pub struct ActorMesh {
+    pub mesh: Mesh,
+    pub light: Vec<[f32; 3]>,
+}
+
+impl Actors {
+    /// Walkers for `scene` as `params` say, drawn from `seed`, clear of the camera on `camera`.
+    pub fn plan(
+        scene: &Scene,
+        params: &WalkerParams,
+        seed: u64,
+        camera: &CameraTrack,
+    ) -> Result<Self, RenderError> {
+        let refuse = |message: String| RenderError::Actors {
+            name: scene.name.clone(),
+            message,
+        };
+        let (Some(floor), Some(probe)) = (scene.floor, LightProbe::new(scene)) else {
+            return Err(refuse(
+                "people walk over a built-in scene's free floor; this scene has none".into(),
+            ));
+        };
+        let walkers = plan::walkers(scene, &floor, params, seed, camera).map_err(refuse)?;
+        Ok(Self {
+            walkers,
+            probe,
+            first_cloth: scene.textures.len() as u32,
+            textures: crate::scene::builtin::clothing_textures().to_vec(),
+        })
+    }
+
+    pub fn walkers(&self) -> &[Walker] {
+        &self.walkers
+    }
+
+    /// The textures the actors' vertices refer to, to be appended to the scene's.
+    pub fn textures(&self) -> &[Texture] {
+        &self.textures
+    }
+
+    pub fn layer_count(&self) -> usize {
+        self.probe.layer_count()
+    }
+
+    /// Every walker's pose `t` seconds from the start.
+    pub fn poses_at(&self, t: f64) -> Vec<WalkerPose> {
+        self.walkers
+            .iter()
+            .map(|w| {
+                let stride = w.path.at(t);
+                WalkerPose {
+                    position: stride.position,
+                    heading: stride.heading,
+                    phase: phase(stride.walked, w.stride),
+                    step: w.stride * stride.pace,
+                }
+            })
+            .collect()
+    }
+
+    /// The walkers posed `t` seconds from the start, in world coordinates, lit by the scene.
+    pub fn mesh_at(&self, t: f64) -> ActorMesh {
+        let layers = self.layer_count();
+        let mut out = ActorMesh::default();
+        let mut posed = PosedMesh::default();
+        for (walker, pose) in self.walkers.iter().zip(self.poses_at(t)) {
+            posed.positions.clear();
+            posed.normals.clear();
+            posed.uvs.clear();
+            posed.materials.clear();
+            posed.indices.clear();
+            walker.body.pose(pose.phase, pose.step, &mut posed);
+            let turn = Quat::from_rotation_z(pose.heading);
+            let origin = pose.position.extend(0.0);
+            let cubes: Vec<AmbientCube> = PROBE_HEIGHTS
+                .iter()
+                .map(|&z| self.probe.cube(origin + Vec3::Z * z))
+                .collect();
+            let base = out.mesh.vertices.len() as u32;
+            for i in 0..posed.positions.len() {
+                let position = origin + turn * posed.positions[i];
+                let normal = turn * posed.normals[i];
+                let material = posed.materials[i];
+                let tint = walker.colours[material as usize].map(unit_srgb_to_linear);
+                let mut total = Vec3::ZERO;
+                for layer in 0..layers {
+                    let light = probe_light(&cubes, position.z, normal, layer) * Vec3::from(tint);
+                    total += light;
+                    out.light.push(light.into());
+                }
+                let [r, g, b] = total.to_array().map(linear_to_srgb);
+                out.mesh.vertices.push(Vertex {
+                    position: position.into(),
+                    uv: (posed.uvs[i] / CLOTH_REPEAT_M).into(),
+                    color: [r, g, b, 255],
+                    layer: self.texture_of(material),
+                });
+            }
+            out.mesh
+                .indices
+                .extend(posed.indices.iter().map(|&i| base + i));
+        }
+        out
+    }
+
+    fn texture_of(&self, material: BodyMaterial) -> u32 {
+        match material {
+            BodyMaterial::Top => self.first_cloth,
+            BodyMaterial::Trousers => self.first_cloth + 1,
+            BodyMaterial::Shoes => self.first_cloth + 2,
+            BodyMaterial::Skin | BodyMaterial::Hair => 0,
+        }
+    }
+}
+
+/// Gait phase in turns after `walked` metres with steps of `stride` (a cycle is two steps).
+fn phase(walked: f32, stride: f32) -> f32 {
+    (walked / (2.0 * stride)).rem_euclid(1.0)
+}
+
+/// The light of `layer` on a surface at height `z` facing `normal`, between the probes.
+fn probe_light(cubes: &[AmbientCube], z: f32, normal: Vec3, layer: usize) -> Vec3 {
+    let last = PROBE_HEIGHTS.len() - 1;
+    let k = PROBE_HEIGHTS.partition_point(|&h| h <= z).clamp(1, last);
+    let (lo, hi) = (PROBE_HEIGHTS[k - 1], PROBE_HEIGHTS[k]);
+    let f = ((z - lo) / (hi - lo)).clamp(0.0, 1.0);
+    cube_light(&cubes[k - 1], normal, layer).lerp(cube_light(&cubes[k], normal, layer), f)
+}

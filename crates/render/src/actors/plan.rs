@@ -1,0 +1,363 @@
+//! Planning walkers: a body and a closed route each, drawn from the seed: through a point NEAR
+//! metres beside the camera at a random instant and two random free points, each leg the
+//! shortest way over the free floor (A* on the floor map), smoothed. The walker is timed to
+//! reach the camera then, and gives way like a person: at every instant it walks on, waits or
+//! steps back, whichever keeps it clear of the camera and the walkers planned before it. A
+//! route that does not fit is drawn again. "Every instant": positions are compared every
+//! [`CHECK_STEP_S`] seconds with a margin of the distance two things can close in half a step,
+//! so no contact can hide between two checks.
+
+use glam::{Vec2, Vec3};
+
+use super::floor_map::FloorMap;
+use super::footprint::{point_segment_distance, segment_distance, Footprint};
+use super::walk_path::{Route, WalkPath};
+use super::walker::{WalkerBody, MAX_STRIDE};
+use super::Walker;
+use crate::scene::builtin::rng::Rng;
+use crate::{FreeFloor, Scene};
+
+/// Metres kept between a walker's body and the camera centre.
+pub const CAMERA_CLEARANCE: f32 = 0.1;
+/// Metres between the points of a straight line checked for clearance.
+const LINE_OF_SIGHT_STEP: f32 = 0.025;
+/// What a walker may do in a check step, as multiples of its speed: walk on, hurry, wait, step
+/// back, step back quickly.
+const MOVES: [f32; 5] = [1.0, 1.5, 0.0, -1.0, -1.5];
+/// Seconds a walker looks ahead to give way, in this many steps.
+const LOOK_AHEAD_S: f64 = 1.0;
+const LOOK_AHEAD_STEPS: usize = 10;
+/// Starts tried either side of the one that meets the camera on time, this many metres apart.
+const START_SHIFTS: usize = 21;
+const START_SHIFT_M: f32 = 0.1;
+/// Draws of a stop before the free floor counts as too small for a route.
+const STOP_DRAWS: usize = 50;
+/// Metres at least between a route's stops.
+const STOP_SPACING: f32 = 1.0;
+/// The meeting point lies this many metres wide a band beyond NEAR from the camera.
+const MEETING_BAND: f32 = 0.25;
+/// Instants drawn for the meeting before the route is drawn again.
+const MEETING_DRAWS: usize = 20;
+/// Metres a footprint's ends can swing in half a check step as the walker turns.
+const TURN_MARGIN: f32 = 0.01;
+/// Metres kept between two walkers' bodies.
+const WALKER_GAP: f32 = 0.05;
+/// Seconds between the instants compared.
+const CHECK_STEP_S: f64 = 0.005;
+/// Paths tried per walker before the floor counts as too crowded.
+const ATTEMPTS: usize = 400;
+/// Waypoints of a route besides the one near the camera, at most (at least one: a walk there
+/// and back).
+const WAYPOINTS: usize = 2;
+/// Metres of clearance the shortest ways keep beyond the body's radius.
+const ROUTE_MARGIN: f32 = 0.05;
+/// How much farther than NEAR a walker's closest approach may stay, metres (giving way moves
+/// the meeting).
+const NEAR_TOLERANCE: f32 = 0.15;
+/// The tallest body a walker may have, metres (`WalkerBody::new` stays under it).
+const TALLEST: f32 = 1.95;
+
+/// How many walkers, how fast and how near the camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WalkerParams {
+    pub count: u32,
+    pub speed_m_s: f32,
+    /// Closest approach of each walker's body (its footprint's edge) to the camera centre,
+    /// metres.
+    pub near_m: f32,
+}
+
+/// The camera's centre over the sequence: positions at increasing times (seconds), linear
+/// between them. A rig's body path stands for all its cameras.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraTrack {
+    pub times: Vec<f64>,
+    pub positions: Vec<Vec3>,
+}
+
+impl CameraTrack {
+    pub fn at(&self, t: f64) -> Vec3 {
+        let i = self.times.partition_point(|&x| x <= t);
+        if i == 0 {
+            return self.positions[0];
+        }
+        if i == self.times.len() {
+            return *self
+                .positions
+                .last()
+                .expect("a camera track has a position");
+        }
+        let (t0, t1) = (self.times[i - 1], self.times[i]);
+        let f = ((t - t0) / (t1 - t0)) as f32;
+        self.positions[i - 1].lerp(self.positions[i], f)
+    }
+
+    fn duration(&self) -> f64 {
+        self.times.last().copied().unwrap_or(0.0)
+    }
+
+    /// The fastest the camera moves over the floor, metres per second.
+    fn top_speed(&self) -> f32 {
+        (1..self.times.len())
+            .map(|i| {
+                let d = (self.positions[i] - self.positions[i - 1])
+                    .truncate()
+                    .length();
+                d / (self.times[i] - self.times[i - 1]).max(1e-9) as f32
+            })
+            .fold(0.0, f32::max)
+    }
+}
+
+/// The walkers, or why none fit.
+pub(super) fn walkers(
+    scene: &Scene,
+    floor: &FreeFloor,
+    params: &WalkerParams,
+    seed: u64,
+    camera: &CameraTrack,
+) -> Result<Vec<Walker>, String> {
+    if camera.times.is_empty() {
+        return Err("people need the camera's path to keep clear of, and it is empty".into());
+    }
+    let map = FloorMap::new(&scene.mesh, floor, TALLEST);
+    let rng = Rng::new(seed).fork("actors");
+    let mut walkers: Vec<Walker> = Vec::new();
+    for k in 0..params.count as usize {
+        let mut rng = rng.fork(&format!("walker {k}"));
+        let body = WalkerBody::new(&mut rng);
+        let colours = clothing(&mut rng);
+        let stride = stride_of(params.speed_m_s, body.height());
+        let footprint = Footprint::of(&body, stride);
+        let path = (0..ATTEMPTS)
+            .find_map(|_| {
+                let (route, meeting) = try_route(&mut rng, &map, &footprint, params, camera)?;
+                walk(route, meeting, &footprint, params, camera, &walkers)
+            })
+            .ok_or_else(|| {
+                format!(
+                    "walker {} of {}: no path over the free floor passes within {} m of the camera and keeps clear of the furniture, the camera and the other walkers in {ATTEMPTS} tries; ask for fewer walkers or a larger NEAR",
+                    k + 1,
+                    params.count,
+                    params.near_m
+                )
+            })?;
+        walkers.push(Walker {
+            body,
+            footprint,
+            path,
+            stride,
+            colours,
+        });
+    }
+    Ok(walkers)
+}
+
+/// The points of `way` where it must turn: each kept point sees the next one over cells with
+/// `clearance` all along the straight line between them.
+fn corners(map: &FloorMap, way: &[Vec2], clearance: f32) -> Vec<Vec2> {
+    let sees = |a: Vec2, b: Vec2| {
+        let pieces = (a.distance(b) / LINE_OF_SIGHT_STEP).ceil().max(1.0) as usize;
+        (0..=pieces).all(|i| map.clearance(a.lerp(b, i as f32 / pieces as f32)) >= clearance)
+    };
+    let mut kept = vec![way[0]];
+    let mut i = 0;
+    while i + 1 < way.len() {
+        let mut j = i + 1;
+        while j + 1 < way.len() && sees(way[i], way[j + 1]) {
+            j += 1;
+        }
+        kept.push(way[j]);
+        i = j;
+    }
+    kept.pop();
+    kept
+}
+
+/// A step length for `speed` (people lengthen their steps as they walk faster: about 0.65 m
+/// at 1.2 m/s for a 1.75 m adult), within what the body allows.
+fn stride_of(speed: f32, height: f32) -> f32 {
+    ((0.3 + 0.3 * speed) * height / 1.75).clamp(0.2, MAX_STRIDE)
+}
+
+/// Where the walker meets the camera: metres along its route, and when.
+struct Meeting {
+    along: f32,
+    time: f64,
+}
+
+/// A closed route through a point `near_m` beside the camera at a random instant and
+/// [`WAYPOINTS`] random free points, each leg the shortest way between them over the free floor,
+/// smoothed; `None` when no such route fits the body.
+fn try_route(
+    rng: &mut Rng,
+    map: &FloorMap,
+    footprint: &Footprint,
+    params: &WalkerParams,
+    camera: &CameraTrack,
+) -> Option<(Route, Meeting)> {
+    // The scene keeps out of the circle round the footprint, whatever way it turns, with a
+    // margin for the corners a smoothed route cuts.
+    let reach = footprint.radius + footprint.half_length;
+    let roomy = reach + ROUTE_MARGIN;
+    let free = map.largest_region(roomy);
+    let beside = params.near_m + footprint.radius;
+    // An instant at which the camera has free floor beside it.
+    let (time, near_eye) = (0..MEETING_DRAWS)
+        .map(|_| {
+            let time = f64::from(rng.range(0.05, 0.95)) * camera.duration();
+            let eye = camera.at(time).truncate();
+            let near_eye: Vec<Vec2> = (free.iter().copied())
+                .filter(|p| (beside..beside + MEETING_BAND).contains(&p.distance(eye)))
+                .collect();
+            (time, near_eye)
+        })
+        .find(|(_, near_eye)| !near_eye.is_empty())?;
+    let meeting = near_eye[rng.int(0, near_eye.len() as i64) as usize];
+    let mut stops = vec![meeting];
+    for _ in 0..STOP_DRAWS {
+        let p = free[rng.int(0, free.len() as i64) as usize];
+        if stops.iter().all(|q| q.distance(p) > STOP_SPACING) {
+            stops.push(p);
+        }
+        if stops.len() > WAYPOINTS {
+            break;
+        }
+    }
+    if stops.len() < 2 {
+        return None;
+    }
+    let mut way = Vec::new();
+    for (i, &from) in stops.iter().enumerate() {
+        let leg = map.way(from, stops[(i + 1) % stops.len()], roomy)?;
+        way.extend(corners(map, &leg[..leg.len() - 1], roomy));
+    }
+    let route = Route::new(&way);
+    if route.points().iter().any(|&p| map.clearance(p) < reach) {
+        return None;
+    }
+    let along = route.arc_length_to(meeting);
+    Some((route, Meeting { along, time }))
+}
+
+/// The walker's timing on `route`: timed to reach the meeting point at the meeting time, it
+/// walks on at its speed while that stays clear of the camera and of every walker in `others`
+/// for the next [`LOOK_AHEAD_S`]; otherwise it hurries, waits or steps back, whichever keeps
+/// the most room over that time (earlier walkers' timings are known). `None` when no move
+/// keeps it clear at the next instant, or when it never comes within `near_m` of the camera.
+fn walk(
+    route: Route,
+    meeting: Meeting,
+    footprint: &Footprint,
+    params: &WalkerParams,
+    camera: &CameraTrack,
+    others: &[Walker],
+) -> Option<WalkPath> {
+    let speed = params.speed_m_s;
+    let closing = |other_speed: f32| {
+        (speed * MOVES[1] + other_speed) * CHECK_STEP_S as f32 / 2.0 + TURN_MARGIN
+    };
+    let camera_gap = footprint.radius + CAMERA_CLEARANCE + closing(camera.top_speed());
+    // Metres to spare at `s` along the route at time `t` (negative: too close).
+    let room = |s: f32, t: f64| {
+        let (p, heading) = route.at(s);
+        let [a, b] = footprint.segment(p, heading);
+        let to_camera = point_segment_distance(camera.at(t).truncate(), a, b) - camera_gap;
+        others.iter().fold(to_camera, |least, o| {
+            let gap = footprint.radius + o.footprint.radius + WALKER_GAP + closing(o.path.speed());
+            let there = o.path.at(t);
+            least.min(
+                segment_distance([a, b], o.footprint.segment(there.position, there.heading)) - gap,
+            )
+        })
+    };
+    // The least room over the look-ahead, moving on at `pace` times the speed from `s`.
+    let foresight = |s: f32, t: f64, pace: f32| {
+        (1..=LOOK_AHEAD_STEPS)
+            .map(|k| {
+                let dt = k as f64 * LOOK_AHEAD_S / LOOK_AHEAD_STEPS as f64;
+                room(s + pace * speed * dt as f32, t + dt)
+            })
+            .fold(f32::INFINITY, f32::min)
+    };
+    let step = speed * CHECK_STEP_S as f32;
+    let steps = (camera.duration() / CHECK_STEP_S).ceil() as usize + 1;
+    // Timed to reach the meeting point then, or as near that as leaves it clear at the start.
+    let on_time = meeting.along - speed * meeting.time as f32;
+    let mut s = (0..START_SHIFTS)
+        .map(|k| {
+            let shift = if k % 2 == 0 { k / 2 } else { k.div_ceil(2) } as f32;
+            on_time + START_SHIFT_M * if k % 2 == 0 { shift } else { -shift }
+        })
+        .find(|&s| room(s, 0.0) >= 0.0)?;
+    let mut along = Vec::with_capacity(steps);
+    let mut closest = f32::INFINITY;
+    for i in 0..steps {
+        let t = i as f64 * CHECK_STEP_S;
+        if i > 0 {
+            let clear = |&pace: &f32| room(s + pace * step, t) >= 0.0;
+            let pace = if clear(&1.0) && foresight(s, t, 1.0) >= 0.0 {
+                1.0
+            } else {
+                let best = MOVES
+                    .iter()
+                    .filter(|p| clear(p))
+                    .max_by(|a, b| foresight(s, t, **a).total_cmp(&foresight(s, t, **b)));
+                *best?
+            };
+            s += pace * step;
+        }
+        let (p, heading) = route.at(s);
+        let [a, b] = footprint.segment(p, heading);
+        let body_to_camera =
+            point_segment_distance(camera.at(t).truncate(), a, b) - footprint.radius;
+        closest = closest.min(body_to_camera);
+        along.push(s);
+    }
+    (closest <= params.near_m + NEAR_TOLERANCE)
+        .then(|| WalkPath::new(route, speed, CHECK_STEP_S, along))
+}
+
+/// Colours of a walker's top, trousers, skin, hair and shoes (the order of
+/// [`super::BodyMaterial`]), sRGB: muted everyday clothes.
+fn clothing(rng: &mut Rng) -> [[f32; 3]; 5] {
+    const TOPS: [[f32; 3]; 8] = [
+        [0.16, 0.2, 0.34],
+        [0.55, 0.56, 0.58],
+        [0.62, 0.18, 0.16],
+        [0.9, 0.9, 0.88],
+        [0.25, 0.38, 0.28],
+        [0.12, 0.12, 0.13],
+        [0.8, 0.66, 0.42],
+        [0.38, 0.5, 0.68],
+    ];
+    const TROUSERS: [[f32; 3]; 5] = [
+        [0.2, 0.27, 0.42],
+        [0.1, 0.1, 0.11],
+        [0.6, 0.54, 0.4],
+        [0.35, 0.36, 0.38],
+        [0.28, 0.22, 0.18],
+    ];
+    const SKIN: [[f32; 3]; 5] = [
+        [0.96, 0.8, 0.69],
+        [0.88, 0.68, 0.55],
+        [0.76, 0.55, 0.4],
+        [0.55, 0.38, 0.27],
+        [0.36, 0.24, 0.17],
+    ];
+    const HAIR: [[f32; 3]; 4] = [
+        [0.08, 0.06, 0.05],
+        [0.3, 0.2, 0.12],
+        [0.72, 0.6, 0.38],
+        [0.6, 0.6, 0.6],
+    ];
+    const SHOES: [[f32; 3]; 3] = [[0.1, 0.1, 0.1], [0.35, 0.22, 0.14], [0.85, 0.85, 0.85]];
+    let mut pick = |choices: &[[f32; 3]]| choices[rng.int(0, choices.len() as i64) as usize];
+    [
+        pick(&TOPS),
+        pick(&TROUSERS),
+        pick(&SKIN),
+        pick(&HAIR),
+        pick(&SHOES),
+    ]
+}

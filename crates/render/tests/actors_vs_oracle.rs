@@ -1,0 +1,292 @@
+//! People walking through a built-in scene (`actors`) against the CPU ray-cast oracle: colour and
+//! depth where walkers are in view, the static scene untouched elsewhere, and no walker ever
+//! touching the scene, another walker or the camera at any instant (checked every 10 ms).
+
+mod fixtures;
+
+use glam::{DVec3, Vec2, Vec3};
+use obvhs::triangle::Triangle;
+use rslam_core::{DepthImage, Intrinsics, Pose, SurfaceBvh};
+use rslam_render::actors::{Actors, CameraTrack, WalkerParams, CAMERA_CLEARANCE};
+use rslam_render::raster::{color_agreement, depth_agreement, edge_mask};
+use rslam_render::raycast::RayCaster;
+use rslam_render::{load_scene, Rasterizer, Scene};
+
+const RATE_HZ: f64 = 20.0;
+const FRAMES: usize = 400;
+const CAMERA: Intrinsics = Intrinsics {
+    width: 200,
+    height: 112,
+    fx: 100.0,
+    fy: 100.0,
+    cx: 99.5,
+    cy: 55.5,
+};
+const PARAMS: WalkerParams = WalkerParams {
+    count: 3,
+    speed_m_s: 1.1,
+    near_m: 0.8,
+};
+
+/// A built-in scene and the first poses of its default path.
+fn along_path(name: &str) -> (Scene, Vec<Pose>, CameraTrack) {
+    let scene = load_scene(name).expect("built-in scene");
+    let poses: Vec<Pose> = scene.default_trajectory.as_ref().unwrap().poses[..FRAMES].to_vec();
+    let track = CameraTrack {
+        times: (0..FRAMES).map(|i| i as f64 / RATE_HZ).collect(),
+        positions: poses.iter().map(|p| p.translation.as_vec3()).collect(),
+    };
+    (scene, poses, track)
+}
+
+/// The scene with the actors' triangles at `t` appended: what the oracle casts rays into.
+fn with_actors_at(scene: &Scene, actors: &Actors, t: f64) -> Scene {
+    let posed = actors.mesh_at(t);
+    let mut combined = scene.clone();
+    let first = combined.mesh.vertices.len() as u32;
+    combined.mesh.vertices.extend(posed.mesh.vertices);
+    (combined.mesh.indices).extend(posed.mesh.indices.iter().map(|i| first + i));
+    combined.textures.extend(actors.textures().iter().cloned());
+    combined
+}
+
+/// Frames whose camera sees a walker's chest nearest, in front and inside the image.
+fn frames_with_walkers_in_view(actors: &Actors, poses: &[Pose], count: usize) -> Vec<usize> {
+    let mut seen: Vec<(f64, usize)> = (0..poses.len())
+        .step_by(4)
+        .filter_map(|i| {
+            let t = i as f64 / RATE_HZ;
+            let camera_from_world = poses[i].inverse();
+            (actors.poses_at(t).iter())
+                .map(|w| {
+                    camera_from_world.transform_point(DVec3::new(
+                        w.position.x as f64,
+                        w.position.y as f64,
+                        1.2,
+                    ))
+                })
+                .filter(|p| p.z > 0.6 && (p.x / p.z).abs() < 0.8 && (p.y / p.z).abs() < 0.4)
+                .map(|p| p.z)
+                .reduce(f64::min)
+                .map(|z| (z, i))
+        })
+        .collect();
+    seen.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Nearest first, frames at least a second apart.
+    let mut chosen: Vec<usize> = Vec::new();
+    for (_, i) in seen {
+        if chosen.iter().all(|&c| c.abs_diff(i) >= 20) {
+            chosen.push(i);
+        }
+        if chosen.len() == count {
+            break;
+        }
+    }
+    chosen
+}
+
+#[test]
+fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
+    let (scene, poses, track) = along_path("room0");
+    let actors = std::sync::Arc::new(Actors::plan(&scene, &PARAMS, 7, &track).expect("walkers"));
+    let frames = frames_with_walkers_in_view(&actors, &poses, 3);
+    assert_eq!(frames.len(), 3, "walkers come into view: {frames:?}");
+    let views: Vec<Pose> = frames.iter().map(|&i| poses[i]).collect();
+    let ctx = fixtures::gpu();
+    let mut with = Rasterizer::with_actors(
+        &ctx,
+        &scene,
+        CAMERA,
+        Default::default(),
+        Some(actors.clone()),
+    )
+    .expect("upload");
+    let rendered = fixtures::render_with(&ctx, &mut with, &views, |r, v| {
+        r.pose_actors(&ctx, frames[v] as f64 / RATE_HZ)
+    });
+    let mut without = Rasterizer::new(&ctx, &scene, CAMERA).expect("upload");
+    let statics = fixtures::render_with(&ctx, &mut without, &views, |_, _| {});
+    let scene_triangles = scene.mesh.triangle_count() as u32;
+    for (v, &i) in frames.iter().enumerate() {
+        let t = i as f64 / RATE_HZ;
+        let combined = with_actors_at(&scene, &actors, t);
+        let oracle = RayCaster::new(&combined);
+        let expected = oracle.render(&views[v], &CAMERA);
+        let on_actor: Vec<bool> = (expected.triangles.iter())
+            .map(|t| t.is_some_and(|t| t >= scene_triangles))
+            .collect();
+        let actor_share = on_actor.iter().filter(|&&a| a).count() as f64 / on_actor.len() as f64;
+        assert!(
+            actor_share > 0.02,
+            "frame {i}: walkers cover {actor_share:.3} of the view"
+        );
+        let (rgb, depth) = &rendered[v];
+        let d = depth_agreement(depth, &expected.depth);
+        assert!(
+            d.max_relative_error < 1e-4 && d.mask_mismatches == 0,
+            "frame {i}: {d:?}"
+        );
+        let edges = edge_mask(depth, &expected, &oracle.surface_edges(&expected));
+        let c = color_agreement(rgb, depth, &expected, &edges, 3);
+        eprintln!("frame {i}: walkers {actor_share:.3} of the view; colour {c:?}");
+        assert!(
+            c.worst_mean_abs_error() < 0.75 && c.off_fraction() < 0.01,
+            "frame {i}: {c:?}"
+        );
+        let near_actor = grown(&on_actor, CAMERA.width as usize, 2);
+        let static_depth = &statics[v].1;
+        let moved = (0..on_actor.len())
+            .filter(|&p| !near_actor[p] && depth.data[p] != static_depth.data[p])
+            .count();
+        assert_eq!(moved, 0, "frame {i}: depth changed away from the walkers");
+        let hidden = (0..on_actor.len())
+            .filter(|&p| on_actor[p] && !edges[p] && depth.data[p] < static_depth.data[p] - 1e-3)
+            .count();
+        assert!(hidden > 0, "frame {i}: the walkers hide some of the room");
+        check_depth_is_metric(depth);
+    }
+}
+
+/// `mask` with every pixel within `radius` of a set pixel set.
+fn grown(mask: &[bool], width: usize, radius: i64) -> Vec<bool> {
+    let height = mask.len() / width;
+    (0..mask.len())
+        .map(|p| {
+            let (x, y) = ((p % width) as i64, (p / width) as i64);
+            (-radius..=radius).any(|dy| {
+                (-radius..=radius).any(|dx| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    (0..width as i64).contains(&nx)
+                        && (0..height as i64).contains(&ny)
+                        && mask[ny as usize * width + nx as usize]
+                })
+            })
+        })
+        .collect()
+}
+
+fn check_depth_is_metric(depth: &DepthImage) {
+    assert!(depth
+        .data
+        .iter()
+        .all(|&z| z == 0.0 || (0.05..20.0).contains(&z)));
+}
+
+#[test]
+fn walkers_never_touch_the_scene_each_other_or_the_camera_and_pass_near_it() {
+    // A large office, room for three walkers passing the camera.
+    let (scene, _, track) = along_path("office2");
+    let actors = Actors::plan(&scene, &PARAMS, 11, &track).expect("walkers");
+    let obstacles = obstacles(&scene);
+    let duration = track.times.last().copied().unwrap();
+    let mut closest = vec![f32::INFINITY; actors.walkers().len()];
+    let steps = (duration / 0.01) as usize;
+    for step in 0..=steps {
+        let t = step as f64 * 0.01;
+        let eye = track.at(t).truncate();
+        let poses = actors.poses_at(t);
+        let segments: Vec<Vec<Vec2>> = (actors.walkers().iter().zip(&poses))
+            .map(|(w, p)| segment_points(w.footprint.segment(p.position, p.heading)))
+            .collect();
+        for (k, (walker, pose)) in actors.walkers().iter().zip(&poses).enumerate() {
+            let to_eye = nearest(&segments[k], &[eye]);
+            closest[k] = closest[k].min(to_eye - walker.footprint.radius);
+            assert!(
+                to_eye >= walker.footprint.radius + CAMERA_CLEARANCE - SAMPLING,
+                "walker {k} at {t} s is {to_eye} m from the camera"
+            );
+            for (j, other) in actors.walkers().iter().enumerate().skip(k + 1) {
+                let gap = nearest(&segments[k], &segments[j]);
+                let touching = walker.footprint.radius + other.footprint.radius - SAMPLING;
+                assert!(gap >= touching, "walkers {k} and {j} touch at {t} s");
+            }
+            // The scene keeps out of the circle the footprint turns in.
+            let reach = walker.footprint.radius + walker.footprint.half_length;
+            let mut z = 0.05;
+            while z < walker.body.height() {
+                let axis = pose.position.extend(z);
+                let gap = obstacles
+                    .nearest(axis)
+                    .map_or(f32::INFINITY, |n| n.distance);
+                assert!(
+                    gap > reach,
+                    "a walker meets the scene {gap} m from its axis at {axis} at {t} s"
+                );
+                z += 0.05;
+            }
+        }
+        // Every tenth instant: each footprint holds its walker's posed vertices.
+        if step % 10 == 0 {
+            let posed = actors.mesh_at(t);
+            let mut vertices = posed.mesh.vertices.iter();
+            for (walker, pose) in actors.walkers().iter().zip(&poses) {
+                let count = posed.mesh.vertices.len() / actors.walkers().len();
+                for v in vertices.by_ref().take(count) {
+                    let p = Vec2::new(v.position[0], v.position[1]);
+                    assert!(
+                        walker.footprint.holds(pose.position, pose.heading, p),
+                        "a vertex leaves its footprint at {t} s"
+                    );
+                }
+            }
+        }
+    }
+    for (k, near) in closest.iter().enumerate() {
+        assert!(
+            *near <= PARAMS.near_m + 0.15 + SAMPLING,
+            "walker {k} comes no nearer than {near} m"
+        );
+    }
+}
+
+/// Metres between the points a footprint's segment is checked at, halved: what sampling can
+/// miss of a distance.
+const SAMPLING: f32 = 0.005;
+
+/// Points along a segment no farther apart than twice [`SAMPLING`].
+fn segment_points([a, b]: [Vec2; 2]) -> Vec<Vec2> {
+    let pieces = (a.distance(b) / (2.0 * SAMPLING)).ceil().max(1.0) as usize;
+    (0..=pieces)
+        .map(|i| a.lerp(b, i as f32 / pieces as f32))
+        .collect()
+}
+
+/// The least distance between a point of `a` and a point of `b`.
+fn nearest(a: &[Vec2], b: &[Vec2]) -> f32 {
+    a.iter()
+        .flat_map(|p| b.iter().map(move |q| p.distance(*q)))
+        .fold(f32::INFINITY, f32::min)
+}
+
+/// The scene's triangles but the floor and what lies flat on it (rugs), which walkers stand on,
+/// and what is above their heads.
+fn obstacles(scene: &Scene) -> SurfaceBvh {
+    let p = |i: u32| Vec3::from(scene.mesh.vertices[i as usize].position);
+    let triangles = (scene.mesh.indices.chunks_exact(3))
+        .map(|t| [p(t[0]), p(t[1]), p(t[2])])
+        .filter(|[a, b, c]| {
+            let flat = (*b - *a).cross(*c - *a).normalize().z.abs() > 0.9;
+            !(flat && a.z.max(b.z).max(c.z) < 0.03) && a.z.min(b.z).min(c.z) < 2.05
+        })
+        .map(|[a, b, c]| Triangle {
+            v0: a.into(),
+            v1: b.into(),
+            v2: c.into(),
+        })
+        .collect();
+    SurfaceBvh::new(triangles)
+}
+
+#[test]
+fn the_same_seed_gives_the_same_walkers_and_another_seed_others() {
+    let (scene, _, track) = along_path("room0");
+    let a = Actors::plan(&scene, &PARAMS, 3, &track).unwrap();
+    let b = Actors::plan(&scene, &PARAMS, 3, &track).unwrap();
+    let c = Actors::plan(&scene, &PARAMS, 4, &track).unwrap();
+    for t in [0.0, 3.3, 17.9] {
+        assert_eq!(a.poses_at(t), b.poses_at(t));
+        assert_ne!(a.poses_at(t), c.poses_at(t));
+    }
+    let position = |x: &Actors| x.poses_at(5.0)[0].position;
+    assert!(position(&a).distance(position(&c)) > 0.0);
+}
