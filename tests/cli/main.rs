@@ -1,5 +1,6 @@
 //! End-to-end tests of the `rslam` binary: one integration binary, one module per subcommand.
 
+mod actors;
 mod agents;
 mod auto_exposure;
 mod bench;

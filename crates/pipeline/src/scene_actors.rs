@@ -42,6 +42,9 @@ pub fn plan(
     let camera = CameraTrack {
         times: (0..poses.len()).map(|i| i as f64 / source_rate).collect(),
         positions: poses.iter().map(|p| p.translation.as_vec3()).collect(),
+        axes: (poses.iter())
+            .map(|p| (p.rotation * glam::DVec3::Z).as_vec3())
+            .collect(),
     };
     let params = WalkerParams {
         count: walkers.count,
@@ -74,6 +77,7 @@ pub fn record(
                 "footprint_radius_m": round(w.footprint.radius),
                 "speed_m_s": round(w.path.speed()),
                 "step_m": round(w.stride),
+                "closest_to_camera_m": round(w.closest_m),
             })
         })
         .collect();

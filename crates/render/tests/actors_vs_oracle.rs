@@ -35,6 +35,9 @@ fn along_path(name: &str) -> (Scene, Vec<Pose>, CameraTrack) {
     let track = CameraTrack {
         times: (0..FRAMES).map(|i| i as f64 / RATE_HZ).collect(),
         positions: poses.iter().map(|p| p.translation.as_vec3()).collect(),
+        axes: (poses.iter())
+            .map(|p| (p.rotation * DVec3::Z).as_vec3())
+            .collect(),
     };
     (scene, poses, track)
 }

@@ -26,13 +26,14 @@ pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// Each group's heading: its name, and where its items apply.
-const HEADINGS: [(&str, &str, &str); 8] = [
+const HEADINGS: [(&str, &str, &str); 9] = [
     ("image", "Image corruptions", "severity 0-5 (0: the clean frame; real ones such as 2.5 where the item interpolates) or low/mid/high; @dynamic: per-frame severity uniform in 0..s"),
     ("depth", "Depth corruptions", "0 = invalid depth, stays invalid"),
     ("trajectory", "Trajectory deviations", "frames re-rendered along the deviated poses"),
     ("stream", "Stream operations", ""),
     ("sensor", "Sensor effects", "the image formed from the camera's motion during capture"),
     ("light", "Light", "built-in scenes: each lamp and the daylight is a layer of the bake, mixed per render with the light of the time it exposes"),
+    ("world", "A world that moves", "built-in scenes: people on their free floor, drawn into every render at its instant"),
     ("calibration", "Calibration of a rig", "--rig, or a EuRoC input with @calibration; image and depth items also take a camera: cam1:fog:3"),
     ("imu", "IMU items", "need an IMU: `render --rig stereo-imu --format euroc` or `--rig rgbd-imu --format tum`, or a EuRoC dataset with imu0/"),
 ];

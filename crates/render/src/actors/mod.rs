@@ -39,6 +39,8 @@ pub struct Walker {
     pub stride: f32,
     /// Colour of each [`BodyMaterial`], sRGB in [0, 1].
     pub colours: [[f32; 3]; 5],
+    /// The nearest its body comes to the camera centre, metres.
+    pub closest_m: f32,
 }
 
 /// Where a walker is at an instant, for the manifest.

@@ -31,13 +31,15 @@ const LOOK_AHEAD_STEPS: usize = 10;
 const START_SHIFTS: usize = 21;
 const START_SHIFT_M: f32 = 0.1;
 /// Draws of a stop before the free floor counts as too small for a route.
-const STOP_DRAWS: usize = 50;
+const STOP_DRAWS: usize = 200;
+/// Stops are drawn in front of the camera: this far, metres ...
+const VIEW_DISTANCE: (f32, f32) = (1.0, 4.0);
+/// ... and within this angle of its axis over the floor, radians.
+const VIEW_HALF_ANGLE: f32 = 0.6;
 /// Metres at least between a route's stops.
 const STOP_SPACING: f32 = 1.0;
 /// The meeting point lies this many metres wide a band beyond NEAR from the camera.
 const MEETING_BAND: f32 = 0.25;
-/// Instants drawn for the meeting before the route is drawn again.
-const MEETING_DRAWS: usize = 20;
 /// Metres a footprint's ends can swing in half a check step as the walker turns.
 const TURN_MARGIN: f32 = 0.01;
 /// Metres kept between two walkers' bodies.
@@ -73,6 +75,8 @@ pub struct WalkerParams {
 pub struct CameraTrack {
     pub times: Vec<f64>,
     pub positions: Vec<Vec3>,
+    /// Where the camera looks at each time: its optical axis in world coordinates.
+    pub axes: Vec<Vec3>,
 }
 
 impl CameraTrack {
@@ -129,17 +133,16 @@ pub(super) fn walkers(
         let colours = clothing(&mut rng);
         let stride = stride_of(params.speed_m_s, body.height());
         let footprint = Footprint::of(&body, stride);
-        let path = (0..ATTEMPTS)
+        let (path, closest_m) = (0..ATTEMPTS)
             .find_map(|_| {
                 let (route, meeting) = try_route(&mut rng, &map, &footprint, params, camera)?;
                 walk(route, meeting, &footprint, params, camera, &walkers)
             })
             .ok_or_else(|| {
                 format!(
-                    "walker {} of {}: no path over the free floor passes within {} m of the camera and keeps clear of the furniture, the camera and the other walkers in {ATTEMPTS} tries; ask for fewer walkers or a larger NEAR",
+                    "walker {} of {}: no path over the free floor keeps clear of the furniture, the camera and the other walkers in {ATTEMPTS} tries; ask for fewer walkers",
                     k + 1,
                     params.count,
-                    params.near_m
                 )
             })?;
         walkers.push(Walker {
@@ -148,9 +151,20 @@ pub(super) fn walkers(
             path,
             stride,
             colours,
+            closest_m,
         });
     }
     Ok(walkers)
+}
+
+/// Whether the floor point `p` lies in front of a camera at `eye` looking along `axis`, between
+/// [`VIEW_DISTANCE`] metres and within [`VIEW_HALF_ANGLE`] of the axis over the floor.
+fn in_view(eye: Vec3, axis: Vec3, p: Vec2) -> bool {
+    let to = p - eye.truncate();
+    let forward = axis.truncate().normalize_or_zero();
+    let distance = to.length();
+    (VIEW_DISTANCE.0..VIEW_DISTANCE.1).contains(&distance)
+        && to.dot(forward) >= distance * VIEW_HALF_ANGLE.cos()
 }
 
 /// The points of `way` where it must turn: each kept point sees the next one over cells with
@@ -184,6 +198,9 @@ fn stride_of(speed: f32, height: f32) -> f32 {
 struct Meeting {
     along: f32,
     time: f64,
+    /// How near the camera the walker's body comes there, metres: NEAR, or more where the
+    /// floor has no room that near.
+    near: f32,
 }
 
 /// A closed route through a point `near_m` beside the camera at a random instant and
@@ -202,21 +219,30 @@ fn try_route(
     let roomy = reach + ROUTE_MARGIN;
     let free = map.largest_region(roomy);
     let beside = params.near_m + footprint.radius;
-    // An instant at which the camera has free floor beside it.
-    let (time, near_eye) = (0..MEETING_DRAWS)
-        .map(|_| {
-            let time = f64::from(rng.range(0.05, 0.95)) * camera.duration();
-            let eye = camera.at(time).truncate();
-            let near_eye: Vec<Vec2> = (free.iter().copied())
-                .filter(|p| (beside..beside + MEETING_BAND).contains(&p.distance(eye)))
-                .collect();
-            (time, near_eye)
-        })
-        .find(|(_, near_eye)| !near_eye.is_empty())?;
-    let meeting = near_eye[rng.int(0, near_eye.len() as i64) as usize];
+    // A free cell NEAR beside the camera at a random instant, or as near as the floor allows.
+    let time = f64::from(rng.range(0.05, 0.95)) * camera.duration();
+    let eye = camera.at(time).truncate();
+    let mut beyond: Vec<(f32, Vec2)> = (free.iter())
+        .map(|&p| (p.distance(eye), p))
+        .filter(|(d, _)| *d >= beside)
+        .collect();
+    beyond.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let nearest = beyond.first()?.0;
+    let band: Vec<Vec2> = (beyond.iter())
+        .take_while(|(d, _)| *d < nearest + MEETING_BAND)
+        .map(|(_, p)| *p)
+        .collect();
+    let meeting = band[rng.int(0, band.len() as i64) as usize];
+    let near = params.near_m.max(meeting.distance(eye) - footprint.radius);
+    // The other stops lie where the camera looks at random instants, so the walker crosses
+    // the view, as people walk round in front of the camera in TUM's and Bonn's sequences.
     let mut stops = vec![meeting];
     for _ in 0..STOP_DRAWS {
         let p = free[rng.int(0, free.len() as i64) as usize];
+        let k = rng.int(0, camera.times.len() as i64) as usize;
+        if !in_view(camera.positions[k], camera.axes[k], p) {
+            continue;
+        }
         if stops.iter().all(|q| q.distance(p) > STOP_SPACING) {
             stops.push(p);
         }
@@ -237,7 +263,7 @@ fn try_route(
         return None;
     }
     let along = route.arc_length_to(meeting);
-    Some((route, Meeting { along, time }))
+    Some((route, Meeting { along, time, near }))
 }
 
 /// The walker's timing on `route`: timed to reach the meeting point at the meeting time, it
@@ -252,7 +278,7 @@ fn walk(
     params: &WalkerParams,
     camera: &CameraTrack,
     others: &[Walker],
-) -> Option<WalkPath> {
+) -> Option<(WalkPath, f32)> {
     let speed = params.speed_m_s;
     let closing = |other_speed: f32| {
         (speed * MOVES[1] + other_speed) * CHECK_STEP_S as f32 / 2.0 + TURN_MARGIN
@@ -314,8 +340,8 @@ fn walk(
         closest = closest.min(body_to_camera);
         along.push(s);
     }
-    (closest <= params.near_m + NEAR_TOLERANCE)
-        .then(|| WalkPath::new(route, speed, CHECK_STEP_S, along))
+    (closest <= meeting.near + NEAR_TOLERANCE)
+        .then(|| (WalkPath::new(route, speed, CHECK_STEP_S, along), closest))
 }
 
 /// Colours of a walker's top, trousers, skin, hair and shoes (the order of
