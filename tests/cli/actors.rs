@@ -126,3 +126,44 @@ fn actors_are_refused_without_a_free_floor_a_scene_or_room_and_for_bad_values() 
         );
     assert!(!ws.path("crowded").exists());
 }
+
+#[test]
+fn both_cameras_of_a_stereo_rig_see_the_same_walkers() {
+    let ws = Workspace::new();
+    let render = |out: &str, spec: Option<&str>| {
+        let mut args = vec!["render", "--scene", "office0", "--rig", "stereo-imu"];
+        args.extend([
+            "--format", "euroc", "--frames", "60", "--seed", "2", "--out", out,
+        ]);
+        args.extend(spec.iter().flat_map(|s| ["--perturb", s]));
+        ws.rslam(&args).success();
+    };
+    render("clean", None);
+    render("walkers", Some("actors:5"));
+    let changed = |camera: &str| -> Vec<bool> {
+        let folder = format!("mav0/{camera}/data");
+        let names = crate::harness::sorted_names(&ws.path(&format!("clean/{folder}")));
+        (names.iter())
+            .map(|name| {
+                let read =
+                    |out: &str| std::fs::read(ws.path(&format!("{out}/{folder}/{name}"))).unwrap();
+                read("clean") != read("walkers")
+            })
+            .collect()
+    };
+    let (left, right) = (changed("cam0"), changed("cam1"));
+    let frames = manifest(&ws, "walkers")["extra"]["actors"]["frames"].clone();
+    assert_eq!(
+        frames.as_array().unwrap().len(),
+        left.len(),
+        "a pose per cam0 frame"
+    );
+    let both = left.iter().zip(&right).filter(|(l, r)| **l && **r).count();
+    let either = left.iter().zip(&right).filter(|(l, r)| **l || **r).count();
+    assert!(either >= 5, "walkers seen in {either} of 60 frames");
+    // 11 cm apart, the cameras see nearly the same: a walker at the edge of one view only.
+    assert!(
+        both as f64 >= 0.8 * either as f64,
+        "{both} of {either} frames in both views"
+    );
+}

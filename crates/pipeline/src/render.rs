@@ -45,13 +45,7 @@ pub(crate) fn plan<'a>(
         scene.seed,
         &resolved.plan,
     )?;
-    scene_actors::record(
-        &mut extra,
-        resolved.actors.as_deref(),
-        &scene.spec,
-        scene.rate_hz,
-        &resolved.plan,
-    );
+    scene_actors::record(&mut extra, resolved.actors.as_deref(), &resolved.plan);
     let manifest = ManifestParts {
         command,
         source: resolved.scene.name.clone(),

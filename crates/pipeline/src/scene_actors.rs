@@ -54,15 +54,9 @@ pub fn plan(
     Ok(Some(Arc::new(Actors::plan(scene, &params, seed, &camera)?)))
 }
 
-/// Puts the walkers' builds and each output frame's walker poses (at its colour's capture,
-/// source frame over `rate_hz` times `fast`'s K) into the manifest's `extra.actors`.
-pub fn record(
-    extra: &mut serde_json::Value,
-    actors: Option<&Actors>,
-    spec: &PerturbSpec,
-    rate_hz: f64,
-    plan: &FramePlan,
-) {
+/// Puts the walkers' builds and each output frame's walker poses (at its colour's capture time,
+/// the instant its source renders them at) into the manifest's `extra.actors`.
+pub fn record(extra: &mut serde_json::Value, actors: Option<&Actors>, plan: &FramePlan) {
     let Some(actors) = actors else {
         return;
     };
@@ -81,10 +75,9 @@ pub fn record(
             })
         })
         .collect();
-    let source_rate = rate_hz * f64::from(crate::plan::speed_up(spec));
-    let frames: Vec<Vec<[f64; 5]>> = (plan.rgb_source.iter())
-        .map(|&source| {
-            let poses = actors.poses_at(source as f64 / source_rate);
+    let frames: Vec<Vec<[f64; 5]>> = (plan.frames.iter())
+        .map(|frame| {
+            let poses = actors.poses_at(frame.rgb_time);
             (poses.iter())
                 .map(|p| {
                     let [x, y] = p.position.to_array().map(round);

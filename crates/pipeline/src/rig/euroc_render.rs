@@ -32,9 +32,9 @@ use crate::pipeline::Pipeline;
 use crate::plan::{camera_frame_spec, speed_up, FramePlan};
 use crate::progress::Progress;
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
-use crate::scene_light;
 use crate::sink::{finish_writer, frames_kept, seal_bag, RigCameraSink, RigFrameWriter};
 use crate::source::SceneSource;
+use crate::{scene_actors, scene_light};
 use crate::{JobPart, PipelineError};
 
 /// Frames one camera has in the output.
@@ -177,6 +177,7 @@ pub(crate) fn plan<'a>(
         scene.seed,
         &cam0_plan,
     )?;
+    scene_actors::record(&mut extra, resolved.actors.as_deref(), &cam0_plan);
     if layout == Layout::Camera(DatasetFormat::Ros2) && !rig.bag_names.is_default() {
         extra["ros2_names"] = serde_json::to_value(&rig.bag_names)
             .map_err(|e| PipelineError::Worker(format!("bag names for the manifest: {e}")))?;

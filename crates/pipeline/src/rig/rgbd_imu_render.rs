@@ -32,9 +32,9 @@ use crate::manifest::ManifestParts;
 use crate::pipeline::Pipeline;
 use crate::plan::{self, camera_frame_spec, FramePlan, SourceTiming};
 use crate::scene_job::{ResolvedScene, SceneCache, SceneJob};
-use crate::scene_light;
 use crate::source::SceneSource;
 use crate::PipelineError;
+use crate::{scene_actors, scene_light};
 
 /// ORB-SLAM3 v1.0 RGB-D-inertial settings of the `rgbd-imu` rig, in the dataset root.
 pub const ORBSLAM3_RGBD_INERTIAL_FILE: &str = "orbslam3_rgbd_inertial.yaml";
@@ -157,6 +157,7 @@ pub(crate) fn plan<'a>(
         scene.seed,
         &frame_plan,
     )?;
+    scene_actors::record(&mut extra, resolved.actors.as_deref(), &frame_plan);
     if !spec.calibration.is_empty() {
         extra["calibration"] = perturbed.record(&rig);
     }
