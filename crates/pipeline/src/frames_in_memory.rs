@@ -18,7 +18,7 @@ use crate::scene_job::SceneJob;
 use crate::shown_frame::{Held, ShownFrame, ShownSources};
 use crate::sink::{MemorySink, RgbdFrame};
 use crate::source::{BufferSource, FrameSource, RecordedSource, SceneSource};
-use crate::{settings, JobPart, PipelineError};
+use crate::{scene_actors, settings, JobPart, PipelineError};
 
 pub struct FramesInMemory<S> {
     pipeline: Pipeline<S>,
@@ -104,11 +104,20 @@ impl FramesInMemory<SceneSource> {
         settings::check(spec, &settings::one_camera_render("a one-camera scene"))?;
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
+        let rate_hz = *rate_hz;
         let shutter_changed = self
             .pipeline
             .source_mut()
-            .set_sensor(ctx, spec, *rate_hz, seed)?;
-        if deviated.poses != self.pipeline.source().poses() || shutter_changed {
+            .set_sensor(ctx, spec, rate_hz, seed)?;
+        let path_changed = deviated.poses != self.pipeline.source().poses();
+        let with_walkers = !(spec.world.is_empty() && self.spec.world.is_empty());
+        let walkers_changed = with_walkers && (spec.world != self.spec.world || seed != self.seed);
+        if walkers_changed || (path_changed && !spec.world.is_empty()) {
+            let scene = self.pipeline.source().scene().clone();
+            let actors = scene_actors::plan(&scene, spec, seed, &deviated.poses, rate_hz)?;
+            self.pipeline.source_mut().set_actors(ctx, actors)?;
+        }
+        if path_changed || shutter_changed || walkers_changed {
             self.pipeline.source_mut().set_poses(deviated.poses);
             self.generation += 1;
         }

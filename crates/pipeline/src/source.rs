@@ -145,6 +145,22 @@ impl SceneSource {
         &self.poses
     }
 
+    /// Draws `actors` from now on (the scene uploaded again with room for their vertices).
+    pub fn set_actors(
+        &mut self,
+        ctx: &GpuContext,
+        actors: Option<Arc<Actors>>,
+    ) -> Result<(), PipelineError> {
+        let drawn = *self.rasterizer.intrinsics();
+        let settings = SplatSettings::default();
+        self.rasterizer = Rasterizer::with_actors(ctx, &self.scene, drawn, settings, actors)?;
+        Ok(())
+    }
+
+    pub fn scene(&self) -> &Arc<Scene> {
+        &self.scene
+    }
+
     /// Replaces the path (a new deviation of it); frame `i` is then the view from `poses[i]`.
     pub fn set_poses(&mut self, poses: Vec<Pose>) {
         self.poses = poses;

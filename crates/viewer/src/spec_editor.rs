@@ -5,6 +5,7 @@
 use rslam_core::Distortion;
 use rslam_perturb::light::LightSpec;
 use rslam_perturb::sensor::{distortion, Exposure, RollingShutter};
+use rslam_perturb::world::WorldSpec;
 use rslam_perturb::{find, Between, Level, PerturbSpec, Severity, CATALOGUE};
 
 /// How one catalogue item is set.
@@ -110,6 +111,8 @@ pub struct SpecEditor {
     pub distortion: Option<Distortion>,
     /// `lights`, `flicker`, `daylight` (built-in scenes only).
     pub light: LightSpec,
+    /// `actors` (built-in scenes only).
+    pub world: WorldSpec,
 }
 
 impl SpecEditor {
@@ -151,6 +154,7 @@ impl SpecEditor {
             rolling_shutter: spec.rolling_shutter,
             distortion: spec.distortion,
             light: spec.light,
+            world: spec.world,
         }
     }
 
@@ -201,6 +205,7 @@ impl SpecEditor {
         parts.extend(self.rolling_shutter.map(|r| r.to_string()));
         parts.extend(self.distortion.as_ref().map(distortion::item));
         parts.extend(self.light.items());
+        parts.extend(self.world.items());
         parts.extend(self.items.iter().map(EditorItem::text));
         if let Some(k) = self.fast {
             parts.push(format!("fast:{k}"));
@@ -227,7 +232,7 @@ mod tests {
 
     #[test]
     fn a_spec_round_trips_through_the_editor() {
-        let text = "rot:0.5@smooth,exposure:20@8,rolling_shutter:30,distortion:radtan(-0.28,0.07,0.0002,0.00002),lights:3,flicker:100/0.5,daylight:0.4/10,fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
+        let text = "rot:0.5@smooth,exposure:20@8,rolling_shutter:30,distortion:radtan(-0.28,0.07,0.0002,0.00002),lights:3,flicker:100/0.5,daylight:0.4/10,actors:2/1.2/0.8,fog:4,gaussian_noise:2@dynamic,depth_range:0.42-10,fast:2,misalign:3@dynamic";
         let spec = PerturbSpec::parse(text).unwrap();
         let editor = SpecEditor::from_spec(&spec);
         assert_eq!(editor.spec().unwrap(), spec);

@@ -3,6 +3,7 @@
 //! the seed; the spec string of the shown frame, copyable, and a field to type one.
 
 use rslam_perturb::light::{Daylight, Flicker, LightSpec, Switching};
+use rslam_perturb::world::Walkers;
 use rslam_perturb::{find, Severity};
 
 use crate::app::ViewerApp;
@@ -184,6 +185,12 @@ fn stream_items(ui: &mut egui::Ui, app: &mut ViewerApp) {
         deviation(ui, "rot (degrees)", &mut editor.rotation, 0.5);
         deviation(ui, "trans (metres)", &mut editor.translation, 0.01);
         light_items(ui, &mut editor.light);
+        severity_item(
+            ui,
+            "actors: people walking through",
+            &mut editor.world.actors,
+            Walkers::parse,
+        );
     }
     ui.horizontal(|ui| {
         let mut on = editor.fast.is_some();
@@ -212,7 +219,7 @@ fn stream_items(ui: &mut egui::Ui, app: &mut ViewerApp) {
 
 /// The light items: a severity for `lights` and `daylight`, a frequency for `flicker`.
 fn light_items(ui: &mut egui::Ui, light: &mut LightSpec) {
-    light_severity(
+    severity_item(
         ui,
         "lights: lamps switched off and on",
         &mut light.lights,
@@ -230,7 +237,7 @@ fn light_items(ui: &mut egui::Ui, light: &mut LightSpec) {
         }
         light.flicker = on.then_some(flicker);
     });
-    light_severity(
+    severity_item(
         ui,
         "daylight: clouds passing",
         &mut light.daylight,
@@ -238,9 +245,9 @@ fn light_items(ui: &mut egui::Ui, light: &mut LightSpec) {
     );
 }
 
-/// A light item set by its severity: a checkbox and, when on, a slider. An explicit form given on
-/// the command line stays until the slider moves.
-fn light_severity<T: Copy + std::fmt::Display>(
+/// An item set by its severity (light, world): a checkbox and, when on, a slider. An explicit
+/// form given on the command line stays until the slider moves.
+fn severity_item<T: Copy + std::fmt::Display>(
     ui: &mut egui::Ui,
     label: &str,
     item: &mut Option<T>,
