@@ -21,12 +21,10 @@ use glam::{Quat, Vec2, Vec3};
 
 use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
 use crate::{Mesh, RenderError, Scene, Texture, Vertex};
-use light_probe::{cube_light, AmbientCube, LightProbe};
+use light_probe::{cube_light, AmbientCube, LightProbe, PROBE_HEIGHTS};
 
 /// Metres of cloth per texture repeat.
 const CLOTH_REPEAT_M: f32 = 0.5;
-/// Heights of a walker's light probes, metres: light between them is interpolated.
-const PROBE_HEIGHTS: [f32; 3] = [0.3, 0.9, 1.5];
 
 /// One walker: its body, its path and what it wears.
 #[derive(Clone, Debug)]
@@ -142,10 +140,7 @@ impl Actors {
             walker.body.pose(pose.phase, pose.step, &mut posed);
             let turn = Quat::from_rotation_z(pose.heading);
             let origin = pose.position.extend(0.0);
-            let cubes: Vec<AmbientCube> = PROBE_HEIGHTS
-                .iter()
-                .map(|&z| self.probe.cube(origin + Vec3::Z * z))
-                .collect();
+            let cubes = self.probe.cubes_at(pose.position);
             let base = out.mesh.vertices.len() as u32;
             for i in 0..posed.positions.len() {
                 let position = origin + turn * posed.positions[i];

@@ -75,8 +75,10 @@ impl MeshRasterizer {
             .map(gpu_vertex)
             .collect();
         let first = first_actor_vertex as u32;
-        let all_indices: Vec<u32> = (scene.mesh.indices.iter().copied())
-            .chain(at_start.mesh.indices.iter().map(|i| first + i))
+        // Actors first: they stand in front of much of the room, and the depth test then skips
+        // what they hide instead of shading it twice.
+        let all_indices: Vec<u32> = (at_start.mesh.indices.iter().map(|i| first + i))
+            .chain(scene.mesh.indices.iter().copied())
             .collect();
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene vertices"),
