@@ -14,14 +14,7 @@ use rslam_render::{load_scene, Rasterizer, Scene};
 
 const RATE_HZ: f64 = 20.0;
 const FRAMES: usize = 400;
-const CAMERA: Intrinsics = Intrinsics {
-    width: 200,
-    height: 112,
-    fx: 100.0,
-    fy: 100.0,
-    cx: 99.5,
-    cy: 55.5,
-};
+const CAMERA: Intrinsics = fixtures::SMALL_CAMERA;
 const PARAMS: WalkerParams = WalkerParams {
     count: 3,
     speed_m_s: 1.1,

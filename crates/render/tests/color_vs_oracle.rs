@@ -34,15 +34,7 @@ const MAX_MEAN_ABS_ERROR: f64 = 0.75;
 /// [`LEVEL_TOLERANCE`]; no mipmapping at all, a +0.5 mip bias, or mips averaged in sRGB bytes
 /// push every view to 0.035 or more.
 const MAX_OFF_FRACTION: f64 = 0.01;
-/// A small camera with pixels about as large, in angle, as the Replica camera's at 1/6 size.
-const SMALL_CAMERA: Intrinsics = Intrinsics {
-    width: 200,
-    height: 112,
-    fx: 100.0,
-    fy: 100.0,
-    cx: 99.5,
-    cy: 55.5,
-};
+use fixtures::SMALL_CAMERA;
 /// At least this share of the image must be compared (not edges, not empty space), or the test
 /// would pass by looking at nothing.
 const MIN_COMPARED_FRACTION: f64 = 0.5;

@@ -11,16 +11,8 @@ use rslam_render::{load_scene, Scene};
 /// Relative depth error allowed where both hit (the bar).
 const MAX_RELATIVE_ERROR: f32 = 1e-4;
 
-/// A small camera with the Replica camera's field of view.
 fn camera() -> Intrinsics {
-    Intrinsics {
-        width: 200,
-        height: 112,
-        fx: 100.0,
-        fy: 100.0,
-        cx: 99.5,
-        cy: 55.5,
-    }
+    fixtures::SMALL_CAMERA
 }
 
 fn assert_agrees(scene: &Scene, poses: &[Pose]) {

@@ -104,18 +104,7 @@ impl FloorMap {
                 way.reverse();
                 return Some(way);
             }
-            let (column, row) = ((i % self.columns) as i64, (i / self.columns) as i64);
-            for (dc, dr) in NEIGHBOURS {
-                let (c, r) = (column + dc, row + dr);
-                if c < 0 || r < 0 || c >= self.columns as i64 || r >= self.rows as i64 {
-                    continue;
-                }
-                let j = r as usize * self.columns + c as usize;
-                let step = if dc != 0 && dr != 0 {
-                    CELL * std::f32::consts::SQRT_2
-                } else {
-                    CELL
-                };
+            for (j, step) in self.neighbours(i) {
                 if open(j) && cost[i] + step < cost[j] {
                     cost[j] = cost[i] + step;
                     came_from[j] = i;
@@ -139,13 +128,7 @@ impl FloorMap {
         while next < cells.len() {
             let i = cells[next];
             next += 1;
-            let (column, row) = ((i % self.columns) as i64, (i / self.columns) as i64);
-            for (dc, dr) in NEIGHBOURS {
-                let (c, r) = (column + dc, row + dr);
-                if c < 0 || r < 0 || c >= self.columns as i64 || r >= self.rows as i64 {
-                    continue;
-                }
-                let j = r as usize * self.columns + c as usize;
+            for (j, _) in self.neighbours(i) {
                 if !seen[j] && self.clearance[j] >= radius {
                     seen[j] = true;
                     cells.push(j);
@@ -176,6 +159,22 @@ impl FloorMap {
             }
         }
         largest
+    }
+
+    /// The cells next to cell `i` (8-connected) in the room, each with the step to it, metres.
+    fn neighbours(&self, i: usize) -> impl Iterator<Item = (usize, f32)> + '_ {
+        let (column, row) = ((i % self.columns) as i64, (i / self.columns) as i64);
+        NEIGHBOURS.iter().filter_map(move |&(dc, dr)| {
+            let (c, r) = (column + dc, row + dr);
+            let inside =
+                (0..self.columns as i64).contains(&c) && (0..self.rows as i64).contains(&r);
+            let step = if dc != 0 && dr != 0 {
+                CELL * std::f32::consts::SQRT_2
+            } else {
+                CELL
+            };
+            inside.then(|| (r as usize * self.columns + c as usize, step))
+        })
     }
 
     fn index_of(&self, p: Vec2) -> Option<usize> {
