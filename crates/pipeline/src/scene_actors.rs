@@ -6,7 +6,7 @@
 use std::sync::Arc;
 
 use rslam_core::Pose;
-use rslam_perturb::{Need, PerturbSpec, Setting};
+use rslam_perturb::{Need, PerturbSpec};
 use rslam_render::actors::{Actors, CameraTrack, WalkerParams};
 use rslam_render::Scene;
 
@@ -26,17 +26,11 @@ pub fn plan(
         return Ok(None);
     };
     if scene.floor.is_none() {
-        let what = match scene.splats {
-            Some(_) => "a Gaussian-splat capture",
-            None => "a mesh file",
-        };
         let world_only = PerturbSpec {
             world: spec.world,
             ..PerturbSpec::default()
         };
-        let setting = Setting::any_one_camera()
-            .lacking(Need::FreeFloor, format!("'{}' is {what}", scene.name));
-        settings::check(&world_only, &setting)?;
+        settings::check(&world_only, &settings::scene_file(scene, Need::FreeFloor))?;
     }
     let source_rate = rate_hz * f64::from(crate::plan::speed_up(spec));
     let camera = CameraTrack {

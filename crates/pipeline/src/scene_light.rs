@@ -5,7 +5,7 @@
 
 use rslam_perturb::light::{LayerKind, LightSchedule};
 use rslam_perturb::sensor::Shutter;
-use rslam_perturb::{Need, PerturbSpec, Setting};
+use rslam_perturb::{Need, PerturbSpec};
 use rslam_render::{LightKind, Scene};
 
 use crate::plan::FramePlan;
@@ -20,13 +20,7 @@ pub fn check(scene: &Scene, spec: &PerturbSpec) -> Result<(), PipelineError> {
         light: spec.light,
         ..PerturbSpec::default()
     };
-    let what = match scene.splats {
-        Some(_) => "a Gaussian-splat capture",
-        None => "a mesh file",
-    };
-    let setting =
-        Setting::any_one_camera().lacking(Need::LightLayers, format!("'{}' is {what}", scene.name));
-    settings::check(&light_only, &setting)
+    settings::check(&light_only, &settings::scene_file(scene, Need::LightLayers))
 }
 
 /// The schedule of `spec`'s light items over `horizon` seconds; `None` without light items.

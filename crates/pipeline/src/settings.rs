@@ -7,6 +7,7 @@ use rslam_core::dataset::euroc::{EurocDataset, IMU_DIR};
 use rslam_core::dataset::ros2::{RecordedBagCameras, IMU_TYPE};
 use rslam_core::dataset::SourceDataset;
 use rslam_perturb::{Lenses, Need, PerturbSpec, Setting};
+use rslam_render::Scene;
 
 use crate::rig::calibration::sensor_names;
 use crate::{PipelineError, Rig};
@@ -17,6 +18,16 @@ pub fn check(spec: &PerturbSpec, setting: &Setting) -> Result<(), PipelineError>
         Some(refused) => Err(refused.into()),
         None => Ok(()),
     }
+}
+
+/// A scene loaded from a file (a mesh or a Gaussian-splat capture), which lacks what only the
+/// built-in scenes keep (`need`: their light as layers, their free floor); the reason names it.
+pub fn scene_file(scene: &Scene, need: Need) -> Setting {
+    let what = match scene.splats {
+        Some(_) => "a Gaussian-splat capture",
+        None => "a mesh file",
+    };
+    Setting::any_one_camera().lacking(need, format!("'{}' is {what}", scene.name))
 }
 
 /// A scene rendered through one camera (`input` names it: "a one-camera render").

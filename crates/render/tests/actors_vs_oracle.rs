@@ -90,18 +90,18 @@ fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
     let views: Vec<Pose> = frames.iter().map(|&i| poses[i]).collect();
     let ctx = fixtures::gpu();
     let mut with = Rasterizer::with_actors(
-        &ctx,
+        ctx,
         &scene,
         CAMERA,
         Default::default(),
         Some(actors.clone()),
     )
     .expect("upload");
-    let rendered = fixtures::render_with(&ctx, &mut with, &views, |r, v| {
-        r.pose_actors(&ctx, frames[v] as f64 / RATE_HZ)
+    let rendered = fixtures::render_with(ctx, &mut with, &views, |r, v| {
+        r.pose_actors(ctx, frames[v] as f64 / RATE_HZ)
     });
-    let mut without = Rasterizer::new(&ctx, &scene, CAMERA).expect("upload");
-    let statics = fixtures::render_with(&ctx, &mut without, &views, |_, _| {});
+    let mut without = Rasterizer::new(ctx, &scene, CAMERA).expect("upload");
+    let statics = fixtures::render_with(ctx, &mut without, &views, |_, _| {});
     let scene_triangles = scene.mesh.triangle_count() as u32;
     for (v, &i) in frames.iter().enumerate() {
         let t = i as f64 / RATE_HZ;

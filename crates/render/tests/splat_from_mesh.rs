@@ -2,22 +2,15 @@
 //! faces): the splat render's depth against the mesh's ray-cast depth, its colour against the
 //! mesh's colour, away from the cells' colour edges and the silhouettes.
 
-use std::sync::{Arc, OnceLock};
+mod fixtures;
+
+use std::sync::Arc;
 
 use glam::{DMat3, DQuat, DVec3};
 use rslam_core::splat_io::SplatCloud;
 use rslam_core::{Intrinsics, Pose};
-use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
 use rslam_render::raycast::RayCaster;
 use rslam_render::{Mesh, Rasterizer, Scene, Texture, Vertex};
-
-fn context() -> &'static GpuContext {
-    static CONTEXT: OnceLock<GpuContext> = OnceLock::new();
-    CONTEXT.get_or_init(|| {
-        GpuContext::new(&AdapterChoice::default())
-            .unwrap_or_else(|e| panic!("these tests need an adapter (lavapipe is fine): {e}"))
-    })
-}
 
 const CAMERA: Intrinsics = Intrinsics {
     width: 160,
@@ -179,24 +172,13 @@ fn a_capture_of_a_mesh_renders_its_depth_and_colour() {
         splats: Some(Arc::new(capture(&cells))),
         ..mesh_scene(&[])
     };
-    let ctx = context();
+    let ctx = fixtures::gpu();
     let mut rasterizer = Rasterizer::new(ctx, &capture, CAMERA).expect("upload capture");
-    let frame = FrameTextures::new(ctx, CAMERA.width, CAMERA.height);
-    let readback = FrameReadback::new(ctx, CAMERA.width, CAMERA.height, true);
     // The first view faces the far wall and the panel square on; the others see every wall
     // obliquely.
-    for (v, view) in [pose(0.0, 0.0), pose(0.4, 0.6), pose(-0.5, -0.9)]
-        .iter()
-        .enumerate()
-    {
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        rasterizer
-            .encode(ctx, &mut encoder, &frame, view)
-            .expect("render");
-        readback.encode_copy(&mut encoder, &frame);
-        let submission = ctx.queue.submit([encoder.finish()]);
-        let (rgb, depth) = readback.read(ctx, submission).expect("readback");
-        let depth = depth.expect("depth");
+    let views = [pose(0.0, 0.0), pose(0.4, 0.6), pose(-0.5, -0.9)];
+    let rendered = fixtures::render_with(ctx, &mut rasterizer, &views, |_, _| {});
+    for (v, (view, (rgb, depth))) in views.iter().zip(rendered).enumerate() {
         let truth = oracle.render(view, &CAMERA);
         let (w, h) = (CAMERA.width as i64, CAMERA.height as i64);
         let at = |x: i64, y: i64| (y.clamp(0, h - 1) * w + x.clamp(0, w - 1)) as usize;

@@ -3,22 +3,15 @@
 //! defines the render (EWA projection with 0.3 px dilation, 3σ tile rectangles, α ≤ 0.99, α below
 //! 1/255 skipped, stop before transmittance falls under 1e-4).
 
-use std::sync::{Arc, OnceLock};
+mod fixtures;
+
+use std::sync::Arc;
 
 use glam::{DMat3, DQuat, DVec2, DVec3};
 use rslam_core::splat_io::SplatCloud;
 use rslam_core::{DepthImage, Intrinsics, Pose, RgbImage};
-use rslam_gpu::{AdapterChoice, FrameReadback, FrameTextures, GpuContext};
 use rslam_render::splat::{SplatDepth, SplatSettings};
 use rslam_render::{Mesh, Rasterizer, Scene, Texture};
-
-fn context() -> &'static GpuContext {
-    static CONTEXT: OnceLock<GpuContext> = OnceLock::new();
-    CONTEXT.get_or_init(|| {
-        GpuContext::new(&AdapterChoice::default())
-            .unwrap_or_else(|e| panic!("these tests need an adapter (lavapipe is fine): {e}"))
-    })
-}
 
 /// 100×70 pixels (7×5 tiles, the last ones partial), principal point off centre.
 const CAMERA: Intrinsics = Intrinsics {
@@ -31,7 +24,7 @@ const CAMERA: Intrinsics = Intrinsics {
 };
 
 fn gpu_render(cloud: &SplatCloud, pose: &Pose, settings: SplatSettings) -> (RgbImage, DepthImage) {
-    let ctx = context();
+    let ctx = fixtures::gpu();
     let scene = Scene {
         name: "test capture".into(),
         mesh: Mesh::default(),
@@ -43,17 +36,9 @@ fn gpu_render(cloud: &SplatCloud, pose: &Pose, settings: SplatSettings) -> (RgbI
     };
     let mut rasterizer =
         Rasterizer::with_splat_settings(ctx, &scene, CAMERA, settings).expect("upload capture");
-    let frame = FrameTextures::new(ctx, CAMERA.width, CAMERA.height);
-    let readback = FrameReadback::new(ctx, CAMERA.width, CAMERA.height, true);
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    rasterizer
-        .encode(ctx, &mut encoder, &frame, pose)
-        .expect("render");
-    readback.encode_copy(&mut encoder, &frame);
-    let submission = ctx.queue.submit([encoder.finish()]);
-    let (rgb, depth) = readback.read(ctx, submission).expect("readback");
+    let rendered = fixtures::render_with(ctx, &mut rasterizer, &[*pose], |_, _| {});
     ctx.check().expect("no GPU error");
-    (rgb, depth.expect("depth"))
+    rendered.into_iter().next().expect("one view")
 }
 
 struct Projected {

@@ -140,18 +140,20 @@ impl LightProbe {
             }
             let corners = &self.indices[3 * hit.triangle as usize..3 * hit.triangle as usize + 3];
             let albedo = self.albedo[self.vertex_texture[corners[0] as usize] as usize];
-            for (axis, sums) in AXES.iter().zip(cube.iter_mut()) {
-                let facing = direction.dot(*axis);
-                if facing <= 0.0 {
-                    continue;
-                }
-                for (layer, sum) in sums.iter_mut().enumerate() {
-                    let radiance: Vec3 = corners
-                        .iter()
-                        .zip(hit.barycentrics)
+            let radiance: Vec<Vec3> = (0..self.layers)
+                .map(|layer| {
+                    let at_hit: Vec3 = (corners.iter().zip(hit.barycentrics))
                         .map(|(&v, b)| self.layer_colours[v as usize * self.layers + layer] * b)
                         .sum();
-                    *sum += radiance * albedo * facing * weight;
+                    at_hit * albedo * weight
+                })
+                .collect();
+            for (axis, sums) in AXES.iter().zip(cube.iter_mut()) {
+                let facing = direction.dot(*axis);
+                if facing > 0.0 {
+                    for (sum, r) in sums.iter_mut().zip(&radiance) {
+                        *sum += *r * facing;
+                    }
                 }
             }
         }

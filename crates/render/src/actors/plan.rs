@@ -133,9 +133,10 @@ pub(super) fn walkers(
         let colours = clothing(&mut rng);
         let stride = stride_of(params.speed_m_s, body.height());
         let footprint = Footprint::of(&body, stride);
+        let floor = WalkableFloor::of(&map, &footprint);
         let (path, closest_m) = (0..ATTEMPTS)
             .find_map(|_| {
-                let (route, meeting) = try_route(&mut rng, &map, &footprint, params, camera)?;
+                let (route, meeting) = try_route(&mut rng, &floor, &footprint, params, camera)?;
                 walk(route, meeting, &footprint, params, camera, &walkers)
             })
             .ok_or_else(|| {
@@ -194,6 +195,29 @@ fn stride_of(speed: f32, height: f32) -> f32 {
     ((0.3 + 0.3 * speed) * height / 1.75).clamp(0.2, MAX_STRIDE)
 }
 
+/// Where one walker can go: the scene keeps out of the circle round its footprint, whatever way
+/// it turns (`reach`), with a margin for the corners a smoothed route cuts (`roomy`); `cells`
+/// are the largest region of cells with that much room.
+struct WalkableFloor<'a> {
+    map: &'a FloorMap,
+    reach: f32,
+    roomy: f32,
+    cells: Vec<Vec2>,
+}
+
+impl<'a> WalkableFloor<'a> {
+    fn of(map: &'a FloorMap, footprint: &Footprint) -> Self {
+        let reach = footprint.radius + footprint.half_length;
+        let roomy = reach + ROUTE_MARGIN;
+        Self {
+            map,
+            reach,
+            roomy,
+            cells: map.largest_region(roomy),
+        }
+    }
+}
+
 /// Where the walker meets the camera: metres along its route, and when.
 struct Meeting {
     along: f32,
@@ -208,16 +232,18 @@ struct Meeting {
 /// smoothed; `None` when no such route fits the body.
 fn try_route(
     rng: &mut Rng,
-    map: &FloorMap,
+    floor: &WalkableFloor,
     footprint: &Footprint,
     params: &WalkerParams,
     camera: &CameraTrack,
 ) -> Option<(Route, Meeting)> {
-    // The scene keeps out of the circle round the footprint, whatever way it turns, with a
-    // margin for the corners a smoothed route cuts.
-    let reach = footprint.radius + footprint.half_length;
-    let roomy = reach + ROUTE_MARGIN;
-    let free = map.largest_region(roomy);
+    let WalkableFloor {
+        map,
+        reach,
+        roomy,
+        cells: free,
+    } = floor;
+    let (reach, roomy) = (*reach, *roomy);
     let beside = params.near_m + footprint.radius;
     // A free cell NEAR beside the camera at a random instant, or as near as the floor allows.
     let time = f64::from(rng.range(0.05, 0.95)) * camera.duration();
