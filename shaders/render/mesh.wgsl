@@ -1,5 +1,6 @@
 // Rasterizes the scene mesh: sRGB colour (through an sRGB render view, so shading is linear) and
-// metric z-depth along the optical axis into an R32Float target.
+// metric z-depth along the optical axis into an R32Float target; with actors (`fs_mask`), also
+// each pixel's object id into an R32Uint target (0 the static scene, k walker k).
 #include "common/color.wgsl"
 
 struct Camera {
@@ -30,6 +31,7 @@ struct VertexIn {
     @location(1) uv: vec2<f32>,
     @location(2) color: vec4<f32>,
     @location(3) layer: u32,
+    @location(4) object: u32,
 }
 
 struct VertexOut {
@@ -38,6 +40,7 @@ struct VertexOut {
     @location(1) linear_color: vec3<f32>,
     @location(2) camera_z: f32,
     @location(3) @interpolate(flat) layer: u32,
+    @location(4) @interpolate(flat) object: u32,
 }
 
 
@@ -58,6 +61,7 @@ fn vs_main(v: VertexIn, @builtin(vertex_index) index: u32) -> VertexOut {
     }
     out.camera_z = p_cam.z;
     out.layer = v.layer;
+    out.object = v.object;
     return out;
 }
 
@@ -66,11 +70,27 @@ struct FragmentOut {
     @location(1) depth: f32,
 }
 
-@fragment
-fn fs_main(in: VertexOut) -> FragmentOut {
+fn shade(in: VertexOut) -> FragmentOut {
     let texel = textureSample(textures, texture_sampler, in.uv, in.layer);
     var out: FragmentOut;
     out.color = vec4<f32>(in.linear_color * texel.rgb, 1.0);
     out.depth = in.camera_z;
     return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> FragmentOut {
+    return shade(in);
+}
+
+struct FragmentWithMask {
+    @location(0) color: vec4<f32>,
+    @location(1) depth: f32,
+    @location(2) object: u32,
+}
+
+@fragment
+fn fs_mask(in: VertexOut) -> FragmentWithMask {
+    let shaded = shade(in);
+    return FragmentWithMask(shaded.color, shaded.depth, in.object);
 }

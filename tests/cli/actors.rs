@@ -1,8 +1,9 @@
 //! People walking through a scene end to end: `actors` in the TUM layout (the walkers' poses in
-//! the manifest, depth only ever nearer where they pass), and the refusals naming the item: a mesh file (no free floor), a recorded dataset (no scene), a bad value, a room too
+//! the manifest, instance masks that say where depth changed, under a rolling shutter and a lens
+//! too), and the refusals naming the item: a mesh file (no free floor), a recorded dataset (no scene), a bad value, a room too
 //! crowded for the walkers asked for.
 
-use rslam_core::dataset::decode_depth_png;
+use rslam_core::dataset::{decode_depth_png, decode_mask_png};
 
 use crate::harness::Workspace;
 use crate::render::SMALL_CAMERA;
@@ -50,28 +51,12 @@ fn walkers_cross_the_view_of_a_tum_dataset_and_leave_the_other_frames_alone() {
             assert!(d <= 1.5 * 1.2 / 20.0 + 1e-3, "a walker jumped {d} m");
         }
     }
-    // A walker only hides the room: where depth changed it came nearer, and the walkers
-    // cover part of a frame, more as they pass close.
-    let depth_files = crate::harness::sorted_names(&ws.path("clean/depth"));
-    assert_eq!(depth_files.len(), 160);
-    let mut covered = Vec::new();
-    for name in &depth_files {
-        let read = |out: &str| {
-            decode_depth_png(&ws.path(&format!("{out}/depth/{name}")), 5000.0).expect("depth png")
-        };
-        let (clean, walkers) = (read("clean"), read("walkers"));
-        let mut changed = 0;
-        for (c, w) in clean.data.iter().zip(&walkers.data) {
-            if c != w {
-                changed += 1;
-                assert!(
-                    *c == 0.0 || w < c,
-                    "{name}: depth moved away from the camera"
-                );
-            }
-        }
-        covered.push(changed as f64 / clean.data.len() as f64);
-    }
+    let fractions = &manifest(&ws, "walkers")["extra"]["masks"]["dynamic_fraction"];
+    let covered: Vec<f64> = (fractions.as_array().unwrap().iter())
+        .map(|f| f.as_f64().unwrap())
+        .collect();
+    assert_eq!(covered.len(), 160);
+    check_masks_against_static_depth(&ws, "walkers", "clean", 0.0, 2);
     let most = covered.iter().copied().fold(0.0, f64::max);
     assert!(
         most > 0.1 && most < 0.9,
@@ -81,6 +66,87 @@ fn walkers_cross_the_view_of_a_tum_dataset_and_leave_the_other_frames_alone() {
         covered.iter().any(|&c| c < most / 4.0),
         "the walkers' share varies"
     );
+}
+
+/// The instance masks of the TUM dataset `walkers` (listed in `mask.txt`, one per colour frame,
+/// at its time) against the depth of `walkers` and of `clean`, the same job without walkers:
+/// outside the mask depth is the static render's (bit for bit, or within `blend` of it where
+/// depth blends a pixel's neighbours); inside, a walker only ever hides the room (never farther
+/// than `blend` of the room's depth, nearer on most pixels); the manifest's
+/// dynamic fraction is the mask's; ids go from 1 to the walker count, each seen.
+fn check_masks_against_static_depth(
+    ws: &Workspace,
+    walkers: &str,
+    clean: &str,
+    blend: f32,
+    walker_count: u16,
+) {
+    let list = std::fs::read_to_string(ws.path(&format!("{walkers}/mask.txt"))).unwrap();
+    let masks: Vec<(String, String)> = (list.lines().filter(|l| !l.starts_with('#')))
+        .map(|l| {
+            let (t, name) = l.split_once(' ').unwrap();
+            (t.to_string(), name.to_string())
+        })
+        .collect();
+    let rgb = std::fs::read_to_string(ws.path(&format!("{walkers}/rgb.txt"))).unwrap();
+    let rgb_times: Vec<&str> = (rgb.lines().filter(|l| !l.starts_with('#')))
+        .map(|l| l.split(' ').next().unwrap())
+        .collect();
+    let mask_times: Vec<&str> = masks.iter().map(|(t, _)| t.as_str()).collect();
+    assert_eq!(
+        mask_times, rgb_times,
+        "one mask per colour frame, at its time"
+    );
+    let fractions = manifest(ws, walkers)["extra"]["masks"]["dynamic_fraction"].clone();
+    let mut seen = vec![false; usize::from(walker_count) + 1];
+    let (mut nearer, mut on_walkers) = (0usize, 0usize);
+    for (j, (t, name)) in masks.iter().enumerate() {
+        let mask = decode_mask_png(&ws.path(&format!("{walkers}/{name}"))).expect("mask png");
+        let depth_of = |out: &str| {
+            let path = ws.path(&format!("{out}/depth/{t}.png"));
+            decode_depth_png(&path, 5000.0).expect("depth png")
+        };
+        let (still, moving) = (depth_of(clean), depth_of(walkers));
+        assert_eq!((mask.width, mask.height), (moving.width, moving.height));
+        for (p, &id) in mask.data.iter().enumerate() {
+            assert!(id <= walker_count, "{name}: id {id}");
+            seen[usize::from(id)] = true;
+            let (c, w) = (still.data[p], moving.data[p]);
+            if id == 0 {
+                assert!(
+                    (w - c).abs() <= blend * c,
+                    "{name}: depth moved outside the mask"
+                );
+            } else {
+                on_walkers += 1;
+                assert!(
+                    c == 0.0 || w <= c * (1.0 + blend),
+                    "{name}: a walker behind the room"
+                );
+                nearer += usize::from(w < c);
+            }
+        }
+        let fraction = fractions[j].as_f64().unwrap();
+        assert!((fraction - mask.dynamic_fraction()).abs() < 1e-6, "{name}");
+    }
+    assert!(seen.iter().all(|&s| s), "ids seen: {seen:?}");
+    assert!(
+        nearer as f64 > 0.95 * on_walkers as f64,
+        "{nearer} of {on_walkers} walker pixels are nearer than the room"
+    );
+}
+
+/// Under a rolling shutter each row's mask is of that row's read-out instant, as its depth is;
+/// through a lens the mask is resampled nearest-neighbour, while depth blends the four wide
+/// texels round a pixel where they agree within 2 % (a shoe on the floor): a walker's sliver
+/// narrower than a pixel moves depth that little without reaching the mask.
+#[test]
+fn masks_follow_each_row_under_a_rolling_shutter_and_the_lens() {
+    let ws = Workspace::new();
+    let sensor = "rolling_shutter:30,distortion:radtan(-0.2,0.05,0,0)";
+    render_office1(&ws, "clean", Some(sensor));
+    render_office1(&ws, "walkers", Some(&format!("actors:4,{sensor}")));
+    check_masks_against_static_depth(&ws, "walkers", "clean", 0.02, 2);
 }
 
 #[test]

@@ -12,17 +12,27 @@ pub struct FrameTextures {
     pub color: wgpu::Texture,
     /// `R32Float`, metres along the optical axis.
     pub depth: wgpu::Texture,
+    /// `R32Uint`, which object each pixel sees (0 the static scene, k actor k); only on frames
+    /// made [`FrameTextures::with_mask`], for scenes with actors.
+    pub mask: Option<wgpu::Texture>,
     color_view: wgpu::TextureView,
     color_render_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
+    mask_view: Option<wgpu::TextureView>,
 }
 
 impl FrameTextures {
     pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
     pub const COLOR_SRGB_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
     pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+    pub const MASK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 
     pub fn new(ctx: &GpuContext, width: u32, height: u32) -> Self {
+        Self::with_mask(ctx, width, height, false)
+    }
+
+    /// Frame textures with an instance mask when `with_mask`.
+    pub fn with_mask(ctx: &GpuContext, width: u32, height: u32, with_mask: bool) -> Self {
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
@@ -37,6 +47,7 @@ impl FrameTextures {
             &[Self::COLOR_SRGB_FORMAT],
         );
         let depth = make("frame depth", Self::DEPTH_FORMAT, &[]);
+        let mask = with_mask.then(|| make("frame mask", Self::MASK_FORMAT, &[]));
         Self {
             width,
             height,
@@ -47,8 +58,10 @@ impl FrameTextures {
                 ..Default::default()
             }),
             depth_view: depth.create_view(&Default::default()),
+            mask_view: mask.as_ref().map(|m| m.create_view(&Default::default())),
             color,
             depth,
+            mask,
         }
     }
 
@@ -63,6 +76,10 @@ impl FrameTextures {
 
     pub fn depth_view(&self) -> &wgpu::TextureView {
         &self.depth_view
+    }
+
+    pub fn mask_view(&self) -> Option<&wgpu::TextureView> {
+        self.mask_view.as_ref()
     }
 
     pub fn size(&self) -> wgpu::Extent3d {

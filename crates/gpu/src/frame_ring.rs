@@ -7,7 +7,7 @@ use crate::{FrameReadback, FrameTextures, GpuContext, GpuError};
 /// its images (on its own threads), which hands the buffers back to the ring.
 pub struct ReadFrame {
     pub index: usize,
-    /// Its depth half is `None` when the ring was made without depth.
+    /// Its depth half is `None` when the ring was made without depth, its mask without masks.
     pub images: MappedFrame,
 }
 
@@ -40,19 +40,20 @@ impl FrameRing {
         width: u32,
         height: u32,
         in_flight: usize,
-        with_depth: bool,
+        (with_depth, with_mask): (bool, bool),
     ) -> Self {
         let in_flight = in_flight.max(1);
         let slots = (0..in_flight)
             .map(|_| Slot {
-                textures: FrameTextures::new(ctx, width, height),
+                textures: FrameTextures::with_mask(ctx, width, height, with_mask),
                 pending: None,
             })
             .collect();
         let (home, free) = channel();
         for _ in 0..2 * in_flight + 1 {
             // The receiver is alive: it is in `free`.
-            let _ = home.send(FrameReadback::new(ctx, width, height, with_depth));
+            let readback = FrameReadback::with_mask(ctx, width, height, with_depth, with_mask);
+            let _ = home.send(readback);
         }
         Self { slots, free, home }
     }

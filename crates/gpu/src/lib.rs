@@ -26,7 +26,7 @@ pub use error::GpuError;
 pub use frame::FrameTextures;
 pub use frame_ring::{FrameRing, ReadFrame};
 pub use frame_uploads::{FilledUpload, FrameUploads, UploadFiller};
-pub use mapped_frame::{MappedColor, MappedDepth, MappedFrame};
+pub use mapped_frame::{MappedColor, MappedDepth, MappedFrame, MappedMask};
 pub use radix_sort::RadixSort;
 pub use readback::{read_buffer, read_texels, BufferReadback, FrameReadback};
 pub use scan::Scan;

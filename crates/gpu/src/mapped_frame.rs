@@ -5,15 +5,17 @@
 use std::sync::mpsc::Sender;
 use std::sync::Arc;
 
-use rslam_core::{DepthImage, ImagePool, RgbImage};
+use rslam_core::{DepthImage, ImagePool, MaskImage, RgbImage};
 
 use crate::readback::{readback_failed, FrameReadback};
 use crate::GpuError;
 
-/// A frame's staging buffers, mapped, with the colour half and (when read) the depth half.
+/// A frame's staging buffers, mapped, with the colour half and (when read) the depth half and
+/// the instance mask.
 pub struct MappedFrame {
     pub color: MappedColor,
     pub depth: Option<MappedDepth>,
+    pub mask: Option<MappedMask>,
 }
 
 impl MappedFrame {
@@ -29,6 +31,7 @@ impl MappedFrame {
             _lent: lent.clone(),
         };
         let (color, depth) = (readback.color.clone(), readback.depth.clone());
+        let mask = readback.mask.clone();
         let lent = Arc::new(Lent {
             readback: Some(readback),
             home,
@@ -36,6 +39,7 @@ impl MappedFrame {
         Self {
             color: MappedColor(view(&color, &lent)),
             depth: depth.map(|buffer| MappedDepth(view(&buffer, &lent))),
+            mask: mask.map(|buffer| MappedMask(view(&buffer, &lent))),
         }
     }
 
@@ -68,6 +72,23 @@ impl MappedDepth {
         let b = &self.0;
         let rows = b.buffer.get_mapped_range(..).map_err(readback_failed)?;
         Ok(images.depth_from_f32_rows(b.width, b.height, &rows, b.row_bytes))
+    }
+}
+
+/// The instance mask: u32 rows padded to wgpu's copy alignment.
+pub struct MappedMask(MappedBuffer);
+
+impl MappedMask {
+    /// The mask, ids as 16-bit values.
+    pub fn unpack(self) -> Result<MaskImage, GpuError> {
+        let b = &self.0;
+        let rows = b.buffer.get_mapped_range(..).map_err(readback_failed)?;
+        Ok(MaskImage::from_u32_rows(
+            b.width,
+            b.height,
+            &rows,
+            b.row_bytes,
+        ))
     }
 }
 

@@ -1,12 +1,12 @@
 use std::sync::mpsc::{self, Sender};
 
-use rslam_core::{DepthImage, ImagePool, RgbImage};
+use rslam_core::{DepthImage, ImagePool, MaskImage, RgbImage};
 
 use crate::mapped_frame::MappedFrame;
 use crate::{FrameTextures, GpuContext, GpuError};
 
-/// Staging buffers for one frame's colour and, when asked for, its depth; rows padded to wgpu's
-/// 256-byte alignment.
+/// Staging buffers for one frame's colour and, when asked for, its depth and instance mask; rows
+/// padded to wgpu's 256-byte alignment.
 #[derive(Clone)]
 pub struct FrameReadback {
     pub(crate) width: u32,
@@ -14,10 +14,11 @@ pub struct FrameReadback {
     pub(crate) padded_row_bytes: u32,
     pub(crate) color: wgpu::Buffer,
     pub(crate) depth: Option<wgpu::Buffer>,
+    pub(crate) mask: Option<wgpu::Buffer>,
 }
 
-/// Both colour and depth are 4 bytes per pixel, so one padded row length serves both (and the
-/// uploads, which the same copy alignment applies to).
+/// Colour, depth and mask are 4 bytes per pixel, so one padded row length serves all three (and
+/// the uploads, which the same copy alignment applies to).
 pub(crate) fn padded_row_bytes(width: u32) -> u32 {
     let unpadded = width * 4;
     let align = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
@@ -27,6 +28,18 @@ pub(crate) fn padded_row_bytes(width: u32) -> u32 {
 impl FrameReadback {
     /// Without `with_depth` only colour is copied and read (image-only inputs have no depth).
     pub fn new(ctx: &GpuContext, width: u32, height: u32, with_depth: bool) -> Self {
+        Self::with_mask(ctx, width, height, with_depth, false)
+    }
+
+    /// Like [`FrameReadback::new`], the instance mask read too when `with_mask` (frames made
+    /// with one).
+    pub fn with_mask(
+        ctx: &GpuContext,
+        width: u32,
+        height: u32,
+        with_depth: bool,
+        with_mask: bool,
+    ) -> Self {
         let padded = padded_row_bytes(width);
         let make = |label| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -42,16 +55,25 @@ impl FrameReadback {
             padded_row_bytes: padded,
             color: make("readback colour"),
             depth: with_depth.then(|| make("readback depth")),
+            mask: with_mask.then(|| make("readback mask")),
         }
     }
 
     fn buffers(&self) -> impl Iterator<Item = &wgpu::Buffer> {
-        std::iter::once(&self.color).chain(&self.depth)
+        std::iter::once(&self.color)
+            .chain(&self.depth)
+            .chain(&self.mask)
     }
 
-    /// Records the copies of the textures read back into the staging buffers.
+    /// Records the copies of the textures read back into the staging buffers; a frame without
+    /// a mask texture leaves the mask buffer as it was.
     pub fn encode_copy(&self, encoder: &mut wgpu::CommandEncoder, frame: &FrameTextures) {
-        for (texture, buffer) in [&frame.color, &frame.depth].into_iter().zip(self.buffers()) {
+        let copies = [
+            Some((&frame.color, &self.color)),
+            self.depth.as_ref().map(|buffer| (&frame.depth, buffer)),
+            frame.mask.as_ref().zip(self.mask.as_ref()),
+        ];
+        for (texture, buffer) in copies.into_iter().flatten() {
             encoder.copy_texture_to_buffer(
                 texture.as_image_copy(),
                 wgpu::TexelCopyBufferInfo {
@@ -74,11 +96,22 @@ impl FrameReadback {
         ctx: &GpuContext,
         submission: wgpu::SubmissionIndex,
     ) -> Result<(RgbImage, Option<DepthImage>), GpuError> {
+        let (color, depth, _) = self.read_with_mask(ctx, submission)?;
+        Ok((color, depth))
+    }
+
+    /// [`FrameReadback::read`] with the instance mask, where it was asked for.
+    pub fn read_with_mask(
+        &self,
+        ctx: &GpuContext,
+        submission: wgpu::SubmissionIndex,
+    ) -> Result<(RgbImage, Option<DepthImage>, Option<MaskImage>), GpuError> {
         // The clone holds the same buffers; it goes back to a ring no one keeps.
         let (home, _) = mpsc::channel();
-        self.clone()
-            .into_mapped(ctx, submission, home)?
-            .unpack(&ImagePool::default())
+        let mut frame = self.clone().into_mapped(ctx, submission, home)?;
+        let mask = frame.mask.take().map(|m| m.unpack()).transpose()?;
+        let (color, depth) = frame.unpack(&ImagePool::default())?;
+        Ok((color, depth, mask))
     }
 
     /// Waits for `submission` and maps the buffers, leaving them mapped: into a frame whose

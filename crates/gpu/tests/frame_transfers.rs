@@ -8,7 +8,7 @@ use std::collections::VecDeque;
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
 
-use rslam_core::{DepthImage, ImagePool, RgbImage};
+use rslam_core::{DepthImage, ImagePool, MaskImage, RgbImage};
 use rslam_gpu::{AdapterChoice, FrameRing, FrameUploads, GpuContext, GpuError, ReadFrame};
 
 const IN_FLIGHT: usize = 2;
@@ -31,8 +31,28 @@ fn images(i: usize) -> (RgbImage, DepthImage) {
     (color, depth)
 }
 
-/// Unpacks `frame` and checks it holds the images uploaded as its index; returns that index.
-fn check(frame: ReadFrame, pool: &ImagePool) -> usize {
+/// Ids up to 70 000 (saturating at 65 535 when unpacked) in every pixel of frame `i`'s mask.
+fn mask_ids(i: usize) -> Vec<u32> {
+    (0..WIDTH * HEIGHT).map(|k| i as u32 * 5000 + k).collect()
+}
+
+/// Unpacks `frame` and checks it holds the images uploaded as its index (its mask too, where the
+/// ring reads one); returns that index.
+fn check(mut frame: ReadFrame, pool: &ImagePool) -> usize {
+    if let Some(mask) = frame.images.mask.take() {
+        let ids = mask_ids(frame.index).into_iter();
+        let expected = MaskImage {
+            width: WIDTH,
+            height: HEIGHT,
+            data: ids.map(|id| id.min(65_535) as u16).collect(),
+        };
+        assert_eq!(
+            mask.unpack().expect("mask"),
+            expected,
+            "mask of {}",
+            frame.index
+        );
+    }
     let (color, depth) = frame.images.unpack(pool).expect("unpack");
     let expected = images(frame.index);
     assert_eq!(color, expected.0, "colour of frame {}", frame.index);
@@ -41,15 +61,27 @@ fn check(frame: ReadFrame, pool: &ImagePool) -> usize {
 }
 
 /// Frames 0, 3, 6 … are dropped as read; the others are held until `HELD` more have come out.
+/// The ring reads instance masks too.
 fn run_ring() -> Result<Vec<usize>, GpuError> {
     let ctx = GpuContext::new(&AdapterChoice::default())?;
-    let mut ring = FrameRing::new(&ctx, WIDTH, HEIGHT, IN_FLIGHT, true);
+    let mut ring = FrameRing::new(&ctx, WIDTH, HEIGHT, IN_FLIGHT, (true, true));
     let pool = ImagePool::default();
     let (mut held, mut unpacked) = (VecDeque::new(), Vec::new());
     for i in 0..FRAMES {
         let read = ring.submit(&ctx, i, |_, frame| -> Result<(), GpuError> {
             let (color, depth) = images(i);
             frame.upload(&ctx, &color, Some(&depth));
+            let mask = frame.mask.as_ref().expect("a ring with masks");
+            ctx.queue.write_texture(
+                mask.as_image_copy(),
+                bytemuck::cast_slice(&mask_ids(i)),
+                rslam_gpu::wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(WIDTH * 4),
+                    rows_per_image: Some(HEIGHT),
+                },
+                frame.size(),
+            );
             Ok(())
         })?;
         if let Some(frame) = read.filter(|f| f.index % 3 != 0) {
@@ -88,7 +120,7 @@ fn run_uploads() -> Result<Vec<usize>, GpuError> {
         }
         Ok(())
     });
-    let mut ring = FrameRing::new(&ctx, WIDTH, HEIGHT, IN_FLIGHT, true);
+    let mut ring = FrameRing::new(&ctx, WIDTH, HEIGHT, IN_FLIGHT, (true, false));
     let pool = ImagePool::default();
     let mut read = Vec::new();
     for i in 0..FRAMES {

@@ -27,9 +27,9 @@ pub struct DatasetOutput<'a> {
     pub bag_imu: Option<&'a BagImu>,
 }
 
-/// The writer of a one-camera dataset: the frames `pipeline` makes, into the prepared folder
-/// (the frames a resumed run finds whole stay), then the index files, checksums and the
-/// manifest (its `depth_png` is how depth is encoded, its `distortion` the lens the camera files
+/// The writer of a one-camera dataset: the frames `pipeline` makes (with their instance masks
+/// when its source draws actors), into the prepared folder (the frames a resumed run finds whole
+/// stay), then the index files, checksums and the manifest (its `depth_png` is how depth is encoded, its `distortion` the lens the camera files
 /// carry). `what` names the work on the progress bar.
 pub fn dataset_writing<'a, S: FrameSource + 'a>(
     ctx: &'a GpuContext,
@@ -42,8 +42,12 @@ pub fn dataset_writing<'a, S: FrameSource + 'a>(
     }
     Box::new(move |out, found, manifest, progress| {
         let plan = target.plan;
-        let writer = DatasetWriter::open(out, target.format, target.camera, manifest.depth_png)?
-            .with_distortion(manifest.distortion);
+        let mut writer =
+            DatasetWriter::open(out, target.format, target.camera, manifest.depth_png)?
+                .with_distortion(manifest.distortion);
+        if pipeline.source().has_mask() {
+            writer = writer.with_masks()?;
+        }
         let mut sink = DatasetSink::new(writer, plan);
         let keep = found.keeps_written_frames(pipeline.perturber().carries_state());
         let sources: Vec<usize> = plan

@@ -18,6 +18,8 @@ pub struct FrameRun<'a> {
     pub sources: &'a [usize],
     /// Read depth back as well as colour.
     pub with_depth: bool,
+    /// Frames carry an instance mask, read back too.
+    pub with_mask: bool,
 }
 
 impl FrameRun<'_> {
@@ -38,7 +40,7 @@ impl FrameRun<'_> {
             self.width,
             self.height,
             FRAMES_IN_FLIGHT,
-            self.with_depth,
+            (self.with_depth, self.with_mask),
         );
         let mut deliver = |frame| -> Result<(), PipelineError> {
             deliver(frame)?;

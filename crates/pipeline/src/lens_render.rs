@@ -19,11 +19,13 @@ pub(crate) struct LensRender {
 }
 
 impl LensRender {
-    /// `camera` seen through `lens`; the error names the item and why the lens cannot be drawn.
+    /// `camera` seen through `lens` (the wide render with an instance mask when `with_mask`); the
+    /// error names the item and why the lens cannot be drawn.
     pub fn new(
         ctx: &GpuContext,
         camera: &Intrinsics,
         lens: Distortion,
+        with_mask: bool,
     ) -> Result<Self, PipelineError> {
         let view = LensView::new(camera, &lens)
             .map_err(|message| PerturbError::spec(distortion::item(&lens), message))?;
@@ -32,7 +34,7 @@ impl LensRender {
             lens,
             wide_camera,
             pass: LensPass::new(ctx, &view, (camera.width, camera.height))?,
-            wide: FrameTextures::new(ctx, wide_camera.width, wide_camera.height),
+            wide: FrameTextures::with_mask(ctx, wide_camera.width, wide_camera.height, with_mask),
         })
     }
 

@@ -249,6 +249,7 @@ fn run_images(
             height,
             sources: &sources,
             with_depth: false,
+            with_mask: false,
         }
         .run(
             progress,

@@ -131,6 +131,7 @@ impl<S: FrameSource> Pipeline<S> {
             height,
             sources,
             with_depth: source.has_depth() && sink.wants_depth(),
+            with_mask: source.has_mask() && sink.wants_mask(),
         }
         .run(
             progress,

@@ -1,6 +1,7 @@
 //! A scene frame under a shutter (`exposure`, `rolling_shutter`): every render of the frame's
 //! schedule is drawn from its own pose into one sub-frame texture and added on the GPU to the
-//! frame's linear-light sum (its depth rows copied where it is the rows' read-out instant); the
+//! frame's linear-light sum (its depth rows, and its instance-mask rows, copied where it is the
+//! rows' read-out instant); the
 //! sum is then encoded into the frame's colour, where the image corruptions pick it up. Nothing
 //! leaves the GPU until the frame's one readback.
 
@@ -20,12 +21,14 @@ pub(crate) struct ShutterRender {
 }
 
 impl ShutterRender {
-    /// `None` when `shutter` has no item: frames are single renders.
+    /// `None` when `shutter` has no item: frames are single renders. Sub-renders carry an
+    /// instance mask when `with_mask`.
     pub fn new(
         ctx: &GpuContext,
         shutter: Shutter,
         rate_hz: f64,
         (width, height): (u32, u32),
+        with_mask: bool,
     ) -> Result<Option<Self>, PipelineError> {
         if shutter.is_none() {
             return Ok(None);
@@ -34,7 +37,7 @@ impl ShutterRender {
             shutter,
             rate_hz,
             pass: ShutterPass::new(ctx, width, height)?,
-            subframe: FrameTextures::new(ctx, width, height),
+            subframe: FrameTextures::with_mask(ctx, width, height, with_mask),
         }))
     }
 
@@ -92,6 +95,9 @@ impl ShutterRender {
             }
             if render.depth {
                 copy_rows(&mut sub, &self.subframe.depth, &frame.depth, render);
+                if let (Some(from), Some(to)) = (&self.subframe.mask, &frame.mask) {
+                    copy_rows(&mut sub, from, to, render);
+                }
             }
             ctx.queue.submit([sub.finish()]);
         }

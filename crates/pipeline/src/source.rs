@@ -32,6 +32,10 @@ pub trait FrameSource {
     fn size(&self) -> (u32, u32);
     /// Whether frames carry depth.
     fn has_depth(&self) -> bool;
+    /// Whether frames carry an instance mask (a scene with actors).
+    fn has_mask(&self) -> bool {
+        false
+    }
     /// The camera the frames were taken with, where it is known (perturbations computed from
     /// the geometry, `depth_sensor`, need it).
     fn camera(&self) -> Option<Intrinsics>;
@@ -68,6 +72,8 @@ pub struct SceneSource {
     rate_hz: f64,
     /// Capture time of each source frame, where not `i / rate_hz`.
     times_s: Option<Vec<f64>>,
+    /// Actors are drawn: frames carry their instance masks through the lens and shutter.
+    with_mask: bool,
 }
 
 impl SceneSource {
@@ -81,6 +87,7 @@ impl SceneSource {
     ) -> Result<Self, PipelineError> {
         Ok(Self {
             scene: scene.clone(),
+            with_mask: actors.is_some(),
             rasterizer: Rasterizer::with_actors(ctx, scene, camera, capture, actors)?,
             camera,
             poses,
@@ -114,7 +121,7 @@ impl SceneSource {
         if lens_changed {
             self.lens = spec
                 .distortion
-                .map(|lens| LensRender::new(ctx, &self.camera, lens))
+                .map(|lens| LensRender::new(ctx, &self.camera, lens, self.with_mask))
                 .transpose()?;
             let drawn = self.lens.as_ref().map_or(self.camera, |l| l.wide_camera());
             self.rasterizer.set_intrinsics(ctx, drawn)?;
@@ -130,7 +137,7 @@ impl SceneSource {
         if !same_shutter {
             let drawn = self.rasterizer.intrinsics();
             let size = (drawn.width, drawn.height);
-            self.shutter = ShutterRender::new(ctx, shutter, rate_hz, size)?;
+            self.shutter = ShutterRender::new(ctx, shutter, rate_hz, size, self.with_mask)?;
         }
         Ok(!same_shutter || light_changed)
     }
@@ -145,7 +152,8 @@ impl SceneSource {
         &self.poses
     }
 
-    /// Draws `actors` from now on (the scene uploaded again with room for their vertices).
+    /// Draws `actors` from now on (the scene uploaded again with room for their vertices). Frames
+    /// shown from memory carry no instance masks: the lens and shutter keep theirs as they are.
     pub fn set_actors(
         &mut self,
         ctx: &GpuContext,
@@ -219,6 +227,10 @@ impl FrameSource for SceneSource {
 
     fn has_depth(&self) -> bool {
         true
+    }
+
+    fn has_mask(&self) -> bool {
+        self.with_mask
     }
 
     fn camera(&self) -> Option<Intrinsics> {

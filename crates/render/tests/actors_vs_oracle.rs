@@ -1,5 +1,5 @@
-//! People walking through a built-in scene (`actors`) against the CPU ray-cast oracle: colour and
-//! depth where walkers are in view, the static scene untouched elsewhere, and no walker ever
+//! People walking through a built-in scene (`actors`) against the CPU ray-cast oracle: colour,
+//! depth and the instance mask where walkers are in view, the static scene untouched elsewhere, and no walker ever
 //! touching the scene, another walker or the camera at any instant (checked every 10 ms).
 
 mod fixtures;
@@ -35,15 +35,22 @@ fn along_path(name: &str) -> (Scene, Vec<Pose>, CameraTrack) {
     (scene, poses, track)
 }
 
-/// The scene with the actors' triangles at `t` appended: what the oracle casts rays into.
-fn with_actors_at(scene: &Scene, actors: &Actors, t: f64) -> Scene {
+/// The scene with the actors' triangles at `t` appended: what the oracle casts rays into; and
+/// the instance-mask id of every triangle of it (0 the scene's, k + 1 walker k's).
+fn with_actors_at(scene: &Scene, actors: &Actors, t: f64) -> (Scene, Vec<u16>) {
     let posed = actors.mesh_at(t);
+    let mut ids = vec![0u16; scene.mesh.triangle_count()];
+    ids.extend((posed.mesh.indices.chunks(3)).map(|corners| {
+        let vertex = corners[0] as usize;
+        let walker = (posed.walker_vertices.iter()).position(|r| r.contains(&vertex));
+        walker.expect("every vertex is a walker's") as u16 + 1
+    }));
     let mut combined = scene.clone();
     let first = combined.mesh.vertices.len() as u32;
     combined.mesh.vertices.extend(posed.mesh.vertices);
     (combined.mesh.indices).extend(posed.mesh.indices.iter().map(|i| first + i));
     combined.textures.extend(actors.textures().iter().cloned());
-    combined
+    (combined, ids)
 }
 
 /// Frames whose camera sees a walker's chest nearest, in front and inside the image.
@@ -97,7 +104,7 @@ fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
         Some(actors.clone()),
     )
     .expect("upload");
-    let rendered = fixtures::render_with(ctx, &mut with, &views, |r, v| {
+    let rendered = fixtures::render_with_masks(ctx, &mut with, &views, |r, v| {
         r.pose_actors(ctx, frames[v] as f64 / RATE_HZ)
     });
     let mut without = Rasterizer::new(ctx, &scene, CAMERA).expect("upload");
@@ -105,7 +112,7 @@ fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
     let scene_triangles = scene.mesh.triangle_count() as u32;
     for (v, &i) in frames.iter().enumerate() {
         let t = i as f64 / RATE_HZ;
-        let combined = with_actors_at(&scene, &actors, t);
+        let (combined, triangle_ids) = with_actors_at(&scene, &actors, t);
         let oracle = RayCaster::new(&combined);
         let expected = oracle.render(&views[v], &CAMERA);
         let on_actor: Vec<bool> = (expected.triangles.iter())
@@ -116,7 +123,7 @@ fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
             actor_share > 0.02,
             "frame {i}: walkers cover {actor_share:.3} of the view"
         );
-        let (rgb, depth) = &rendered[v];
+        let (rgb, depth, mask) = &rendered[v];
         let d = depth_agreement(depth, &expected.depth);
         assert!(
             d.max_relative_error < 1e-4 && d.mask_mismatches == 0,
@@ -140,6 +147,22 @@ fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
             .count();
         assert!(hidden > 0, "frame {i}: the walkers hide some of the room");
         check_depth_is_metric(depth);
+        // The mask is the oracle's object id off surface edges (where a sliver of a triangle
+        // through a pixel's centre may go either way), and on all but a few edge pixels.
+        let expected_ids =
+            (expected.triangles.iter()).map(|t| t.map_or(0, |t| triangle_ids[t as usize]));
+        let wrong: Vec<usize> = (mask.data.iter().zip(expected_ids).enumerate())
+            .filter(|(_, (got, want))| got != &want)
+            .map(|(p, _)| p)
+            .collect();
+        let off_edges = wrong.iter().filter(|&&p| !edges[p]).count();
+        assert_eq!(off_edges, 0, "frame {i}: mask ids unlike the oracle's");
+        let walker_pixels = on_actor.iter().filter(|&&a| a).count();
+        assert!(
+            wrong.len() * 200 < walker_pixels,
+            "frame {i}: {} edge pixels of {walker_pixels} unlike the oracle's",
+            wrong.len()
+        );
     }
 }
 

@@ -52,3 +52,20 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     textureStore(depth_out, id.xy, vec4<f32>(depth, 0.0, 0.0, 0.0));
 }
+
+// Instance masks: the id of the nearest texel, the one depth takes where surfaces do not agree.
+@group(0) @binding(5) var wide_mask: texture_2d<u32>;
+@group(0) @binding(6) var mask_out: texture_storage_2d<r32uint, write>;
+
+@compute @workgroup_size(8, 8)
+fn mask_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(mask_out);
+    if (id.x >= size.x || id.y >= size.y) {
+        return;
+    }
+    let at = lookup[id.y * size.x + id.x];
+    let last = vec2<i32>(textureDimensions(wide_mask)) - vec2<i32>(1);
+    let base = floor(at);
+    let nearest = vec2<i32>(base) + vec2<i32>(at - base >= vec2<f32>(0.5));
+    textureStore(mask_out, id.xy, vec4<u32>(textureLoad(wide_mask, clamp(nearest, vec2<i32>(0), last), 0).r));
+}

@@ -10,7 +10,7 @@ use image::{ExtendedColorType, ImageEncoder};
 
 use crate::dataset::DepthPng;
 use crate::limits::MAX_IMAGE_SIDE;
-use crate::{printable, CoreError, DepthImage, RgbImage};
+use crate::{printable, CoreError, DepthImage, MaskImage, RgbImage};
 
 fn encode_failed(what: &str, e: impl std::fmt::Display) -> CoreError {
     CoreError::Encode {
@@ -261,6 +261,42 @@ fn rgb_of(image: image::DynamicImage) -> RgbImage {
         height: image.height(),
         data: image.into_raw(),
     }
+}
+
+/// An instance mask as a 16-bit grey PNG (mostly zeros: fast deflate keeps it a few kilobytes).
+pub fn encode_mask_png(mask: &MaskImage) -> Result<Vec<u8>, CoreError> {
+    let mut out = Vec::new();
+    write_depth_png(
+        &mut out,
+        (mask.width, mask.height),
+        &mask.to_be_bytes(),
+        DepthPng::Fast,
+    )
+    .map_err(|e| encode_failed("mask PNG", e))?;
+    Ok(out)
+}
+
+/// A 16-bit single-channel PNG as an instance mask.
+pub fn decode_mask_png(path: &Path) -> Result<MaskImage, CoreError> {
+    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
+    let not_readable =
+        |e: String| CoreError::bad_file(path, format!("not a readable mask PNG: {e}"));
+    let image = limited_reader(&bytes)
+        .map_err(not_readable)?
+        .decode()
+        .map_err(|e| not_readable(printable(e.to_string().trim())))?;
+    if image.color() != image::ColorType::L16 {
+        return Err(CoreError::bad_file(
+            path,
+            "expected a 16-bit grey instance-mask PNG",
+        ));
+    }
+    let raw = image.into_luma16();
+    Ok(MaskImage {
+        width: raw.width(),
+        height: raw.height(),
+        data: raw.into_raw(),
+    })
 }
 
 /// A 16-bit (or 8-bit) single-channel PNG as metric depth.

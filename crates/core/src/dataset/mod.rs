@@ -25,9 +25,10 @@ pub use checksums::{
     ContentWriter, CHECKSUM_FILE, PARTIAL_SUFFIX, RUN_FILE,
 };
 pub use codec::{
-    decode_depth_png, decode_rgb, encode_depth_png, encode_grey16_png, encode_grey_png,
-    encode_jpeg, encode_png, encode_rgb_like, read_grey16_high_byte, read_image_has_colour,
-    read_image_size, read_rgb, read_rgb8, write_rgb_like,
+    decode_depth_png, decode_mask_png, decode_rgb, encode_depth_png, encode_grey16_png,
+    encode_grey_png, encode_jpeg, encode_mask_png, encode_png, encode_rgb_like,
+    read_grey16_high_byte, read_image_has_colour, read_image_size, read_rgb, read_rgb8,
+    write_rgb_like,
 };
 pub use depth_png::DepthPng;
 pub use frames_deleted::{

@@ -1,11 +1,13 @@
+use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Mutex;
 
 use crate::dataset::{
-    encode_depth_png, encode_jpeg, encode_png, orbslam3, ContentWriter, DatasetFormat, DepthPng,
-    Manifest,
+    decode_mask_png, encode_depth_png, encode_jpeg, encode_mask_png, encode_png, orbslam3,
+    ContentWriter, DatasetFormat, DepthPng, Manifest,
 };
 use crate::trajectory_io::{write_replica, write_tum};
-use crate::{CoreError, DepthImage, Distortion, Intrinsics, RgbImage, Trajectory};
+use crate::{CoreError, DepthImage, Distortion, Intrinsics, MaskImage, RgbImage, Trajectory};
 
 /// JPEG quality of Replica-layout colour frames (docs/src/formats.md, "Replica layout": quality 95).
 pub const JPEG_QUALITY: u8 = 95;
@@ -36,6 +38,8 @@ pub struct DatasetWriter {
     /// The lens the frames were taken through, written beside the intrinsics.
     distortion: Option<Distortion>,
     depth_png: DepthPng,
+    /// With instance masks: each output frame's dynamic fraction, as its mask was written.
+    masks: Option<Mutex<BTreeMap<usize, f64>>>,
 }
 
 /// The layouts written a file per frame; a bag is one file ([`super::ros2::CameraBag`]).
@@ -87,7 +91,53 @@ impl DatasetWriter {
             intrinsics,
             distortion: None,
             depth_png,
+            masks: None,
         })
+    }
+
+    /// Writes an instance mask beside each frame's colour ([`DatasetWriter::write_mask`]).
+    pub fn with_masks(self) -> Result<Self, CoreError> {
+        if self.files == FileLayout::Tum {
+            let path = self.root().join("mask");
+            std::fs::create_dir_all(&path).map_err(|e| CoreError::io(&path, e))?;
+        }
+        Ok(Self {
+            masks: Some(Mutex::default()),
+            ..self
+        })
+    }
+
+    pub fn has_masks(&self) -> bool {
+        self.masks.is_some()
+    }
+
+    /// Where output frame `index`'s instance mask goes: named like its colour, at its colour's
+    /// capture time.
+    pub fn mask_file(&self, index: usize, frame: &OutputFrame) -> String {
+        match self.files {
+            FileLayout::Replica => format!("results/mask{index:06}.png"),
+            FileLayout::Tum => tum_name("mask", frame.rgb_time),
+        }
+    }
+
+    /// The instance mask of output frame `index` (a 16-bit PNG: 0 static, k actor k).
+    pub fn write_mask(
+        &self,
+        index: usize,
+        frame: &OutputFrame,
+        mask: &MaskImage,
+    ) -> Result<(), CoreError> {
+        let Some(fractions) = &self.masks else {
+            return Err(CoreError::bad_file(
+                self.root(),
+                "an instance mask for a dataset opened without masks",
+            ));
+        };
+        self.content
+            .write(&self.mask_file(index, frame), &encode_mask_png(mask)?)?;
+        let mut fractions = fractions.lock().unwrap_or_else(|p| p.into_inner());
+        fractions.insert(index, mask.dynamic_fraction());
+        Ok(())
     }
 
     /// Frames seen through `distortion`: the camera files (`cam_params.json`, `orbslam3.yaml`)
@@ -164,8 +214,19 @@ impl DatasetWriter {
         self,
         frames: &[OutputFrame],
         ground_truth: &Trajectory,
-        manifest: Manifest,
+        mut manifest: Manifest,
     ) -> Result<Manifest, CoreError> {
+        if self.masks.is_some() {
+            let fractions = self.dynamic_fractions(frames)?;
+            manifest.extra["masks"] = serde_json::json!({
+                "ids": "0 the static scene, k walker k (extra.actors.walkers[k - 1])",
+                "dynamic_fraction": fractions,
+            });
+            if self.files == FileLayout::Tum {
+                let list = tum_list("mask", frames.iter().map(|f| f.rgb_time));
+                self.write_text("mask.txt", &list)?;
+            }
+        }
         match self.files {
             FileLayout::Replica => {
                 write_replica(&self.root().join("traj.txt"), ground_truth)?;
@@ -207,6 +268,27 @@ impl DatasetWriter {
         self.content.finish(manifest)
     }
 
+    /// Each output frame's share of pixels that see an actor, rounded to 1e-6: as its mask was
+    /// written, or for frames an interrupted run wrote, read back from their files.
+    fn dynamic_fractions(&self, frames: &[OutputFrame]) -> Result<Vec<f64>, CoreError> {
+        let written = match &self.masks {
+            Some(fractions) => fractions.lock().unwrap_or_else(|p| p.into_inner()).clone(),
+            None => BTreeMap::new(),
+        };
+        (frames.iter().enumerate())
+            .map(|(j, frame)| {
+                let fraction = match written.get(&j) {
+                    Some(&f) => f,
+                    None => {
+                        let path = self.root().join(self.mask_file(j, frame));
+                        decode_mask_png(&path)?.dynamic_fraction()
+                    }
+                };
+                Ok((fraction * 1e6).round() / 1e6)
+            })
+            .collect()
+    }
+
     /// A text file of the dataset at `rel` (written whole, counted in its checksums), its folder
     /// made if need be.
     pub fn write_text(&self, rel: &str, text: &str) -> Result<(), CoreError> {
@@ -235,7 +317,11 @@ impl DatasetWriter {
 }
 
 fn tum_list(dir: &str, times: impl Iterator<Item = f64>) -> String {
-    let kind = if dir == "rgb" { "color" } else { "depth" };
+    let kind = match dir {
+        "rgb" => "color",
+        "mask" => "instance mask",
+        _ => "depth",
+    };
     let mut text = format!("# {kind} images\n# file: 'rslam'\n# timestamp filename\n");
     for t in times {
         text.push_str(&format!("{t:.6} {}\n", tum_name(dir, t)));

@@ -1,7 +1,7 @@
 //! The GPU side of `distortion` (`distortion.wgsl`): the wide pinhole render resampled through
 //! the lens map into the frame, colour and depth. Its CPU twin is [`twin`].
 
-use rslam_core::{DepthImage, RgbImage};
+use rslam_core::{DepthImage, MaskImage, RgbImage};
 use rslam_gpu::compute::bind_group_at;
 use rslam_gpu::{FrameTextures, GpuContext};
 use wgpu::util::DeviceExt;
@@ -22,6 +22,8 @@ pub struct LensPass {
     height: u32,
     lookup: wgpu::Buffer,
     pipeline: wgpu::ComputePipeline,
+    /// Resamples instance masks (`mask_main`).
+    mask_pipeline: wgpu::ComputePipeline,
 }
 
 impl LensPass {
@@ -43,10 +45,12 @@ impl LensPass {
             height,
             lookup,
             pipeline: ctx.compute_pipeline(SHADER)?,
+            mask_pipeline: ctx.compute_pipeline_entry(SHADER, "mask_main")?,
         })
     }
 
-    /// Writes the view of `wide` (the wide pinhole render) through the lens into `frame`.
+    /// Writes the view of `wide` (the wide pinhole render) through the lens into `frame`; its
+    /// instance mask too where both have one (nearest-neighbour: ids never blend).
     pub fn record(
         &self,
         ctx: &GpuContext,
@@ -74,6 +78,26 @@ impl LensPass {
             SHADER,
             [self.width, self.height],
         );
+        if let (Some(wide_mask), Some(mask)) = (wide.mask_view(), &frame.mask) {
+            let mask = view(mask);
+            let bind_group = bind_group_at(
+                ctx,
+                &self.mask_pipeline,
+                SHADER,
+                &[
+                    (2, self.lookup.as_entire_binding()),
+                    (5, wgpu::BindingResource::TextureView(wide_mask)),
+                    (6, wgpu::BindingResource::TextureView(&mask)),
+                ],
+            );
+            dispatch_grid(
+                encoder,
+                &self.mask_pipeline,
+                &bind_group,
+                SHADER,
+                [self.width, self.height],
+            );
+        }
     }
 }
 
@@ -125,6 +149,21 @@ pub fn twin(
     (out_color, out_depth)
 }
 
+/// CPU twin of `distortion.wgsl`'s `mask_main`: `mask` (the wide render's) sampled through
+/// `view.map` at the nearest texel into a `width`×`height` mask.
+pub fn mask_twin(view: &LensView, (width, height): (u32, u32), mask: &MaskImage) -> MaskImage {
+    let last = [mask.width as i64 - 1, mask.height as i64 - 1];
+    let mut out = MaskImage::new(width, height);
+    for (id, &[x, y]) in out.data.iter_mut().zip(&view.map) {
+        let nearest = |v: f32, last: i64| {
+            let base = v.floor();
+            (base as i64 + i64::from(v - base >= 0.5)).clamp(0, last) as u32
+        };
+        *id = mask.at(nearest(x, last[0]), nearest(y, last[1]));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use rslam_core::{Distortion, Intrinsics};
@@ -133,8 +172,8 @@ mod tests {
     use super::*;
     use crate::testing;
 
-    /// The test image and a depth with steps and smooth parts, seen through both lens models,
-    /// on the GPU against the twin.
+    /// The test image, a depth with steps and smooth parts and a mask of id blocks, seen through
+    /// both lens models, on the GPU against the twin.
     #[test]
     fn gpu_remap_matches_the_twin() {
         let ctx = testing::context();
@@ -155,17 +194,37 @@ mod tests {
             let (ww, wh) = (view.wide.width, view.wide.height);
             let color = testing::test_image(ww, wh);
             let depth = testing::test_depth(ww, wh);
-            let wide = FrameTextures::new(ctx, ww, wh);
+            let wide = FrameTextures::with_mask(ctx, ww, wh, true);
             wide.upload(ctx, &color, Some(&depth));
-            let frame = FrameTextures::new(ctx, camera.width, camera.height);
+            let ids: Vec<u32> = (0..ww * wh)
+                .map(|i| (i % ww) / 5 + (i / ww) / 4 * 7)
+                .collect();
+            ctx.queue.write_texture(
+                wide.mask.as_ref().unwrap().as_image_copy(),
+                bytemuck::cast_slice(&ids),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(ww * 4),
+                    rows_per_image: Some(wh),
+                },
+                wide.size(),
+            );
+            let frame = FrameTextures::with_mask(ctx, camera.width, camera.height, true);
             let pass = LensPass::new(ctx, &view, (camera.width, camera.height)).unwrap();
-            let readback = FrameReadback::new(ctx, camera.width, camera.height, true);
+            let readback = FrameReadback::with_mask(ctx, camera.width, camera.height, true, true);
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             pass.record(ctx, &mut encoder, &wide, &frame);
             readback.encode_copy(&mut encoder, &frame);
-            let (got_color, got_depth) = readback
-                .read(ctx, ctx.queue.submit([encoder.finish()]))
+            let (got_color, got_depth, got_mask) = readback
+                .read_with_mask(ctx, ctx.queue.submit([encoder.finish()]))
                 .unwrap();
+            let wide_mask = MaskImage {
+                width: ww,
+                height: wh,
+                data: ids.iter().map(|&id| id as u16).collect(),
+            };
+            let want_mask = mask_twin(&view, (camera.width, camera.height), &wide_mask);
+            assert_eq!(got_mask.unwrap(), want_mask, "lens mask {}", lens.model());
             let (want_color, want_depth) =
                 twin(&view, (camera.width, camera.height), &color, &depth);
             testing::assert_close(

@@ -16,7 +16,7 @@ mod schedule;
 mod shutter_pass;
 
 pub use exposure::Exposure;
-pub use lens_pass::{twin as lens_twin, LensPass};
+pub use lens_pass::{mask_twin as lens_mask_twin, twin as lens_twin, LensPass};
 pub use lens_view::{LensView, MAX_WIDE_SIDE};
 pub use rolling_shutter::RollingShutter;
 pub use schedule::{CameraPath, Shutter, SubRender, MAX_RENDERS};

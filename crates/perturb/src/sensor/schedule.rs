@@ -48,7 +48,8 @@ pub struct SubRender {
     pub weight: f32,
     /// The first weighted render of its rows: it starts their sum.
     pub starts_sum: bool,
-    /// Its depth is the frame's depth in `rows` (the render at the rows' read-out instant).
+    /// Its depth (and instance mask) is the frame's in `rows` (the render at the rows' read-out
+    /// instant).
     pub depth: bool,
     /// The time it exposes, in seconds from the frame's timestamp (equal ends: one instant).
     pub light_window: (f64, f64),

@@ -1,5 +1,5 @@
-//! A dataset on disk: each source frame's colour and depth are encoded on worker threads into
-//! every output frame that uses them; index files, the state log of stateful perturbations
+//! A dataset on disk: each source frame's colour, depth and instance mask are encoded on worker
+//! threads into every output frame that uses them; index files, the state log of stateful perturbations
 //! (`sensor_state.csv`), checksums and the manifest come last.
 
 use std::collections::HashMap;
@@ -50,7 +50,10 @@ impl<'a> DatasetSink<'a> {
         let root = self.writer.root();
         let rgb = outputs.rgb.iter().map(|&j| names(j).rgb);
         let depth = outputs.depth.iter().map(|&j| names(j).depth);
-        rgb.chain(depth).all(|name| root.join(name).is_file())
+        let masks = (outputs.rgb.iter())
+            .filter(|_| self.writer.has_masks())
+            .map(|&j| self.writer.mask_file(j, &self.plan.frames[j]));
+        (rgb.chain(depth).chain(masks)).all(|name| root.join(name).is_file())
     }
 
     /// Waits for the encoders, then writes `sensor_files` (relative path, text), trajectory,
@@ -92,13 +95,18 @@ fn state_csv(table: &StateTable, plan: &FramePlan) -> String {
 }
 
 impl FrameSink for DatasetSink<'_> {
+    fn wants_mask(&self) -> bool {
+        self.writer.has_masks()
+    }
+
     fn accept_state(&mut self, table: StateTable) -> Result<(), PipelineError> {
         self.state = Some(table);
         Ok(())
     }
 
-    /// Colour and depth are unpacked on the encoder threads, each in the job that encodes it (a
-    /// source frame repeated in several output frames is encoded into each by that one job).
+    /// Colour, depth and mask are unpacked on the encoder threads, each in the job that encodes
+    /// it (a source frame repeated in several output frames is encoded into each by that one
+    /// job). A mask goes with the colour: it is of the colour's instant.
     fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError> {
         let Some(outputs) = self.outputs.get(&source) else {
             return Ok(());
@@ -107,6 +115,16 @@ impl FrameSink for DatasetSink<'_> {
             outputs.iter().map(|&j| (j, self.plan.frames[j])).collect()
         };
         let (rgb_outputs, depth_outputs) = (with_times(&outputs.rgb), with_times(&outputs.depth));
+        if let (Some(mask), false) = (frame.mask, rgb_outputs.is_empty()) {
+            let (writer, outputs) = (self.writer.clone(), rgb_outputs.clone());
+            self.pool.submit(move || {
+                let mask = mask.unpack()?;
+                for (j, times) in &outputs {
+                    writer.write_mask(*j, times, &mask)?;
+                }
+                Ok(())
+            })?;
+        }
         if !rgb_outputs.is_empty() {
             let (writer, images, color) = (self.writer.clone(), self.images.clone(), frame.color);
             self.pool.submit(move || {

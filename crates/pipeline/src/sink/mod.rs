@@ -24,9 +24,14 @@ pub trait FrameSink {
     fn wants_depth(&self) -> bool {
         true
     }
+    /// Whether it writes instance masks: only then are they read back.
+    fn wants_mask(&self) -> bool {
+        false
+    }
     /// Source frame `source`, read back into staging buffers that stay mapped until its images
     /// are unpacked: a sink with worker threads unpacks them there, sparing the frame loop's
-    /// thread. Its depth is `None` for inputs without depth.
+    /// thread. Its depth is `None` for inputs without depth, its mask unless the source has one
+    /// and the sink wants it.
     fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError>;
     /// The state stateful perturbations made each source frame with, once after the last
     /// frame; a sink that writes no dataset drops it.

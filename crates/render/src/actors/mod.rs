@@ -69,6 +69,19 @@ pub struct Actors {
 pub struct ActorMesh {
     pub mesh: Mesh,
     pub light: Vec<[f32; 3]>,
+    /// The vertices of walker k; instance masks give them id k + 1.
+    pub walker_vertices: Vec<std::ops::Range<usize>>,
+}
+
+impl ActorMesh {
+    /// The instance-mask id of each vertex: k + 1 on walker k.
+    pub fn vertex_ids(&self) -> Vec<u32> {
+        let mut ids = vec![0; self.mesh.vertices.len()];
+        for (k, range) in self.walker_vertices.iter().enumerate() {
+            ids[range.clone()].fill(k as u32 + 1);
+        }
+        ids
+    }
 }
 
 impl Actors {
@@ -164,6 +177,7 @@ impl Actors {
             out.mesh
                 .indices
                 .extend(posed.indices.iter().map(|&i| base + i));
+            (out.walker_vertices).push(base as usize..out.mesh.vertices.len());
         }
         out
     }

@@ -7,7 +7,7 @@ use wgpu::util::DeviceExt;
 use super::camera::CameraUniform;
 use super::light_mix::LightMix;
 use super::texture_array;
-use crate::actors::Actors;
+use crate::actors::{ActorMesh, Actors};
 use crate::{RenderError, Scene, Vertex};
 
 const SHADER: &str = "render/mesh.wgsl";
@@ -20,15 +20,19 @@ struct GpuVertex {
     uv: [f32; 2],
     color: [u8; 4],
     layer: u32,
+    /// Instance-mask id: 0 the scene, k walker k.
+    object: u32,
 }
 
-const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
-    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x2, 2 => Unorm8x4, 3 => Uint32];
+const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![
+    0 => Float32x3, 1 => Float32x2, 2 => Unorm8x4, 3 => Uint32, 4 => Uint32
+];
 
 /// The scene uploaded once (vertices, indices, texture array) and the pipeline that draws it
 /// into [`FrameTextures`] of one size. With actors, their posed vertices follow the scene's in
 /// the same buffers (their light layers too) and are written before each render
-/// ([`MeshRasterizer::pose_actors`]); one draw covers both.
+/// ([`MeshRasterizer::pose_actors`]); one draw covers both, and writes each pixel's object id
+/// into the frame's instance mask (or into a mask of its own for frames without one).
 pub(crate) struct MeshRasterizer {
     intrinsics: Intrinsics,
     pipeline: wgpu::RenderPipeline,
@@ -47,6 +51,8 @@ struct SceneActors {
     actors: Arc<Actors>,
     first_vertex: usize,
     vertex_count: usize,
+    /// Where object ids go when the frame has no instance mask.
+    unused_mask: wgpu::TextureView,
 }
 
 impl MeshRasterizer {
@@ -70,9 +76,8 @@ impl MeshRasterizer {
                 count: scene.textures.len(),
             });
         }
-        let gpu_vertices: Vec<GpuVertex> = (scene.mesh.vertices.iter())
-            .chain(&at_start.mesh.vertices)
-            .map(gpu_vertex)
+        let gpu_vertices: Vec<GpuVertex> = (scene.mesh.vertices.iter().map(|v| gpu_vertex(v, 0)))
+            .chain(actor_vertices(&at_start))
             .collect();
         let first = first_actor_vertex as u32;
         // Actors first: they stand in front of much of the room, and the depth test then skips
@@ -113,6 +118,14 @@ impl MeshRasterizer {
         let light_mix = LightMix::new(ctx, scene, at_start.mesh.vertices.len())?;
         light_mix.set_actor_light(ctx, first_actor_vertex, &at_start.light);
         let module = ctx.shader_module(SHADER)?;
+        let with_masks = actors.is_some();
+        let mut targets = vec![
+            Some(FrameTextures::COLOR_SRGB_FORMAT.into()),
+            Some(FrameTextures::DEPTH_FORMAT.into()),
+        ];
+        if with_masks {
+            targets.push(Some(FrameTextures::MASK_FORMAT.into()));
+        }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("mesh"),
@@ -129,12 +142,9 @@ impl MeshRasterizer {
             },
             fragment: Some(wgpu::FragmentState {
                 module: &module,
-                entry_point: Some("fs_main"),
+                entry_point: Some(if with_masks { "fs_mask" } else { "fs_main" }),
                 compilation_options: Default::default(),
-                targets: &[
-                    Some(FrameTextures::COLOR_SRGB_FORMAT.into()),
-                    Some(FrameTextures::DEPTH_FORMAT.into()),
-                ],
+                targets: &targets,
             }),
             primitive: wgpu::PrimitiveState {
                 cull_mode: None,
@@ -204,6 +214,7 @@ impl MeshRasterizer {
                 actors,
                 first_vertex: first_actor_vertex,
                 vertex_count: at_start.mesh.vertices.len(),
+                unused_mask: unused_mask(ctx, &intrinsics),
             }),
         })
     }
@@ -220,7 +231,7 @@ impl MeshRasterizer {
             scene_actors.vertex_count,
             "a walker's mesh keeps its vertices in every pose"
         );
-        let vertices: Vec<GpuVertex> = posed.mesh.vertices.iter().map(gpu_vertex).collect();
+        let vertices: Vec<GpuVertex> = actor_vertices(&posed).collect();
         let offset = (scene_actors.first_vertex * std::mem::size_of::<GpuVertex>()) as u64;
         ctx.queue
             .write_buffer(&self.vertices, offset, bytemuck::cast_slice(&vertices));
@@ -237,6 +248,9 @@ impl MeshRasterizer {
         if (intrinsics.width, intrinsics.height) != (self.intrinsics.width, self.intrinsics.height)
         {
             self.depth_buffer = z_buffer(ctx, &intrinsics);
+            if let Some(actors) = &mut self.actors {
+                actors.unused_mask = unused_mask(ctx, &intrinsics);
+            }
         }
         self.intrinsics = intrinsics;
     }
@@ -252,7 +266,7 @@ impl MeshRasterizer {
     }
 
     /// Records the render of the view from `world_from_camera` into `frame` (colour and z-depth;
-    /// pixels that see nothing get black and depth 0). The camera uniform is written now and takes
+    /// pixels that see nothing get black and depth 0; with actors, object ids into its mask). The camera uniform is written now and takes
     /// effect with the next queue submission, so submit each frame before encoding the next.
     pub fn encode(
         &self,
@@ -270,22 +284,25 @@ impl MeshRasterizer {
             load: wgpu::LoadOp::Clear(color),
             store: wgpu::StoreOp::Store,
         };
+        let attachment = |view, color| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: clear(color),
+            })
+        };
+        let mut attachments = vec![
+            attachment(color_view, wgpu::Color::BLACK),
+            attachment(depth_view, wgpu::Color::TRANSPARENT),
+        ];
+        if let Some(actors) = &self.actors {
+            let mask = frame.mask_view().unwrap_or(&actors.unused_mask);
+            attachments.push(attachment(mask, wgpu::Color::TRANSPARENT));
+        }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mesh"),
-            color_attachments: &[
-                Some(wgpu::RenderPassColorAttachment {
-                    view: color_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: clear(wgpu::Color::BLACK),
-                }),
-                Some(wgpu::RenderPassColorAttachment {
-                    view: depth_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: clear(wgpu::Color::TRANSPARENT),
-                }),
-            ],
+            color_attachments: &attachments,
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &self.depth_buffer,
                 depth_ops: Some(wgpu::Operations {
@@ -306,13 +323,33 @@ impl MeshRasterizer {
     }
 }
 
-fn gpu_vertex(v: &Vertex) -> GpuVertex {
+fn gpu_vertex(v: &Vertex, object: u32) -> GpuVertex {
     GpuVertex {
         position: v.position,
         uv: v.uv,
         color: v.color,
         layer: v.layer,
+        object,
     }
+}
+
+/// The posed actors' vertices, each with its walker's instance-mask id.
+fn actor_vertices(posed: &ActorMesh) -> impl Iterator<Item = GpuVertex> + '_ {
+    (posed.mesh.vertices.iter())
+        .zip(posed.vertex_ids())
+        .map(|(v, id)| gpu_vertex(v, id))
+}
+
+/// The object-id target of frames without an instance mask.
+fn unused_mask(ctx: &GpuContext, intrinsics: &Intrinsics) -> wgpu::TextureView {
+    ctx.texture_2d(
+        "unused instance mask",
+        FrameTextures::MASK_FORMAT,
+        (intrinsics.width, intrinsics.height),
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+        &[],
+    )
+    .create_view(&Default::default())
 }
 
 /// The z-buffer for frames of the camera's size.
