@@ -206,14 +206,32 @@ fn both_cameras_of_a_stereo_rig_see_the_same_walkers() {
     };
     render("clean", None);
     render("walkers", Some("actors:5"));
+    let fractions = manifest(&ws, "walkers")["extra"]["masks"]["dynamic_fraction"].clone();
+    // A frame differs from the clean one exactly when its mask has a walker in it.
     let changed = |camera: &str| -> Vec<bool> {
         let folder = format!("mav0/{camera}/data");
-        let names = crate::harness::sorted_names(&ws.path(&format!("clean/{folder}")));
-        (names.iter())
-            .map(|name| {
+        let mut names = crate::harness::sorted_names(&ws.path(&format!("clean/{folder}")));
+        names.sort_by_key(|name| name.trim_end_matches(".png").parse::<u64>().unwrap());
+        let listed = fractions[camera].as_array().expect("a fraction per frame");
+        assert_eq!(listed.len(), names.len(), "{camera}");
+        (names.iter().zip(listed))
+            .map(|(name, fraction)| {
                 let read =
                     |out: &str| std::fs::read(ws.path(&format!("{out}/{folder}/{name}"))).unwrap();
-                read("clean") != read("walkers")
+                let changed = read("clean") != read("walkers");
+                let path = ws.path(&format!("walkers/mav0/{camera}/mask/{name}"));
+                let mask = decode_mask_png(&path).expect("a mask per frame");
+                let dynamic = mask.dynamic_fraction();
+                assert!(
+                    (fraction.as_f64().unwrap() - dynamic).abs() < 1e-6,
+                    "{name}"
+                );
+                assert_eq!(
+                    changed,
+                    dynamic > 0.0,
+                    "{camera}/{name}: changed, or a mask"
+                );
+                changed
             })
             .collect()
     };
@@ -232,4 +250,36 @@ fn both_cameras_of_a_stereo_rig_see_the_same_walkers() {
         both as f64 >= 0.8 * either as f64,
         "{both} of {either} frames in both views"
     );
+}
+
+/// A run killed mid-way keeps its frames and masks; the resumed run reads the kept masks' dynamic
+/// fractions back and ends with the bytes of an uninterrupted run, in both layouts with masks.
+#[test]
+fn a_killed_render_with_walkers_resumes_to_the_same_bytes() {
+    let tum = [
+        "render",
+        "--scene",
+        "office1",
+        "--format",
+        "tum",
+        "--camera",
+        SMALL_CAMERA,
+    ];
+    let euroc = [
+        "render", "--scene", "office0", "--rig", "stereo", "--format", "euroc",
+    ];
+    for (command, watch) in [(&tum[..], "mask"), (&euroc[..], "mav0/cam0/mask")] {
+        let args = [
+            command,
+            &["--frames", "300", "--seed", "3", "--perturb", "actors:4"],
+            &["--out", "ds"],
+        ]
+        .concat();
+        let whole = Workspace::new();
+        whole.rslam(&args).success();
+        let killed = Workspace::new();
+        crate::resume::kill_mid_run(&killed, &args, "ds", watch, "");
+        killed.rslam(&args).success();
+        crate::dataset_check::assert_same_tree(&whole.path("ds"), &killed.path("ds"));
+    }
 }

@@ -7,6 +7,7 @@ mod atomic_write;
 mod checksums;
 mod codec;
 mod depth_png;
+mod dynamic_fractions;
 pub mod euroc;
 mod frames_deleted;
 mod layout;

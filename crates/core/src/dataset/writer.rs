@@ -1,10 +1,9 @@
-use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::Mutex;
 
+use crate::dataset::dynamic_fractions::{DynamicFractions, MASK_IDS};
 use crate::dataset::{
-    decode_mask_png, encode_depth_png, encode_jpeg, encode_mask_png, encode_png, orbslam3,
-    ContentWriter, DatasetFormat, DepthPng, Manifest,
+    encode_depth_png, encode_jpeg, encode_mask_png, encode_png, orbslam3, ContentWriter,
+    DatasetFormat, DepthPng, Manifest,
 };
 use crate::trajectory_io::{write_replica, write_tum};
 use crate::{CoreError, DepthImage, Distortion, Intrinsics, MaskImage, RgbImage, Trajectory};
@@ -39,7 +38,7 @@ pub struct DatasetWriter {
     distortion: Option<Distortion>,
     depth_png: DepthPng,
     /// With instance masks: each output frame's dynamic fraction, as its mask was written.
-    masks: Option<Mutex<BTreeMap<usize, f64>>>,
+    masks: Option<DynamicFractions<usize>>,
 }
 
 /// The layouts written a file per frame; a bag is one file ([`super::ros2::CameraBag`]).
@@ -102,7 +101,7 @@ impl DatasetWriter {
             std::fs::create_dir_all(&path).map_err(|e| CoreError::io(&path, e))?;
         }
         Ok(Self {
-            masks: Some(Mutex::default()),
+            masks: Some(DynamicFractions::default()),
             ..self
         })
     }
@@ -135,8 +134,7 @@ impl DatasetWriter {
         };
         self.content
             .write(&self.mask_file(index, frame), &encode_mask_png(mask)?)?;
-        let mut fractions = fractions.lock().unwrap_or_else(|p| p.into_inner());
-        fractions.insert(index, mask.dynamic_fraction());
+        fractions.record(index, mask);
         Ok(())
     }
 
@@ -216,10 +214,12 @@ impl DatasetWriter {
         ground_truth: &Trajectory,
         mut manifest: Manifest,
     ) -> Result<Manifest, CoreError> {
-        if self.masks.is_some() {
-            let fractions = self.dynamic_fractions(frames)?;
+        if let Some(fractions) = &self.masks {
+            let fractions: Vec<f64> = (frames.iter().enumerate())
+                .map(|(j, frame)| fractions.of(&j, &self.root().join(self.mask_file(j, frame))))
+                .collect::<Result<_, _>>()?;
             manifest.extra["masks"] = serde_json::json!({
-                "ids": "0 the static scene, k walker k (extra.actors.walkers[k - 1])",
+                "ids": MASK_IDS,
                 "dynamic_fraction": fractions,
             });
             if self.files == FileLayout::Tum {
@@ -266,27 +266,6 @@ impl DatasetWriter {
             }
         }
         self.content.finish(manifest)
-    }
-
-    /// Each output frame's share of pixels that see an actor, rounded to 1e-6: as its mask was
-    /// written, or for frames an interrupted run wrote, read back from their files.
-    fn dynamic_fractions(&self, frames: &[OutputFrame]) -> Result<Vec<f64>, CoreError> {
-        let written = match &self.masks {
-            Some(fractions) => fractions.lock().unwrap_or_else(|p| p.into_inner()).clone(),
-            None => BTreeMap::new(),
-        };
-        (frames.iter().enumerate())
-            .map(|(j, frame)| {
-                let fraction = match written.get(&j) {
-                    Some(&f) => f,
-                    None => {
-                        let path = self.root().join(self.mask_file(j, frame));
-                        decode_mask_png(&path)?.dynamic_fraction()
-                    }
-                };
-                Ok((fraction * 1e6).round() / 1e6)
-            })
-            .collect()
     }
 
     /// A text file of the dataset at `rel` (written whole, counted in its checksums), its folder

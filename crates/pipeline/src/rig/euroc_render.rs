@@ -242,11 +242,15 @@ impl Planned for RigRender<'_> {
         }
         Ok(Box::new(move |out, found, manifest, progress| {
             let (rig, perturbed, spec) = (&self.rig, &self.perturbed, &self.scene.spec);
-            let writer = Arc::new(EurocWriter::open(
+            let mut writer = EurocWriter::open(
                 out,
                 perturbed.written.cameras.clone(),
                 perturbed.written.imu.clone(),
-            )?);
+            )?;
+            if self.resolved.actors.is_some() {
+                writer = writer.with_masks()?;
+            }
+            let writer = Arc::new(writer);
             let stamps = self.stamps()?;
             // A resumed run keeps each camera's frames up to the first one missing.
             let keep = found.keeps_written_frames(spec.stateful_item().is_some());

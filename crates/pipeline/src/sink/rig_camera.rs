@@ -6,21 +6,37 @@ use std::sync::Arc;
 use rslam_core::dataset::euroc::EurocWriter;
 use rslam_core::dataset::ros2::RigBag;
 use rslam_core::dataset::Manifest;
-use rslam_core::{CoreError, ImagePool, RgbImage};
+use rslam_core::{CoreError, ImagePool, MaskImage, RgbImage};
 use rslam_gpu::MappedFrame;
 
 use crate::encoder_pool::EncoderPool;
 use crate::sink::FrameSink;
 use crate::PipelineError;
 
-/// Where a rig camera's frames go: each camera's frames in stamp order.
+/// Where a rig camera's frames go: each camera's frames in stamp order, and where the writer
+/// takes them, their instance masks.
 pub trait RigFrameWriter: Send + Sync {
     fn write_frame(&self, camera: usize, t_ns: u64, image: &RgbImage) -> Result<(), CoreError>;
+    fn writes_masks(&self) -> bool {
+        false
+    }
+    /// Only called when [`RigFrameWriter::writes_masks`].
+    fn write_mask(&self, _camera: usize, _t_ns: u64, _mask: &MaskImage) -> Result<(), CoreError> {
+        Ok(())
+    }
 }
 
 impl RigFrameWriter for EurocWriter {
     fn write_frame(&self, camera: usize, t_ns: u64, image: &RgbImage) -> Result<(), CoreError> {
         self.write_frame_ns(camera, t_ns, image)
+    }
+
+    fn writes_masks(&self) -> bool {
+        self.has_masks()
+    }
+
+    fn write_mask(&self, camera: usize, t_ns: u64, mask: &MaskImage) -> Result<(), CoreError> {
+        EurocWriter::write_mask(self, camera, t_ns, mask)
     }
 }
 
@@ -95,6 +111,10 @@ impl FrameSink for RigCameraSink {
         false
     }
 
+    fn wants_mask(&self) -> bool {
+        self.writer.writes_masks()
+    }
+
     fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError> {
         let Some(&t_ns) = self.times_ns.get(source) else {
             return Err(PipelineError::Worker(format!(
@@ -103,8 +123,12 @@ impl FrameSink for RigCameraSink {
             )));
         };
         let (writer, camera, images) = (self.writer.clone(), self.camera, self.images.clone());
-        let color = frame.color;
+        let (color, mask) = (frame.color, frame.mask);
         self.pool.submit(move || {
+            // The mask first: a frame kept by a resumed run has its mask.
+            if let Some(mask) = mask {
+                writer.write_mask(camera, t_ns, &mask.unpack()?)?;
+            }
             let color = color.unpack(&images)?;
             writer.write_frame(camera, t_ns, &color)?;
             images.give_rgb(color);

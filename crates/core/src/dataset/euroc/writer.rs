@@ -11,12 +11,13 @@ use super::sensor_yaml::{camera_yaml, imu_yaml};
 use super::{
     nanoseconds_from_seconds, CameraColour, EurocCamera, EurocImu, GroundTruthState, ImuSample,
 };
+use crate::dataset::dynamic_fractions::{DynamicFractions, MASK_IDS};
 use crate::dataset::orbslam3::{stereo_inertial_settings, stereo_pair_problem, stereo_settings};
 use crate::dataset::{
-    encode_grey16_png, encode_grey_png, encode_png, is_bookkeeping, refuse_symlinks, ContentWriter,
-    Manifest,
+    encode_grey16_png, encode_grey_png, encode_mask_png, encode_png, is_bookkeeping,
+    refuse_symlinks, ContentWriter, Manifest,
 };
-use crate::{CoreError, Pose, RgbImage};
+use crate::{CoreError, MaskImage, Pose, RgbImage};
 
 /// The folder under the dataset root that holds every sensor, as in the published dataset.
 pub const MAV_DIR: &str = "mav0";
@@ -60,6 +61,8 @@ pub struct EurocWriter {
     /// Whether `finish` writes the sensor.yaml files and ORB-SLAM3's settings (EuRoC), or the
     /// calibration lives elsewhere ([`EurocWriter::open_calibration_elsewhere`]).
     sensor_yaml: bool,
+    /// With instance masks (`mav0/<cam>/mask/<t_ns>.png`): each frame's dynamic fraction.
+    masks: Option<DynamicFractions<(usize, u64)>>,
 }
 
 /// A folder name made of letters, digits and `_` (as `cam0`): nothing that leaves `mav0/`.
@@ -242,7 +245,48 @@ impl EurocWriter {
             },
             copied: Mutex::new(HashSet::new()),
             sensor_yaml,
+            masks: None,
         })
+    }
+
+    /// Writes an instance mask beside each camera frame ([`EurocWriter::write_mask`]).
+    pub fn with_masks(self) -> Result<Self, CoreError> {
+        for stream in &self.cameras {
+            let dir = self.mask_dir(&stream.camera.name);
+            std::fs::create_dir_all(&dir).map_err(|e| CoreError::io(&dir, e))?;
+        }
+        Ok(Self {
+            masks: Some(DynamicFractions::default()),
+            ..self
+        })
+    }
+
+    pub fn has_masks(&self) -> bool {
+        self.masks.is_some()
+    }
+
+    fn mask_dir(&self, camera_name: &str) -> PathBuf {
+        self.root().join(MAV_DIR).join(camera_name).join("mask")
+    }
+
+    /// Camera `camera`'s instance mask of its frame at `t_ns`, as `mav0/<cam>/mask/<t_ns>.png`
+    /// (a 16-bit PNG: 0 static, k actor k). Written before the frame itself, so that a kept
+    /// frame ([`EurocWriter::keep_written_frames`]) has its mask.
+    pub fn write_mask(&self, camera: usize, t_ns: u64, mask: &MaskImage) -> Result<(), CoreError> {
+        let stream = self.camera(camera)?;
+        let name = &stream.camera.name;
+        let Some(fractions) = &self.masks else {
+            return Err(CoreError::bad_file(
+                self.root().join(MAV_DIR).join(name),
+                "an instance mask for a dataset opened without masks",
+            ));
+        };
+        self.content.write(
+            &format!("{MAV_DIR}/{name}/mask/{t_ns}.png"),
+            &encode_mask_png(mask)?,
+        )?;
+        fractions.record((camera, t_ns), mask);
+        Ok(())
     }
 
     pub fn root(&self) -> &Path {
@@ -489,7 +533,25 @@ impl EurocWriter {
     /// with two cameras or more, and [`ORBSLAM3_STEREO_INERTIAL_FILE`] when there is an IMU as
     /// well), the checksum list (frames an earlier, interrupted run wrote are hashed now), then the
     /// manifest with the content digest, last. Returns the manifest as written.
-    pub fn finish(self, manifest: Manifest) -> Result<Manifest, CoreError> {
+    pub fn finish(self, mut manifest: Manifest) -> Result<Manifest, CoreError> {
+        if let Some(fractions) = &self.masks {
+            let mut cameras = serde_json::Map::new();
+            for (camera, stream) in self.cameras.iter().enumerate() {
+                let name = &stream.camera.name;
+                let times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
+                let of_camera: Vec<f64> = (times.iter())
+                    .map(|&t| {
+                        let path = self.mask_dir(name).join(format!("{t}.png"));
+                        fractions.of(&(camera, t), &path)
+                    })
+                    .collect::<Result<_, _>>()?;
+                cameras.insert(name.clone(), of_camera.into());
+            }
+            manifest.extra["masks"] = serde_json::json!({
+                "ids": MASK_IDS,
+                "dynamic_fraction": cameras,
+            });
+        }
         for stream in &self.cameras {
             let name = &stream.camera.name;
             let times = stream.times_ns.lock().unwrap_or_else(|p| p.into_inner());
