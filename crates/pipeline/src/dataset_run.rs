@@ -76,7 +76,9 @@ fn bag_writing<'a, S: FrameSource + 'a>(
     Box::new(move |out, _found, manifest, progress| {
         let plan = target.plan;
         let imu = target.bag_imu.cloned();
-        let bag = CameraBag::create(out, target.camera, manifest.distortion, imu, manifest.bag)?;
+        let masks = pipeline.source().has_mask();
+        let (camera, lens) = (target.camera, manifest.distortion);
+        let bag = CameraBag::create(out, camera, lens, (imu, masks), manifest.bag)?;
         let mut sink = CameraBagSink::new(bag, ContentWriter::new(out), plan, target.ground_truth);
         let sources = plan.needed_sources();
         progress.start(sources.len(), what);

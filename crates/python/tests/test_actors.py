@@ -1,6 +1,8 @@
 """People walking through a scene (`actors`) in rslam.render: seeded, and only ever hiding the
 room (depth nearer where they pass), as `rslam render` draws them."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -27,3 +29,48 @@ def test_a_mesh_without_a_free_floor_refuses_walkers(tmp_path):
                     "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
     with pytest.raises(ValueError, match="free floor"):
         rslam.render(str(mesh), np.eye(4)[None].repeat(2, axis=0), camera=CAMERA, perturb="actors:1")
+
+
+def test_masks_read_by_pillow_and_rosbags_say_where_the_walkers_are(rslam_bin, tmp_path):
+    """The same job as a TUM dataset and as a ROS 2 bag: Pillow reads each 16-bit mask PNG,
+    `rosbags` each mono16 mask message, stamped as its colour frame; they hold the same ids, and
+    where an id is set the depth is the walker's (nearer than the TUM dataset's clean depth)."""
+    from PIL import Image
+    from rosbags.rosbag2 import Reader
+    from rosbags.typesys import Stores, get_typestore
+    from conftest import run_cli
+
+    common = ["render", "--scene", "office2", "--camera", CAMERA, "--frames", "60", "--seed", "4"]
+    run_cli(rslam_bin, *common, "--format", "tum", "--out", tmp_path / "clean")
+    for fmt in ["tum", "ros2"]:
+        run_cli(rslam_bin, *common, "--perturb", "actors:5", "--format", fmt, "--out", tmp_path / fmt)
+    listed = [line.split() for line in (tmp_path / "tum/mask.txt").read_text().splitlines()
+              if not line.startswith("#")]
+    masks = []
+    for stamp, name in listed:
+        image = Image.open(tmp_path / "tum" / name)
+        assert image.mode in ("I;16", "I;16B", "I")
+        masks.append((stamp, np.asarray(image).astype(np.uint16)))
+    types = get_typestore(Stores.ROS2_HUMBLE)
+    with Reader(tmp_path / "ros2") as reader:
+        wanted = [c for c in reader.connections if c.topic == "/camera/mask/image_raw"]
+        messages = [types.deserialize_cdr(raw, c.msgtype) for c, _, raw in reader.messages(connections=wanted)]
+    assert len(messages) == len(masks) == 60
+    seen = set()
+    for (stamp, mask), message in zip(masks, messages):
+        assert message.encoding == "mono16"
+        t = message.header.stamp.sec + message.header.stamp.nanosec * 1e-9
+        assert f"{t:.6f}" == stamp
+        dtype = ">u2" if message.is_bigendian else "<u2"
+        from_bag = np.frombuffer(bytes(message.data), dtype).reshape(message.height, message.width)
+        assert np.array_equal(from_bag, mask)
+        seen.update(np.unique(mask).tolist())
+        clean = np.asarray(Image.open(tmp_path / f"clean/depth/{stamp}.png")).astype(np.int64)
+        walkers = np.asarray(Image.open(tmp_path / f"tum/depth/{stamp}.png")).astype(np.int64)
+        on = (mask > 0) & (clean > 0)
+        assert (walkers[on] <= clean[on]).all()
+        assert (walkers[mask == 0] == clean[mask == 0]).all()
+    assert seen == {0, 1, 2, 3}, f"ids seen {seen}"
+    fractions = [json.loads((tmp_path / fmt / "rslam.json").read_text())["extra"]["masks"]["dynamic_fraction"]
+                 for fmt in ["tum", "ros2"]]
+    assert fractions[0] == fractions[1] == [round(float((m > 0).mean()), 6) for _, m in masks]

@@ -10,7 +10,7 @@ use crate::dataset::decode_mask_png;
 use crate::{CoreError, MaskImage};
 
 /// What a mask's ids mean, as the manifest says it.
-pub(crate) const MASK_IDS: &str = "0 the static scene, k walker k (extra.actors.walkers[k - 1])";
+pub const MASK_IDS: &str = "0 the static scene, k walker k (extra.actors.walkers[k - 1])";
 
 /// The fractions of the masks written, by frame key.
 pub(crate) struct DynamicFractions<K> {
@@ -39,6 +39,11 @@ impl<K: Eq + Hash> DynamicFractions<K> {
             Some(&fraction) => fraction,
             None => decode_mask_png(path)?.dynamic_fraction(),
         };
-        Ok((fraction * 1e6).round() / 1e6)
+        Ok(rounded(fraction))
     }
+}
+
+/// A dynamic fraction as the manifest records it, to 1e-6.
+pub fn rounded(fraction: f64) -> f64 {
+    (fraction * 1e6).round() / 1e6
 }

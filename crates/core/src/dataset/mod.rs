@@ -32,6 +32,7 @@ pub use codec::{
     write_rgb_like,
 };
 pub use depth_png::DepthPng;
+pub use dynamic_fractions::{rounded as rounded_dynamic_fraction, MASK_IDS};
 pub use frames_deleted::{
     copy_without_frames, delete_frames, is_frame_file, read_frames_deleted, FramesDeleted,
     FRAMES_DELETED_FILE,

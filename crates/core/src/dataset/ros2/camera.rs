@@ -5,7 +5,8 @@
 //! ground-truth pose of the optical frame in `world`, the pose a TUM `groundtruth.txt` of the
 //! same job holds (and, asked for, `camera_link` in `world` on `/tf`). With an IMU (the `rgbd-imu`
 //! rig), its readings on `/imu0` in its own frame `imu0`, whose pose in `camera_link` joins
-//! `/tf_static`, each logged before the frames stamped after it.
+//! `/tf_static`, each logged before the frames stamped after it. With actors, each colour
+//! frame's instance mask (`mono16`: 0 static, k actor k) on `/camera/mask/image_raw`.
 
 use std::path::Path;
 
@@ -18,7 +19,7 @@ use super::messages::{
 use super::options::BagOptions;
 use super::schemas::MessageType;
 use crate::dataset::euroc::ImuSample;
-use crate::{CoreError, DepthImage, Distortion, Intrinsics, RgbImage};
+use crate::{CoreError, DepthImage, Distortion, Intrinsics, MaskImage, RgbImage};
 
 pub const COLOR_TOPIC: &str = "/camera/color/image_raw";
 pub const COLOR_INFO_TOPIC: &str = "/camera/color/camera_info";
@@ -31,6 +32,7 @@ pub const OPTICAL_FRAME: &str = "camera_color_optical_frame";
 pub const BODY_FRAME: &str = "camera_link";
 pub const WORLD_FRAME: &str = "world";
 pub const IMU_TOPIC: &str = "/imu0";
+pub const MASK_TOPIC: &str = "/camera/mask/image_raw";
 pub const IMU_FRAME: &str = "imu0";
 /// 16UC1 depth units per metre.
 pub const DEPTH_UNITS_PER_METRE: f64 = 1000.0;
@@ -65,17 +67,19 @@ pub struct CameraBag {
     /// The indices of the optional topics.
     imu_topic: Option<usize>,
     tf_topic: Option<usize>,
+    mask_topic: Option<usize>,
     /// The IMU samples written so far.
     imu_written: usize,
     tf_written: bool,
 }
 
 impl CameraBag {
+    /// With `masks`, the bag has the instance-mask topic ([`CameraBag::write_mask`]).
     pub fn create(
         folder: &Path,
         intrinsics: Intrinsics,
         distortion: Option<Distortion>,
-        imu: Option<BagImu>,
+        (imu, masks): (Option<BagImu>, bool),
         options: BagOptions,
     ) -> Result<Self, CoreError> {
         let name = bag_name(folder);
@@ -95,6 +99,7 @@ impl CameraBag {
         };
         let imu_topic = optional(imu.is_some(), Topic::new(IMU_TOPIC, MessageType::Imu));
         let tf_topic = optional(options.tf, Topic::new(TF_TOPIC, MessageType::TfMessage));
+        let mask_topic = optional(masks, Topic::new(MASK_TOPIC, MessageType::Image));
         Ok(Self {
             bag: BagWriter::create(folder, &name, &topics, options.compression)?,
             intrinsics,
@@ -103,6 +108,7 @@ impl CameraBag {
             imu,
             imu_topic,
             tf_topic,
+            mask_topic,
             imu_written: 0,
             tf_written: false,
         })
@@ -123,6 +129,31 @@ impl CameraBag {
         self.bag.write(COLOR, stamp, &message)?;
         let info = camera_info(header(stamp), &self.intrinsics, self.distortion);
         self.bag.write(COLOR_INFO, stamp, &info)
+    }
+
+    pub fn has_masks(&self) -> bool {
+        self.mask_topic.is_some()
+    }
+
+    /// The instance mask of the colour captured at `time`, as `mono16`.
+    pub fn write_mask(&mut self, time: f64, mask: &MaskImage) -> Result<(), CoreError> {
+        let Some(topic) = self.mask_topic else {
+            return Err(CoreError::Encode {
+                message: format!("{MASK_TOPIC}: an instance mask for a bag made without masks"),
+            });
+        };
+        let stamp = self.stamp_at(time)?;
+        let data: &[u8] = bytemuck::cast_slice(&mask.data);
+        let message = Image {
+            header: header(stamp),
+            height: mask.height,
+            width: mask.width,
+            encoding: "mono16".into(),
+            is_bigendian: u8::from(cfg!(target_endian = "big")),
+            step: 2 * mask.width,
+            data: Bytes(data),
+        };
+        self.bag.write(topic, stamp, &message)
     }
 
     /// Depth captured at `time` and its camera info, in the options' encoding.

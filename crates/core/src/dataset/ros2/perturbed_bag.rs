@@ -243,7 +243,8 @@ mod tests {
     fn recorded(folder: &Path) -> RecordedBag {
         std::fs::create_dir_all(folder).unwrap();
         let camera = Intrinsics::from_pinhole((4, 2), [3.0, 3.0, 2.0, 1.0]).unwrap();
-        let mut bag = CameraBag::create(folder, camera, None, None, Default::default()).unwrap();
+        let mut bag =
+            CameraBag::create(folder, camera, None, (None, false), Default::default()).unwrap();
         for i in 0..FRAMES {
             let t = 1e9 + i as f64 / 30.0;
             bag.write_rgb(t, &colour(i)).unwrap();
