@@ -105,10 +105,6 @@ impl FramesInMemory<SceneSource> {
         let deviated = rslam_perturb::trajectory::deviate(clean, spec, seed);
         let plan = FramePlan::rendered(deviated.len(), *rate_hz, spec, seed);
         let rate_hz = *rate_hz;
-        let shutter_changed = self
-            .pipeline
-            .source_mut()
-            .set_sensor(ctx, spec, rate_hz, seed)?;
         let path_changed = deviated.poses != self.pipeline.source().poses();
         let with_walkers = !(spec.world.is_empty() && self.spec.world.is_empty());
         let walkers_changed = with_walkers && (spec.world != self.spec.world || seed != self.seed);
@@ -117,6 +113,10 @@ impl FramesInMemory<SceneSource> {
             let actors = scene_actors::plan(&scene, spec, seed, &deviated.poses, rate_hz)?;
             self.pipeline.source_mut().set_actors(ctx, actors)?;
         }
+        let shutter_changed = self
+            .pipeline
+            .source_mut()
+            .set_sensor(ctx, spec, rate_hz, seed)?;
         if path_changed || shutter_changed || walkers_changed {
             self.pipeline.source_mut().set_poses(deviated.poses);
             self.generation += 1;

@@ -152,13 +152,19 @@ impl SceneSource {
         &self.poses
     }
 
-    /// Draws `actors` from now on (the scene uploaded again with room for their vertices). Frames
-    /// shown from memory carry no instance masks: the lens and shutter keep theirs as they are.
+    /// Draws `actors` from now on (the scene uploaded again with room for their vertices); call
+    /// [`Self::set_sensor`] after it: the lens and shutter are made again when frames gain or lose
+    /// their instance masks.
     pub fn set_actors(
         &mut self,
         ctx: &GpuContext,
         actors: Option<Arc<Actors>>,
     ) -> Result<(), PipelineError> {
+        if actors.is_some() != self.with_mask {
+            self.with_mask = actors.is_some();
+            self.lens = None;
+            self.shutter = None;
+        }
         let drawn = *self.rasterizer.intrinsics();
         let settings = SplatSettings::default();
         self.rasterizer = Rasterizer::with_actors(ctx, &self.scene, drawn, settings, actors)?;

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use rslam_core::dataset::{decode_depth_png, read_rgb, DatasetFormat, DepthPng};
+use rslam_core::dataset::{decode_depth_png, decode_mask_png, read_rgb, DatasetFormat, DepthPng};
 use rslam_core::Intrinsics;
 use rslam_gpu::{AdapterChoice, GpuContext};
 use rslam_perturb::PerturbSpec;
@@ -155,6 +155,51 @@ fn scene_frames_in_memory_are_the_frames_a_render_writes() {
     assert_eq!(all[2].depth_time, all[1].rgb_time);
     assert_eq!(all[1].depth, all[0].depth);
     assert_ne!(all[2].depth, all[1].depth);
+}
+
+/// Walkers through a lens under a rolling shutter, in memory as a render writes them (instance
+/// masks too), whether the frames were made with them or the same sensor without walkers took
+/// them in place (its lens and shutter then carry masks too).
+#[test]
+fn walkers_in_memory_and_their_masks_are_what_a_render_writes() {
+    let ctx = context();
+    let sensor = "rolling_shutter:30,distortion:radtan(-0.2,0.05,0,0)";
+    let job = SceneJob {
+        scene: "office2".into(),
+        frames: Some(60),
+        ..scene_job(&format!("actors:5,{sensor}"))
+    };
+    let made_with = collect(&mut FramesInMemory::scene(ctx, &job).unwrap(), 0..60);
+    let mut taken_in_place = FramesInMemory::scene(
+        ctx,
+        &SceneJob {
+            spec: PerturbSpec::parse(sensor).unwrap(),
+            ..job.clone()
+        },
+    )
+    .unwrap();
+    assert!(collect(&mut taken_in_place, 0..2)[0].mask.is_none());
+    taken_in_place.set_spec(ctx, &job.spec, job.seed).unwrap();
+    assert_eq!(collect(&mut taken_in_place, 0..60), made_with);
+    let (_dir, out, written) = render_tum(job);
+    assert_eq!(written, 60);
+    let mut seen = 0;
+    for frame in &made_with {
+        assert_written(&out, frame);
+        let png = out.join(format!("mask/{:.6}.png", frame.rgb_time));
+        let mask = frame
+            .mask
+            .as_ref()
+            .expect("frames with walkers carry masks");
+        assert_eq!(
+            &decode_mask_png(&png).unwrap(),
+            mask,
+            "frame {}",
+            frame.index
+        );
+        seen += usize::from(mask.dynamic_fraction() > 0.0);
+    }
+    assert!(seen >= 5, "walkers in {seen} frames");
 }
 
 #[test]

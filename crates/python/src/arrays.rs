@@ -7,7 +7,7 @@ use numpy::ndarray::{ArrayViewD, Axis};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use rslam_core::{DepthImage, RgbImage};
+use rslam_core::{DepthImage, MaskImage, RgbImage};
 
 /// How the caller laid out colour, to give the result back the same way.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -353,4 +353,14 @@ pub fn depth_to_numpy<'py>(
             Ok(PyArray1::from_vec(py, data).reshape(shape)?.into_any())
         }
     }
+}
+
+/// Instance masks as one uint16 NxHxW array (0 the static scene, k walker k).
+pub fn masks_to_numpy(py: Python<'_>, frames: Vec<MaskImage>) -> PyResult<Bound<'_, PyAny>> {
+    let (height, width) = frames
+        .first()
+        .map_or((0, 0), |f| (f.height as usize, f.width as usize));
+    let shape = [frames.len(), height, width];
+    let data: Vec<u16> = frames.into_iter().flat_map(|f| f.data).collect();
+    Ok(PyArray1::from_vec(py, data).reshape(shape)?.into_any())
 }

@@ -4,12 +4,13 @@
 use numpy::PyArrayMethods;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use rslam_core::Pose;
+use pyo3::types::PyTuple;
+use rslam_core::{MaskImage, Pose};
 use rslam_perturb::PerturbSpec;
 use rslam_pipeline::{FramesInMemory, SceneJob};
 use rslam_render::splat::{CaptureOptions, SplatDepth, SplatSettings};
 
-use crate::arrays::{colors_to_numpy, depth_to_numpy, ColorLayout, DepthUnits};
+use crate::arrays::{colors_to_numpy, depth_to_numpy, masks_to_numpy, ColorLayout, DepthUnits};
 use crate::camera;
 use crate::frames::RunError;
 use crate::gpu;
@@ -48,11 +49,14 @@ pub(crate) fn pose_of_matrix(m: &[[f64; 4]; 4]) -> Pose {
 ///         metres are refused on a capture.
 ///     capture_depth: a capture's depth, 'expected' (default) or 'median'.
 ///     capture_min_opacity: a capture's pixels under this accumulated opacity get depth 0.
+///     masks: also return the instance masks (``actors``): which walker each pixel sees.
 ///
 /// Returns:
 ///     (rgb, depth): uint8 NxHxWx3 sRGB and float32 NxHxW z-depth in metres (0 = nothing hit),
 ///     one frame per output frame (N poses, fewer under fast:K). N frames are held in memory:
-///     1200x680 costs about 5.7 MB a frame.
+///     1200x680 costs about 5.7 MB a frame. With ``masks=True``, (rgb, depth, mask): mask is
+///     uint16 NxHxW, 0 the static scene and k walker k, at each colour frame's instant (all 0
+///     without ``actors``), as ``rslam render`` writes mask PNGs.
 #[pyfunction]
 #[pyo3(signature = (
     scene,
@@ -64,6 +68,7 @@ pub(crate) fn pose_of_matrix(m: &[[f64; 4]; 4]) -> Pose {
     capture_scale = None,
     capture_depth = "expected",
     capture_min_opacity = 0.5,
+    masks = false,
 ))]
 #[allow(clippy::too_many_arguments)] // Python's keyword arguments
 pub fn render<'py>(
@@ -77,7 +82,8 @@ pub fn render<'py>(
     capture_scale: Option<f64>,
     capture_depth: &str,
     capture_min_opacity: f32,
-) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    masks: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
     let depth: SplatDepth =
         (capture_depth.parse()).map_err(|e| PyValueError::new_err(format!("capture_depth {e}")))?;
     let poses = poses_from(poses)?;
@@ -120,14 +126,21 @@ pub fn render<'py>(
     })?;
     let mut colors = Vec::with_capacity(frames.len());
     let mut depths = Vec::with_capacity(frames.len());
+    let mut instance_masks = Vec::with_capacity(frames.len());
     for frame in frames {
+        let (width, height) = (frame.color.width, frame.color.height);
+        instance_masks.push(frame.mask.unwrap_or_else(|| MaskImage::new(width, height)));
         colors.push((frame.color, None));
         depths.extend(frame.depth);
     }
-    Ok((
+    let mut arrays = vec![
         colors_to_numpy(py, colors, ColorLayout::Rgb)?,
         depth_to_numpy(py, depths, DepthUnits::Metres, true)?,
-    ))
+    ];
+    if masks {
+        arrays.push(masks_to_numpy(py, instance_masks)?);
+    }
+    PyTuple::new(py, arrays)
 }
 
 /// The default camera path of a built-in scene as Nx4x4 camera-to-world matrices (float64), at

@@ -1,5 +1,6 @@
 """People walking through a scene (`actors`) in rslam.render: seeded, and only ever hiding the
-room (depth nearer where they pass), as `rslam render` draws them."""
+room (depth nearer where they pass, and only where their instance masks say), as `rslam render`
+draws them; the masks `rslam render` writes, read by Pillow and rosbags."""
 
 import json
 
@@ -14,12 +15,17 @@ CAMERA = "64,48,40,40,31.5,23.5"
 def test_walkers_hide_part_of_the_room_the_same_way_every_time():
     poses = rslam.scene_poses("office2")[:80]
     clean = rslam.render("office2", poses, camera=CAMERA)
-    a = rslam.render("office2", poses, camera=CAMERA, perturb="actors:5", seed=4)
+    a = rslam.render("office2", poses, camera=CAMERA, perturb="actors:5", seed=4, masks=True)
     b = rslam.render("office2", poses, camera=CAMERA, perturb="actors:5", seed=4)
     assert np.array_equal(a[1], b[1]) and np.array_equal(a[0], b[0])
+    mask = a[2]
+    assert mask.dtype == np.uint16 and mask.shape == a[1].shape
     changed = a[1] != clean[1]
     assert changed.any(axis=(1, 2)).sum() >= 5, "walkers seen in a few frames"
+    assert not (changed & (mask == 0)).any(), "depth changed only where a mask says a walker is"
     assert (a[1][changed & (clean[1] > 0)] < clean[1][changed & (clean[1] > 0)]).all()
+    assert set(np.unique(mask)) == {0, 1, 2, 3}
+    assert not rslam.render("office2", poses[:2], camera=CAMERA, masks=True)[2].any()
 
 
 def test_a_mesh_without_a_free_floor_refuses_walkers(tmp_path):

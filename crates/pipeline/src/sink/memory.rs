@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 use std::ops::Range;
 
-use rslam_core::{DepthImage, ImagePool, RgbImage};
+use rslam_core::{DepthImage, ImagePool, MaskImage, RgbImage};
 use rslam_gpu::MappedFrame;
 
 use super::FrameSink;
@@ -20,6 +20,8 @@ pub struct RgbdFrame {
     pub color: RgbImage,
     /// `None` for inputs without depth.
     pub depth: Option<DepthImage>,
+    /// The instance mask at the colour's instant; `None` without actors.
+    pub mask: Option<MaskImage>,
 }
 
 pub struct MemorySink<'a, F> {
@@ -28,6 +30,7 @@ pub struct MemorySink<'a, F> {
     next: usize,
     colors: HashMap<usize, RgbImage>,
     depths: HashMap<usize, DepthImage>,
+    masks: HashMap<usize, MaskImage>,
     with_depth: bool,
     deliver: F,
 }
@@ -41,6 +44,7 @@ impl<'a, F: FnMut(RgbdFrame) -> Result<(), PipelineError>> MemorySink<'a, F> {
             outputs,
             colors: HashMap::new(),
             depths: HashMap::new(),
+            masks: HashMap::new(),
             with_depth,
             deliver,
         }
@@ -65,6 +69,7 @@ impl<'a, F: FnMut(RgbdFrame) -> Result<(), PipelineError>> MemorySink<'a, F> {
             let last = self.last_use(&self.plan.rgb_source, rgb) == Some(j);
             let color = take(&mut self.colors, rgb, last)
                 .ok_or_else(|| PipelineError::Worker(format!("colour of frame {rgb} lost")))?;
+            let mask = take(&mut self.masks, rgb, last);
             let depth = match depth.filter(|_| self.with_depth) {
                 Some(d) => {
                     let last = self.last_use(&self.plan.depth_source, d) == Some(j);
@@ -79,6 +84,7 @@ impl<'a, F: FnMut(RgbdFrame) -> Result<(), PipelineError>> MemorySink<'a, F> {
                 depth_time: times.map_or(0.0, |t| t.depth_time),
                 color,
                 depth,
+                mask,
             })?;
             self.next += 1;
         }
@@ -96,12 +102,20 @@ fn take<T: Clone>(map: &mut HashMap<usize, T>, key: usize, last_use: bool) -> Op
 }
 
 impl<F: FnMut(RgbdFrame) -> Result<(), PipelineError>> FrameSink for MemorySink<'_, F> {
+    fn wants_mask(&self) -> bool {
+        true
+    }
+
     /// Unpacks on the frame loop's thread: the frames leave through the callback there.
-    fn accept(&mut self, source: usize, frame: MappedFrame) -> Result<(), PipelineError> {
+    fn accept(&mut self, source: usize, mut frame: MappedFrame) -> Result<(), PipelineError> {
+        let mask = frame.mask.take().map(|m| m.unpack()).transpose()?;
         let (color, depth) = frame.unpack(&ImagePool::default())?;
         let outputs = self.outputs.clone();
         if outputs.clone().any(|j| self.plan.rgb_source[j] == source) {
             self.colors.insert(source, color);
+            if let Some(mask) = mask {
+                self.masks.insert(source, mask);
+            }
         }
         if let Some(depth) = depth.filter(|_| self.with_depth) {
             if outputs.clone().any(|j| self.plan.depth_source[j] == source) {
