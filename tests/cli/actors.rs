@@ -66,6 +66,51 @@ fn walkers_cross_the_view_of_a_tum_dataset_and_leave_the_other_frames_alone() {
         covered.iter().any(|&c| c < most / 4.0),
         "the walkers' share varies"
     );
+    check_dynamic_ate(&ws, "walkers", &covered);
+}
+
+/// `rslam eval --dynamic-above` on the dataset's own ground truth, against an estimate 5 cm off
+/// on the frames where walkers cover more than 5 % of the view (unaligned, so that the error is
+/// exactly that): those frames, and their error.
+fn check_dynamic_ate(ws: &Workspace, walkers: &str, covered: &[f64]) {
+    let gt = std::fs::read_to_string(ws.path(&format!("{walkers}/groundtruth.txt"))).unwrap();
+    let poses = gt.lines().filter(|l| !l.starts_with('#'));
+    let est: String = (poses.zip(covered))
+        .map(|(line, &fraction)| {
+            let mut v: Vec<f64> = line.split(' ').map(|x| x.parse().unwrap()).collect();
+            v[1] += if fraction > 0.05 { 0.05 } else { 0.0 };
+            let text: Vec<String> = v.iter().map(|x| format!("{x:.6}")).collect();
+            text.join(" ") + "\n"
+        })
+        .collect();
+    ws.write("est.txt", &est);
+    let gt_path = format!("{walkers}/groundtruth.txt");
+    let args = [
+        "eval",
+        "est.txt",
+        &gt_path,
+        "--dynamic-above",
+        "0.05",
+        "--align",
+        "none",
+        "--json",
+    ];
+    let report: serde_json::Value = serde_json::from_str(&ws.rslam(&args).success()).unwrap();
+    let dynamic = &report["dynamic_ate"];
+    let expected = covered.iter().filter(|&&c| c > 0.05).count();
+    assert!(expected >= 5, "{expected} frames with walkers");
+    assert_eq!(dynamic["dynamic_frames"].as_u64(), Some(expected as u64));
+    assert_eq!(dynamic["ate"]["n"].as_u64(), Some(expected as u64));
+    let (on_them, all) = (
+        dynamic["ate"]["rmse"].as_f64().unwrap(),
+        report["ate"]["rmse"].as_f64().unwrap(),
+    );
+    let share = expected as f64 / covered.len() as f64;
+    assert!(
+        (on_them - 0.05).abs() < 1e-5,
+        "ATE {on_them} on dynamic frames"
+    );
+    assert!((all - 0.05 * share.sqrt()).abs() < 1e-5, "ATE {all} on all");
 }
 
 /// The instance masks of the TUM dataset `walkers` (listed in `mask.txt`, one per colour frame,

@@ -58,6 +58,8 @@ pub struct EvalSeries {
     pub pair_times: Vec<f64>,
     /// ATE of each associated pair, metres.
     pub ate_errors: Vec<f64>,
+    /// The ground-truth pose of each associated pair.
+    pub pair_gt_indices: Vec<usize>,
 }
 
 /// Evaluates `est` against `gt`. Errors: no association, degenerate alignment, no RPE pair.
@@ -119,6 +121,7 @@ pub fn evaluate(
                 .map(|&i| est.timestamps[i] - first_time)
                 .collect(),
             ate_errors,
+            pair_gt_indices: association.gt_indices.clone(),
         },
     })
 }

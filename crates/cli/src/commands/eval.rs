@@ -8,8 +8,8 @@ use rslam_eval::multi_agent::{
 };
 use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
 use rslam_eval::{
-    evaluate_files, plot_evaluation, text_report, AlignMode, DeltaUnit, EvalError, EvalOptions,
-    Matching, RpeOptions, DEFAULT_MAX_DIFF,
+    dynamic_ate, evaluate_files, plot_evaluation, read_dynamic_fractions, text_report, AlignMode,
+    DeltaUnit, EvalError, EvalOptions, Matching, RpeOptions, DEFAULT_MAX_DIFF,
 };
 
 const DETAILS: &str = "\
@@ -147,6 +147,11 @@ pub struct EvalArgs {
     /// RPE over overlapping pairs from every pose instead of consecutive pairs.
     #[arg(long)]
     all_pairs: bool,
+    /// Also the ATE over the frames whose dynamic fraction (the share of pixels people cover,
+    /// from the instance masks of GT's dataset: `extra.masks` in the rslam.json beside it)
+    /// exceeds this fraction; aligned over all frames as the ATE is.
+    #[arg(long, value_name = "FRACTION", conflicts_with_all = ["runs", "agent", "agents"])]
+    dynamic_above: Option<f64>,
     /// Print one JSON object instead of the report.
     #[arg(long)]
     json: bool,
@@ -234,10 +239,35 @@ fn run_one(
         .map_err(EvalError::from)
         .and_then(|(est, gt)| evaluate_files(&est, &gt, options))
         .with_context(|| format!("evaluating {} against {}", est.display(), gt.display()))?;
+    let dynamic = match args.dynamic_above {
+        Some(threshold) => Some(
+            read_dynamic_fractions(gt)
+                .and_then(|fractions| dynamic_ate(&evaluation, &fractions, threshold))
+                .with_context(|| format!("--dynamic-above: {}", gt.display()))?,
+        ),
+        None => None,
+    };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&evaluation)?);
+        let mut json = serde_json::to_value(&evaluation)?;
+        if let Some(dynamic) = &dynamic {
+            json["dynamic_ate"] = serde_json::to_value(dynamic)?;
+        }
+        println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
         print!("{}", text_report(&evaluation));
+        if let Some(d) = &dynamic {
+            let frames = format!(
+                "{} of {} frames with more than {} of the view moving",
+                d.dynamic_frames, d.frames, d.threshold
+            );
+            match &d.ate {
+                Some(ate) => println!(
+                    "ATE on dynamic frames (m): rmse {:.6}  mean {:.6}  max {:.6}  ({} pairs; {frames})",
+                    ate.rmse, ate.mean, ate.max, ate.n
+                ),
+                None => println!("ATE on dynamic frames: no estimate pose on them ({frames})"),
+            }
+        }
     }
     if let Some(plot) = &args.plot {
         plot_evaluation(plot, &evaluation)?;
