@@ -67,6 +67,66 @@ fn walkers_cross_the_view_of_a_tum_dataset_and_leave_the_other_frames_alone() {
         "the walkers' share varies"
     );
     check_dynamic_ate(&ws, "walkers", &covered);
+    // `rslam scene stats` reads each frame's fraction from the dataset's manifest.
+    let args = [
+        "scene",
+        "stats",
+        "walkers",
+        "--every",
+        "1",
+        "--json",
+        "stats.json",
+    ];
+    ws.rslam(&args).success();
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(ws.path("stats.json")).unwrap()).unwrap();
+    let listed: Vec<f64> = (stats["frames"].as_array().unwrap().iter())
+        .map(|f| f["dynamic_fraction"].as_f64().unwrap())
+        .collect();
+    assert_eq!(listed.len(), covered.len());
+    assert!((listed.iter().zip(&covered)).all(|(a, b)| (a - b).abs() < 1e-6));
+}
+
+/// `rslam scene stats SCENE --perturb actors:S`: each frame's dynamic fraction before any
+/// dataset is written, as its instance mask gives it.
+#[test]
+fn scene_stats_give_each_frames_dynamic_fraction_under_actors() {
+    let ws = Workspace::new();
+    let args = [
+        "scene",
+        "stats",
+        "office1",
+        "--perturb",
+        "actors:4",
+        "--camera",
+        SMALL_CAMERA,
+        "--every",
+        "40",
+        "--json",
+        "stats.json",
+    ];
+    let printed = ws.rslam(&args).success();
+    assert!(printed.contains("dynamic pixels (%)"), "{printed}");
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(ws.path("stats.json")).unwrap()).unwrap();
+    let fractions: Vec<f64> = (stats["frames"].as_array().unwrap().iter())
+        .map(|f| {
+            f["dynamic_fraction"]
+                .as_f64()
+                .expect("a fraction per frame")
+        })
+        .collect();
+    let with_people = fractions.iter().filter(|&&f| f > 0.0).count();
+    assert_eq!(
+        stats["people"]["frames_with_people"].as_u64(),
+        Some(with_people as u64)
+    );
+    assert!(
+        with_people >= 3 && with_people < fractions.len(),
+        "{fractions:?}"
+    );
+    ws.rslam(&["scene", "stats", ".", "--perturb", "actors:1"])
+        .fails_with(2, &["--perturb", "not to a folder"]);
 }
 
 /// `rslam eval --dynamic-above` on the dataset's own ground truth, against an estimate 5 cm off

@@ -24,14 +24,17 @@ pub struct DynamicAte {
     pub ate: Option<ErrorStatistics>,
 }
 
-/// Each frame's dynamic fraction from the manifest of the dataset that holds the ground truth
-/// `gt` (a file beside `rslam.json`, or a bag folder holding it): one per output frame, as the
-/// ground truth has one pose per output frame.
-pub fn read_dynamic_fractions(gt: &Path) -> Result<Vec<f64>, EvalError> {
-    let folder = match gt.is_dir() {
+/// The dataset folder a ground truth `gt` belongs to: the folder of a file, a bag folder itself.
+pub fn dataset_of(gt: &Path) -> &Path {
+    match gt.is_dir() {
         true => gt,
         false => gt.parent().unwrap_or(Path::new(".")),
-    };
+    }
+}
+
+/// Each output frame's dynamic fraction from the manifest of the one-camera dataset in `folder`
+/// (one per output frame, as its ground truth has one pose per output frame).
+pub fn read_dynamic_fractions(folder: &Path) -> Result<Vec<f64>, EvalError> {
     let manifest = Manifest::read(folder)?;
     let listed = &manifest.extra["masks"]["dynamic_fraction"];
     let not_listed = || {

@@ -53,7 +53,7 @@ mod test_support;
 
 pub use alignment::{fit_alignment, AlignMode, Similarity};
 pub use association::{associate, Association, Matching, DEFAULT_MAX_DIFF};
-pub use dynamic_ate::{dynamic_ate, read_dynamic_fractions, DynamicAte};
+pub use dynamic_ate::{dataset_of, dynamic_ate, read_dynamic_fractions, DynamicAte};
 pub use error::EvalError;
 pub use evaluate::{
     evaluate, evaluate_files, read_and_evaluate, EvalOptions, EvalSeries, Evaluation,

@@ -8,8 +8,8 @@ use rslam_eval::multi_agent::{
 };
 use rslam_eval::runs::{evaluate_runs_into, summary_text, RunsOptions, DEFAULT_FAILURE_ATE};
 use rslam_eval::{
-    dynamic_ate, evaluate_files, plot_evaluation, read_dynamic_fractions, text_report, AlignMode,
-    DeltaUnit, EvalError, EvalOptions, Matching, RpeOptions, DEFAULT_MAX_DIFF,
+    dataset_of, dynamic_ate, evaluate_files, plot_evaluation, read_dynamic_fractions, text_report,
+    AlignMode, DeltaUnit, EvalError, EvalOptions, Matching, RpeOptions, DEFAULT_MAX_DIFF,
 };
 
 const DETAILS: &str = "\
@@ -241,7 +241,7 @@ fn run_one(
         .with_context(|| format!("evaluating {} against {}", est.display(), gt.display()))?;
     let dynamic = match args.dynamic_above {
         Some(threshold) => Some(
-            read_dynamic_fractions(gt)
+            read_dynamic_fractions(dataset_of(gt))
                 .and_then(|fractions| dynamic_ate(&evaluation, &fractions, threshold))
                 .with_context(|| format!("--dynamic-above: {}", gt.display()))?,
         ),

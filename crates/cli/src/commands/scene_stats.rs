@@ -1,5 +1,7 @@
 //! `rslam scene stats`: per-frame image statistics of a scene's default path, a dataset or a
-//! folder of photographs, beside what real indoor photographs give.
+//! folder of photographs, beside what real indoor photographs give; with people in the frames
+//! (a scene under `--perturb actors:S`, a dataset rendered with them), each frame's dynamic
+//! fraction.
 
 use std::path::{Path, PathBuf};
 
@@ -26,6 +28,10 @@ pub struct StatsArgs {
     /// file needs it, as for `rslam perturb`.
     #[arg(long)]
     camera: Option<String>,
+    /// Items applied to a scene's frames as `rslam render --perturb` applies them (`actors:4`:
+    /// each frame's dynamic fraction, the share of pixels people cover).
+    #[arg(long, value_name = "SPEC")]
+    perturb: Option<String>,
     /// Also write every frame's statistics and the summary as JSON.
     #[arg(long)]
     json: Option<PathBuf>,
@@ -42,16 +48,34 @@ pub fn run(args: StatsArgs) -> anyhow::Result<()> {
         Some(text) => Some(Intrinsics::parse(text).context("--camera")?),
         None => None,
     };
+    let spec = match &args.perturb {
+        Some(text) => PerturbSpec::parse(text).context("--perturb")?,
+        None => PerturbSpec::default(),
+    };
     let folder = Path::new(&args.input);
+    if folder.is_dir() && args.perturb.is_some() {
+        anyhow::bail!(
+            "--perturb: {}: items apply to a scene's frames, not to a folder",
+            args.input
+        );
+    }
     let frames = if folder.is_dir() && holds_images(folder) {
         photographs(folder, args.every.unwrap_or(1))?
     } else {
-        sequence(&args, camera)?
+        sequence(&args, camera, spec)?
     };
-    println!("frame  fast20  weak/10k px  strength_p50  strong  contrast_p10  contrast_p50  contrast_p90  low_texture");
-    for (i, s) in &frames {
+    let with_people = frames.iter().any(|f| f.dynamic.is_some());
+    let people_column = if with_people { "  dynamic" } else { "" };
+    println!("frame  fast20  weak/10k px  strength_p50  strong  contrast_p10  contrast_p50  contrast_p90  low_texture{people_column}");
+    for Measured {
+        frame,
+        stats: s,
+        dynamic,
+    } in &frames
+    {
+        let people = dynamic.map_or(String::new(), |d| format!("  {:6.1}%", 100.0 * d));
         println!(
-            "{i:5}  {:6}  {:11.2}  {:12.0}  {:5.0}%  {:12.2}  {:12.2}  {:12.2}  {:10.0}%",
+            "{frame:5}  {:6}  {:11.2}  {:12.0}  {:5.0}%  {:12.2}  {:12.2}  {:12.2}  {:10.0}%{people}",
             s.fast_corners,
             s.weak_corner_density,
             s.corner_strength_p50,
@@ -62,7 +86,7 @@ pub fn run(args: StatsArgs) -> anyhow::Result<()> {
             100.0 * s.low_texture_cells
         );
     }
-    let all: Vec<FrameStats> = frames.iter().map(|(_, s)| s.clone()).collect();
+    let all: Vec<FrameStats> = frames.iter().map(|f| f.stats.clone()).collect();
     let summary = SequenceStats::of(&all);
     let real = REAL_PHOTOGRAPHS;
     let rows: [(&str, Spread, f32, Option<Band>); 11] = [
@@ -134,23 +158,42 @@ pub fn run(args: StatsArgs) -> anyhow::Result<()> {
             s.p90 * scale
         );
     }
+    let dynamic: Vec<f32> = frames.iter().filter_map(|f| f.dynamic).collect();
+    let people = with_people.then(|| {
+        let spread = Spread::of(dynamic.iter().map(|d| 100.0 * d));
+        let in_view = dynamic.iter().filter(|&&d| d > 0.0).count();
+        let share = 100.0 * in_view as f32 / dynamic.len() as f32;
+        println!(
+            "{:<38} {:9.2} {:9.2} {:9.2}  people in {share:.0}% of the frames",
+            "dynamic pixels (%)", spread.p10, spread.p50, spread.p90
+        );
+        serde_json::json!({"dynamic_percent": spread, "frames_with_people": in_view})
+    });
     if let Some(path) = &args.json {
-        let per_frame: Vec<serde_json::Value> = frames
-            .iter()
-            .map(|(i, s)| serde_json::json!({"frame": i, "stats": s}))
+        let per_frame: Vec<serde_json::Value> = (frames.iter())
+            .map(|f| serde_json::json!({"frame": f.frame, "stats": f.stats, "dynamic_fraction": f.dynamic}))
             .collect();
-        let doc = serde_json::json!({"input": args.input, "summary": summary, "frames": per_frame});
+        let doc = serde_json::json!({"input": args.input, "summary": summary, "people": people, "frames": per_frame});
         std::fs::write(path, serde_json::to_string_pretty(&doc)?)
             .with_context(|| format!("writing {}", path.display()))?;
     }
     Ok(())
 }
 
-/// The frames of a dataset folder, or of a scene along its default path.
+/// One frame's statistics, and the share of its pixels people cover where it has them.
+struct Measured {
+    frame: usize,
+    stats: FrameStats,
+    dynamic: Option<f32>,
+}
+
+/// The frames of a dataset folder (their dynamic fractions from its manifest, when it was
+/// rendered with people), or of a scene along its default path under `spec`.
 fn sequence(
     args: &StatsArgs,
     camera: Option<Intrinsics>,
-) -> anyhow::Result<Vec<(usize, FrameStats)>> {
+    spec: PerturbSpec,
+) -> anyhow::Result<Vec<Measured>> {
     let ctx = GpuContext::new(&AdapterChoice {
         name_contains: args.adapter.clone(),
     })?;
@@ -161,9 +204,16 @@ fn sequence(
             camera,
             rate_hz: Some(rslam_core::REPLICA_RATE_HZ),
         };
-        let dataset = read_dataset(Path::new(&args.input), &overrides)?;
+        let folder = Path::new(&args.input);
+        let dataset = read_dataset(folder, &overrides)?;
         let mut source = FramesInMemory::dataset(&ctx, &dataset, &PerturbSpec::default(), 0)?;
-        measure(&ctx, &mut source, every)
+        let mut frames = measure(&ctx, &mut source, every)?;
+        if let Ok(fractions) = rslam_eval::read_dynamic_fractions(folder) {
+            for frame in &mut frames {
+                frame.dynamic = fractions.get(frame.frame).map(|&f| f as f32);
+            }
+        }
+        Ok(frames)
     } else {
         let job = SceneJob {
             scene: args.input.clone(),
@@ -171,7 +221,7 @@ fn sequence(
             frames: None,
             camera: camera.unwrap_or(Intrinsics::REPLICA),
             rate_hz: Intrinsics::preset_rate_hz(args.camera.as_deref().unwrap_or("replica")),
-            spec: PerturbSpec::default(),
+            spec,
             seed: 0,
             agent: None,
             capture: Default::default(),
@@ -185,11 +235,18 @@ fn measure<S: FrameSource>(
     ctx: &GpuContext,
     source: &mut FramesInMemory<S>,
     every: usize,
-) -> anyhow::Result<Vec<(usize, FrameStats)>> {
+) -> anyhow::Result<Vec<Measured>> {
     let count = source.plan().len();
     (0..count)
         .step_by(every)
-        .map(|i| Ok((i, frame_stats(&source.frame(ctx, i)?.color))))
+        .map(|i| {
+            let frame = source.frame(ctx, i)?;
+            Ok(Measured {
+                frame: i,
+                stats: frame_stats(&frame.color),
+                dynamic: frame.mask.map(|m| m.dynamic_fraction() as f32),
+            })
+        })
         .collect()
 }
 
@@ -198,12 +255,18 @@ fn holds_images(folder: &Path) -> bool {
     rslam_pipeline::image_files(folder).is_ok()
 }
 
-fn photographs(folder: &Path, every: usize) -> anyhow::Result<Vec<(usize, FrameStats)>> {
+fn photographs(folder: &Path, every: usize) -> anyhow::Result<Vec<Measured>> {
     let files = rslam_pipeline::image_files(folder)?;
     files
         .iter()
         .enumerate()
         .step_by(every)
-        .map(|(i, file)| Ok((i, frame_stats(&read_rgb(file)?))))
+        .map(|(i, file)| {
+            Ok(Measured {
+                frame: i,
+                stats: frame_stats(&read_rgb(file)?),
+                dynamic: None,
+            })
+        })
         .collect()
 }

@@ -161,7 +161,7 @@ pub struct Spread {
 }
 
 impl Spread {
-    fn of(values: impl Iterator<Item = f32>) -> Self {
+    pub fn of(values: impl Iterator<Item = f32>) -> Self {
         let mut v: Vec<f32> = values.collect();
         v.sort_by(f32::total_cmp);
         Self {
