@@ -56,7 +56,8 @@ fn walkers_cross_the_view_of_a_tum_dataset_and_leave_the_other_frames_alone() {
         .map(|f| f.as_f64().unwrap())
         .collect();
     assert_eq!(covered.len(), 160);
-    check_masks_against_static_depth(&ws, "walkers", "clean", 0.0, 2);
+    let frames = tum_frames(&ws, "walkers");
+    check_masks_against_static_depth(&ws, ("walkers", "clean"), (&frames, 5000.0), 0.0, 2);
     let most = covered.iter().copied().fold(0.0, f64::max);
     assert!(
         most > 0.1 && most < 0.9,
@@ -173,27 +174,17 @@ fn check_dynamic_ate(ws: &Workspace, walkers: &str, covered: &[f64]) {
     assert!((all - 0.05 * share.sqrt()).abs() < 1e-5, "ATE {all} on all");
 }
 
-/// The instance masks of the TUM dataset `walkers` (listed in `mask.txt`, one per colour frame,
-/// at its time) against the depth of `walkers` and of `clean`, the same job without walkers:
-/// outside the mask depth is the static render's (bit for bit, or within `blend` of it where
-/// depth blends a pixel's neighbours); inside, a walker only ever hides the room (never farther
-/// than `blend` of the room's depth, nearer on most pixels); the manifest's
-/// dynamic fraction is the mask's; ids go from 1 to the walker count, each seen.
-fn check_masks_against_static_depth(
-    ws: &Workspace,
-    walkers: &str,
-    clean: &str,
-    blend: f32,
-    walker_count: u16,
-) {
-    let list = std::fs::read_to_string(ws.path(&format!("{walkers}/mask.txt"))).unwrap();
+/// Each frame's mask and depth file in the TUM dataset `out`: masks as `mask.txt` lists them,
+/// one per colour frame at its time, and the depth of that time.
+fn tum_frames(ws: &Workspace, out: &str) -> Vec<(String, String)> {
+    let list = std::fs::read_to_string(ws.path(&format!("{out}/mask.txt"))).unwrap();
     let masks: Vec<(String, String)> = (list.lines().filter(|l| !l.starts_with('#')))
         .map(|l| {
             let (t, name) = l.split_once(' ').unwrap();
             (t.to_string(), name.to_string())
         })
         .collect();
-    let rgb = std::fs::read_to_string(ws.path(&format!("{walkers}/rgb.txt"))).unwrap();
+    let rgb = std::fs::read_to_string(ws.path(&format!("{out}/rgb.txt"))).unwrap();
     let rgb_times: Vec<&str> = (rgb.lines().filter(|l| !l.starts_with('#')))
         .map(|l| l.split(' ').next().unwrap())
         .collect();
@@ -202,14 +193,33 @@ fn check_masks_against_static_depth(
         mask_times, rgb_times,
         "one mask per colour frame, at its time"
     );
+    (masks.into_iter())
+        .map(|(t, name)| (name, format!("depth/{t}.png")))
+        .collect()
+}
+
+/// The instance masks of the dataset `walkers` (`frames`: each frame's mask and depth file,
+/// depth stored at `scale` per metre) against the depth of `walkers` and of `clean`, the same
+/// job without walkers: outside the mask depth is the static render's (bit for bit, or within
+/// `blend` of it where depth blends a pixel's neighbours); inside, a walker only ever hides the
+/// room (never farther than `blend` of the room's depth, nearer on most pixels); the manifest's
+/// dynamic fraction is the mask's; ids go from 1 to the walker count, each seen.
+fn check_masks_against_static_depth(
+    ws: &Workspace,
+    (walkers, clean): (&str, &str),
+    (frames, scale): (&[(String, String)], f64),
+    blend: f32,
+    walker_count: u16,
+) {
     let fractions = manifest(ws, walkers)["extra"]["masks"]["dynamic_fraction"].clone();
     let mut seen = vec![false; usize::from(walker_count) + 1];
     let (mut nearer, mut on_walkers) = (0usize, 0usize);
-    for (j, (t, name)) in masks.iter().enumerate() {
+    assert_eq!(fractions.as_array().unwrap().len(), frames.len());
+    for (j, (name, depth_file)) in frames.iter().enumerate() {
         let mask = decode_mask_png(&ws.path(&format!("{walkers}/{name}"))).expect("mask png");
         let depth_of = |out: &str| {
-            let path = ws.path(&format!("{out}/depth/{t}.png"));
-            decode_depth_png(&path, 5000.0).expect("depth png")
+            let path = ws.path(&format!("{out}/{depth_file}"));
+            decode_depth_png(&path, scale).expect("depth png")
         };
         let (still, moving) = (depth_of(clean), depth_of(walkers));
         assert_eq!((mask.width, mask.height), (moving.width, moving.height));
@@ -251,7 +261,8 @@ fn masks_follow_each_row_under_a_rolling_shutter_and_the_lens() {
     let sensor = "rolling_shutter:30,distortion:radtan(-0.2,0.05,0,0)";
     render_office1(&ws, "clean", Some(sensor));
     render_office1(&ws, "walkers", Some(&format!("actors:4,{sensor}")));
-    check_masks_against_static_depth(&ws, "walkers", "clean", 0.02, 2);
+    let frames = tum_frames(&ws, "walkers");
+    check_masks_against_static_depth(&ws, ("walkers", "clean"), (&frames, 5000.0), 0.02, 2);
 }
 
 #[test]
@@ -354,6 +365,32 @@ fn both_cameras_of_a_stereo_rig_see_the_same_walkers() {
     assert!(
         both as f64 >= 0.8 * either as f64,
         "{both} of {either} frames in both views"
+    );
+}
+
+/// The Replica layout puts each frame's mask beside its colour and depth, numbered as they are.
+#[test]
+fn replica_masks_lie_beside_their_frames() {
+    let ws = Workspace::new();
+    let render = |out: &str, spec: &[&str]| {
+        let scene = ["render", "--scene", "office2", "--camera", SMALL_CAMERA];
+        let args = ["--frames", "100", "--seed", "2", "--out", out];
+        ws.rslam(&[&scene[..], &args, spec].concat()).success();
+    };
+    render("clean", &[]);
+    render("walkers", &["--perturb", "actors:3"]);
+    let frames: Vec<(String, String)> = (0..100)
+        .map(|j| {
+            let mask = format!("results/mask{j:06}.png");
+            (mask, format!("results/depth{j:06}.png"))
+        })
+        .collect();
+    check_masks_against_static_depth(&ws, ("walkers", "clean"), (&frames, 6553.5), 0.0, 2);
+    let files = crate::harness::sorted_names(&ws.path("walkers/results"));
+    assert_eq!(
+        files.len(),
+        3 * 100,
+        "a colour, a depth and a mask per frame"
     );
 }
 
