@@ -278,13 +278,7 @@ pub fn encode_mask_png(mask: &MaskImage) -> Result<Vec<u8>, CoreError> {
 
 /// A 16-bit single-channel PNG as an instance mask.
 pub fn decode_mask_png(path: &Path) -> Result<MaskImage, CoreError> {
-    let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
-    let not_readable =
-        |e: String| CoreError::bad_file(path, format!("not a readable mask PNG: {e}"));
-    let image = limited_reader(&bytes)
-        .map_err(not_readable)?
-        .decode()
-        .map_err(|e| not_readable(printable(e.to_string().trim())))?;
+    let image = decode_png_file(path, "mask")?;
     if image.color() != image::ColorType::L16 {
         return Err(CoreError::bad_file(
             path,
@@ -299,15 +293,21 @@ pub fn decode_mask_png(path: &Path) -> Result<MaskImage, CoreError> {
     })
 }
 
-/// A 16-bit (or 8-bit) single-channel PNG as metric depth.
-pub fn decode_depth_png(path: &Path, scale: f64) -> Result<DepthImage, CoreError> {
+/// The image in the PNG at `path`, read within the size limits; an error names the file and
+/// `what` it was to hold.
+fn decode_png_file(path: &Path, what: &str) -> Result<image::DynamicImage, CoreError> {
     let bytes = std::fs::read(path).map_err(|e| CoreError::io(path, e))?;
     let not_readable =
-        |e: String| CoreError::bad_file(path, format!("not a readable depth PNG: {e}"));
-    let image = limited_reader(&bytes)
+        |e: String| CoreError::bad_file(path, format!("not a readable {what} PNG: {e}"));
+    limited_reader(&bytes)
         .map_err(not_readable)?
         .decode()
-        .map_err(|e| not_readable(printable(e.to_string().trim())))?;
+        .map_err(|e| not_readable(printable(e.to_string().trim())))
+}
+
+/// A 16-bit (or 8-bit) single-channel PNG as metric depth.
+pub fn decode_depth_png(path: &Path, scale: f64) -> Result<DepthImage, CoreError> {
+    let image = decode_png_file(path, "depth")?;
     if image.color().channel_count() != 1 {
         return Err(CoreError::bad_file(
             path,
