@@ -425,3 +425,83 @@ fn a_killed_render_with_walkers_resumes_to_the_same_bytes() {
         crate::dataset_check::assert_same_tree(&whole.path("ds"), &killed.path("ds"));
     }
 }
+
+/// A box (0.36 × 0.36 × 0.8 m, its origin on the floor at its centre) with coloured faces.
+const BOX_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 12\nproperty list uchar int vertex_indices\nend_header\n-0.18 -0.18 0 200 80 40\n0.18 -0.18 0 200 80 40\n0.18 0.18 0 200 80 40\n-0.18 0.18 0 200 80 40\n-0.18 -0.18 0.8 200 80 40\n0.18 -0.18 0.8 200 80 40\n0.18 0.18 0.8 200 80 40\n-0.18 0.18 0.8 200 80 40\n3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+
+/// `--actor MESH PATH`: a user's box carried along a path over the free floor (a walker's, taken
+/// from another job's manifest) is drawn with its own mask id, hides the room only where its
+/// mask says, and is recorded with its files' BLAKE3; a path through a wall or the camera is
+/// refused naming the path file's lines, and unreadable files naming the file.
+#[test]
+fn a_users_actor_follows_its_path_and_bad_paths_are_refused_by_line() {
+    let ws = Workspace::new();
+    render_office1(&ws, "walkers", Some("actors:2"));
+    let frames = manifest(&ws, "walkers")["extra"]["actors"]["frames"].clone();
+    let mut path = String::from("# t x y z qx qy qz qw\n");
+    for (j, frame) in frames.as_array().unwrap().iter().enumerate() {
+        let (x, y) = (frame[0][0].as_f64().unwrap(), frame[0][1].as_f64().unwrap());
+        path.push_str(&format!("{:.6} {x} {y} 0 0 0 0 1\n", j as f64 * 0.05));
+    }
+    ws.write("box.ply", BOX_PLY);
+    ws.write("path.txt", &path);
+    render_office1(&ws, "clean", None);
+    let with_box = |out: &str, mesh: &str, path: &str| {
+        let mut args = vec![
+            "render", "--scene", "office1", "--format", "tum", "--out", out,
+        ];
+        args.extend(["--camera", SMALL_CAMERA, "--frames", "160", "--seed", "3"]);
+        args.extend(["--actor", mesh, path]);
+        ws.rslam(&args)
+    };
+    with_box("box", "box.ply", "path.txt").success();
+    let frames = tum_frames(&ws, "box");
+    check_masks_against_static_depth(&ws, ("box", "clean"), (&frames, 5000.0), 0.0, 1);
+    let user = &manifest(&ws, "box")["extra"]["actors"]["user"][0];
+    let digest = rslam_core::dataset::blake3_hex(BOX_PLY.as_bytes());
+    assert_eq!(user["mesh_blake3"].as_str(), Some(digest.as_str()));
+    assert_eq!(user["path"].as_str(), Some("path.txt"));
+
+    // Pose 11 (line 12) moved 6 m sideways, out of the room.
+    let mut lines: Vec<String> = path.lines().map(String::from).collect();
+    let mut fields: Vec<f64> = lines[11].split(' ').map(|v| v.parse().unwrap()).collect();
+    fields[1] += 6.0;
+    lines[11] = fields
+        .iter()
+        .map(|v| v.to_string())
+        .collect::<Vec<_>>()
+        .join(" ");
+    ws.write("wall.txt", &(lines.join("\n") + "\n"));
+    with_box("w", "box.ply", "wall.txt")
+        .fails_with(2, &["wall.txt", "lines 11-12", "wall or furniture"]);
+    // Standing where the camera starts.
+    let gt = std::fs::read_to_string(ws.path("clean/groundtruth.txt")).unwrap();
+    let first = gt.lines().find(|l| !l.starts_with('#')).unwrap();
+    let at: Vec<&str> = first.split(' ').collect();
+    ws.write("camera.txt", &format!("0 {} {} 0 0 0 0 1\n", at[1], at[2]));
+    with_box("c", "box.ply", "camera.txt")
+        .fails_with(2, &["camera.txt", "line 1", "from the camera"]);
+    with_box("m", "missing.ply", "path.txt").fails_with(2, &["missing.ply"]);
+    ws.write("three.txt", "0 1 2\n");
+    with_box("p", "box.ply", "three.txt").fails_with(2, &["three.txt:1"]);
+    for out in ["w", "c", "m", "p"] {
+        assert!(
+            !ws.path(out).exists(),
+            "{out}: a refused job writes nothing"
+        );
+    }
+    let both = [
+        "render",
+        "--scene",
+        "office1",
+        "--perturb",
+        "actors:2",
+        "--actor",
+        "box.ply",
+        "path.txt",
+        "--out",
+        "b",
+    ];
+    ws.rslam(&both)
+        .fails_with(2, &["--actor", "one or the other"]);
+}

@@ -21,6 +21,7 @@ fn flag(part: JobPart) -> String {
         JobPart::Bag => "--bag-depth/--bag-tf/--bag-compression".into(),
         JobPart::CaptureScale => "--capture-scale".into(),
         JobPart::CaptureOpacity => "--capture-min-opacity".into(),
+        JobPart::Actor => "--actor".into(),
         JobPart::Frame | JobPart::FrameIndices | JobPart::Poses => part.to_string(),
     }
 }

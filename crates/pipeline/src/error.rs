@@ -72,6 +72,8 @@ pub enum JobPart {
     CaptureScale,
     /// The accumulated opacity under which a capture's pixel has no depth.
     CaptureOpacity,
+    /// A user's actor: its mesh and path files.
+    Actor,
 }
 
 impl fmt::Display for JobPart {
@@ -90,6 +92,7 @@ impl fmt::Display for JobPart {
             Self::Bag => "bag options",
             Self::CaptureScale => "capture scale",
             Self::CaptureOpacity => "capture min opacity",
+            Self::Actor => "actor",
         })
     }
 }

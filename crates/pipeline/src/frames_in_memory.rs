@@ -110,7 +110,7 @@ impl FramesInMemory<SceneSource> {
         let walkers_changed = with_walkers && (spec.world != self.spec.world || seed != self.seed);
         if walkers_changed || (path_changed && !spec.world.is_empty()) {
             let scene = self.pipeline.source().scene().clone();
-            let actors = scene_actors::plan(&scene, spec, seed, &deviated.poses, rate_hz)?;
+            let actors = scene_actors::plan(&scene, (spec, &[]), seed, &deviated.poses, rate_hz)?;
             self.pipeline.source_mut().set_actors(ctx, actors)?;
         }
         let shutter_changed = self

@@ -60,7 +60,7 @@ pub use pipeline::Pipeline;
 pub use plan::{speed_up, FramePlan, SourceOutputs, SourceTiming};
 pub use progress::{Progress, Silent};
 pub use rig::{Rig, RigPreset};
-pub use scene_job::{ResolvedScene, SceneCache, SceneJob};
+pub use scene_job::{ActorFiles, ResolvedScene, SceneCache, SceneJob};
 pub use shown_frame::{PixelReadout, ShownFrame, ShownSources, ShownViews};
 pub use sink::RgbdFrame;
 pub use state_log::StateTable;

@@ -33,6 +33,16 @@ pub struct SceneJob {
     pub agent: Option<usize>,
     /// A Gaussian-splat capture's metric scale and depth rendering (meshes take the default).
     pub capture: CaptureOptions,
+    /// A user's actors: each a rigid mesh moved along a path file.
+    pub actor_files: Vec<ActorFiles>,
+}
+
+/// A user's actor: its mesh (PLY, OBJ or glTF) and the path it moves along (a trajectory file,
+/// each pose the mesh's frame in the world).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ActorFiles {
+    pub mesh: std::path::PathBuf,
+    pub path: std::path::PathBuf,
 }
 
 /// A loaded scene and its content hash, hashed on first use (the viewer never needs it).
@@ -188,8 +198,13 @@ impl SceneJob {
         let clean = rslam_core::Trajectory::from_poses_at_rate(clean, self.rate_hz);
         let deviated = rslam_perturb::trajectory::deviate(&clean, &self.spec, self.seed);
         let plan = FramePlan::rendered(deviated.len(), self.rate_hz, &self.spec, self.seed);
-        let actors =
-            scene_actors::plan(&scene, &self.spec, self.seed, &deviated.poses, self.rate_hz)?;
+        let actors = scene_actors::plan(
+            &scene,
+            (&self.spec, &self.actor_files),
+            self.seed,
+            &deviated.poses,
+            self.rate_hz,
+        )?;
         Ok(ResolvedScene {
             scene,
             hash,

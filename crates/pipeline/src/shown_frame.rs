@@ -258,6 +258,7 @@ mod tests {
             seed: 5,
             agent: None,
             capture: Default::default(),
+            actor_files: Vec::new(),
         }
     }
 

@@ -47,6 +47,7 @@ fn scene_job(spec: &str) -> SceneJob {
         seed: 3,
         agent: None,
         capture: Default::default(),
+        actor_files: Vec::new(),
     }
 }
 

@@ -43,6 +43,7 @@ fn scene_job(frames: Option<usize>) -> SceneJob {
         seed: 5,
         agent: None,
         capture: Default::default(),
+        actor_files: Vec::new(),
     }
 }
 

@@ -112,6 +112,7 @@ pub fn render<'py>(
             },
             dataparser_transforms: None,
         },
+        actor_files: Vec::new(),
     };
     let frames = py.detach(|| -> Result<_, RunError> {
         let ctx = gpu::context().map_err(RunError::NoGpu)?;

@@ -42,7 +42,7 @@ fn with_actors_at(scene: &Scene, actors: &Actors, t: f64) -> (Scene, Vec<u16>) {
     let mut ids = vec![0u16; scene.mesh.triangle_count()];
     ids.extend((posed.mesh.indices.chunks(3)).map(|corners| {
         let vertex = corners[0] as usize;
-        let walker = (posed.walker_vertices.iter()).position(|r| r.contains(&vertex));
+        let walker = (posed.actor_vertices.iter()).position(|r| r.contains(&vertex));
         walker.expect("every vertex is a walker's") as u16 + 1
     }));
     let mut combined = scene.clone();

@@ -150,6 +150,7 @@ impl Sequence {
             seed: self.seed,
             agent: None,
             capture: Default::default(),
+            actor_files: Vec::new(),
         };
         Job {
             source: Source::Scene {

@@ -35,6 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             seed: 0,
             agent: None,
             capture: Default::default(),
+            actor_files: Vec::new(),
         })),
         spec,
         seed: 0,

@@ -44,6 +44,7 @@ fn scene_job(frames: usize) -> SceneJob {
         seed: 0,
         agent: None,
         capture: Default::default(),
+        actor_files: Vec::new(),
     }
 }
 

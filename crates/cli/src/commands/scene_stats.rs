@@ -225,6 +225,7 @@ fn sequence(
             seed: 0,
             agent: None,
             capture: Default::default(),
+            actor_files: Vec::new(),
         };
         let mut source = FramesInMemory::scene(&ctx, &job)?;
         measure(&ctx, &mut source, every)

@@ -72,6 +72,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
             seed: args.seed,
             agent: None,
             capture: Default::default(),
+            actor_files: Vec::new(),
         })),
         _ => bail!("give a DATASET folder or --scene NAME|MESH"),
     };

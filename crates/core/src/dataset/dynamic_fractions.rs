@@ -10,7 +10,8 @@ use crate::dataset::decode_mask_png;
 use crate::{CoreError, MaskImage};
 
 /// What a mask's ids mean, as the manifest says it.
-pub const MASK_IDS: &str = "0 the static scene, k walker k (extra.actors.walkers[k - 1])";
+pub const MASK_IDS: &str =
+    "0 the static scene, k actor k (extra.actors.walkers[k - 1], or with --actor extra.actors.user[k - 1])";
 
 /// The fractions of the masks written, by frame key.
 pub(crate) struct DynamicFractions<K> {

@@ -1,26 +1,30 @@
-//! Actors: people who walk through a scene while it is filmed. Each walker is an articulated body
-//! ([`WalkerBody`]) on a closed path over the scene's free floor ([`WalkPath`]), planned so that
-//! no walker ever touches the scene, another walker or the camera ([`plan`]). At any instant
-//! [`Actors::mesh_at`] gives their posed triangles, lit by the scene's light layers
-//! ([`light_probe`]), for the rasterizer and the ray-cast oracle alike.
+//! Actors: people who walk through a scene while it is filmed, or a user's rigid meshes moved
+//! along path files ([`RigidActor`]). Each walker is an articulated body ([`WalkerBody`]) on a
+//! closed path over the scene's free floor ([`WalkPath`]), planned so that no walker ever touches
+//! the scene, another walker or the camera ([`plan`]); a user's path is checked to keep clear of
+//! the scene and the camera. At any instant [`Actors::mesh_at`] gives their posed triangles, lit
+//! by the scene's light layers ([`light_probe`]), for the rasterizer and the ray-cast oracle
+//! alike.
 
 mod floor_map;
 mod footprint;
 mod light_probe;
 mod plan;
+mod rigid;
 mod walk_path;
 mod walker;
 
 pub use floor_map::FloorMap;
 pub use footprint::Footprint;
 pub use plan::{CameraTrack, WalkerParams, CAMERA_CLEARANCE};
+pub use rigid::RigidActor;
 pub use walk_path::{Route, Stride, WalkPath};
 pub use walker::{BodyMaterial, PosedMesh, WalkerBody, MAX_STRIDE};
 
 use glam::{Quat, Vec2, Vec3};
 
 use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
-use crate::{Mesh, RenderError, Scene, Texture, Vertex};
+use crate::{FreeFloor, Mesh, RenderError, Scene, Texture, Vertex};
 use light_probe::{cube_light, AmbientCube, LightProbe, PROBE_HEIGHTS};
 
 /// Metres of cloth per texture repeat.
@@ -54,9 +58,12 @@ pub struct WalkerPose {
     pub step: f32,
 }
 
-/// The walkers of a job and what lights them.
+/// The walkers or the user's actors of a job and what lights them.
 pub struct Actors {
     walkers: Vec<Walker>,
+    rigid: Vec<RigidActor>,
+    /// Texture layer of each rigid actor's first texture.
+    rigid_layers: Vec<u32>,
     probe: LightProbe,
     /// Texture layer of the first clothing texture: the scene's own come first.
     first_cloth: u32,
@@ -69,15 +76,16 @@ pub struct Actors {
 pub struct ActorMesh {
     pub mesh: Mesh,
     pub light: Vec<[f32; 3]>,
-    /// The vertices of walker k; instance masks give them id k + 1.
-    pub walker_vertices: Vec<std::ops::Range<usize>>,
+    /// The vertices of actor k (the walkers, then the user's actors); instance masks give them
+    /// id k + 1.
+    pub actor_vertices: Vec<std::ops::Range<usize>>,
 }
 
 impl ActorMesh {
-    /// The instance-mask id of each vertex: k + 1 on walker k.
+    /// The instance-mask id of each vertex: k + 1 on actor k.
     pub fn vertex_ids(&self) -> Vec<u32> {
         let mut ids = vec![0; self.mesh.vertices.len()];
-        for (k, range) in self.walker_vertices.iter().enumerate() {
+        for (k, range) in self.actor_vertices.iter().enumerate() {
             ids[range.clone()].fill(k as u32 + 1);
         }
         ids
@@ -92,22 +100,52 @@ impl Actors {
         seed: u64,
         camera: &CameraTrack,
     ) -> Result<Self, RenderError> {
-        let refuse = |message: String| RenderError::Actors {
-            name: scene.name.clone(),
-            message,
-        };
+        let (mut actors, floor) = Self::lit_by(scene)?;
+        actors.walkers = plan::walkers(scene, &floor, params, seed, camera)
+            .map_err(|message| refusal(scene, message))?;
+        Ok(actors)
+    }
+
+    /// A user's rigid actors in `scene`, each path checked to keep clear of the scene and of
+    /// the camera on `camera`.
+    pub fn rigid(
+        scene: &Scene,
+        rigid: Vec<RigidActor>,
+        camera: &CameraTrack,
+    ) -> Result<Self, RenderError> {
+        let (mut actors, floor) = Self::lit_by(scene)?;
+        let map = FloorMap::new(&scene.mesh, &floor, plan::TALLEST);
+        for actor in &rigid {
+            actor.check(&map, camera)?;
+            let first = actors.first_cloth + actors.textures.len() as u32;
+            actors.rigid_layers.push(first);
+            actors.textures.extend(actor.textures.iter().cloned());
+        }
+        actors.rigid = rigid;
+        Ok(actors)
+    }
+
+    /// No actors yet in `scene`, with the light that will light them, and its floor.
+    fn lit_by(scene: &Scene) -> Result<(Self, FreeFloor), RenderError> {
         let (Some(floor), Some(probe)) = (scene.floor, LightProbe::new(scene)) else {
-            return Err(refuse(
+            return Err(refusal(
+                scene,
                 "people walk over a built-in scene's free floor; this scene has none".into(),
             ));
         };
-        let walkers = plan::walkers(scene, &floor, params, seed, camera).map_err(refuse)?;
-        Ok(Self {
-            walkers,
+        let actors = Self {
+            walkers: Vec::new(),
+            rigid: Vec::new(),
+            rigid_layers: Vec::new(),
             probe,
             first_cloth: scene.textures.len() as u32,
             textures: crate::scene::builtin::clothing_textures().to_vec(),
-        })
+        };
+        Ok((actors, floor))
+    }
+
+    pub fn rigid_actors(&self) -> &[RigidActor] {
+        &self.rigid
     }
 
     pub fn walkers(&self) -> &[Walker] {
@@ -139,9 +177,9 @@ impl Actors {
             .collect()
     }
 
-    /// The walkers posed `t` seconds from the start, in world coordinates, lit by the scene.
+    /// The walkers and the user's actors posed `t` seconds from the start, in world
+    /// coordinates, lit by the scene.
     pub fn mesh_at(&self, t: f64) -> ActorMesh {
-        let layers = self.layer_count();
         let mut out = ActorMesh::default();
         let mut posed = PosedMesh::default();
         for (walker, pose) in self.walkers.iter().zip(self.poses_at(t)) {
@@ -160,26 +198,58 @@ impl Actors {
                 let normal = turn * posed.normals[i];
                 let material = posed.materials[i];
                 let tint = walker.colours[material as usize].map(unit_srgb_to_linear);
-                let mut total = Vec3::ZERO;
-                for layer in 0..layers {
-                    let light = probe_light(&cubes, position.z, normal, layer) * Vec3::from(tint);
-                    total += light;
-                    out.light.push(light.into());
-                }
-                let [r, g, b] = total.to_array().map(linear_to_srgb);
+                let color = self.light(&cubes, position, normal, tint, &mut out.light);
                 out.mesh.vertices.push(Vertex {
                     position: position.into(),
                     uv: (posed.uvs[i] / CLOTH_REPEAT_M).into(),
-                    color: [r, g, b, 255],
+                    color,
                     layer: self.texture_of(material),
                 });
             }
             out.mesh
                 .indices
                 .extend(posed.indices.iter().map(|&i| base + i));
-            (out.walker_vertices).push(base as usize..out.mesh.vertices.len());
+            (out.actor_vertices).push(base as usize..out.mesh.vertices.len());
+        }
+        for (actor, &first_layer) in self.rigid.iter().zip(&self.rigid_layers) {
+            let (turn, origin) = actor.pose_at(t);
+            let cubes = self.probe.cubes_at(origin.truncate());
+            let base = out.mesh.vertices.len() as u32;
+            for (v, normal) in actor.mesh.vertices.iter().zip(&actor.normals) {
+                let position = origin + turn * Vec3::from(v.position);
+                let tint = [0, 1, 2].map(|c| unit_srgb_to_linear(f32::from(v.color[c]) / 255.0));
+                let color = self.light(&cubes, position, turn * *normal, tint, &mut out.light);
+                out.mesh.vertices.push(Vertex {
+                    position: position.into(),
+                    uv: v.uv,
+                    color,
+                    layer: first_layer + v.layer,
+                });
+            }
+            (out.mesh.indices).extend(actor.mesh.indices.iter().map(|&i| base + i));
+            (out.actor_vertices).push(base as usize..out.mesh.vertices.len());
         }
         out
+    }
+
+    /// A surface of linear colour `tint` at `position` facing `normal`: its light per layer
+    /// (pushed onto `light`), and the sum as an sRGB vertex colour.
+    fn light(
+        &self,
+        cubes: &[AmbientCube],
+        position: Vec3,
+        normal: Vec3,
+        tint: [f32; 3],
+        light: &mut Vec<[f32; 3]>,
+    ) -> [u8; 4] {
+        let mut total = Vec3::ZERO;
+        for layer in 0..self.layer_count() {
+            let lit = probe_light(cubes, position.z, normal, layer) * Vec3::from(tint);
+            total += lit;
+            light.push(lit.into());
+        }
+        let [r, g, b] = total.to_array().map(linear_to_srgb);
+        [r, g, b, 255]
     }
 
     fn texture_of(&self, material: BodyMaterial) -> u32 {
@@ -189,6 +259,13 @@ impl Actors {
             BodyMaterial::Shoes => self.first_cloth + 2,
             BodyMaterial::Skin | BodyMaterial::Hair => 0,
         }
+    }
+}
+
+fn refusal(scene: &Scene, message: String) -> RenderError {
+    RenderError::Actors {
+        name: scene.name.clone(),
+        message,
     }
 }
 

@@ -57,7 +57,7 @@ const ROUTE_MARGIN: f32 = 0.05;
 /// the meeting).
 const NEAR_TOLERANCE: f32 = 0.15;
 /// The tallest body a walker may have, metres (`WalkerBody::new` stays under it).
-const TALLEST: f32 = 1.95;
+pub(super) const TALLEST: f32 = 1.95;
 
 /// How many walkers, how fast and how near the camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
