@@ -8,6 +8,7 @@ use rslam_core::CoreError;
 use rslam_eval::EvalError;
 use rslam_perturb::PerturbError;
 use rslam_pipeline::PipelineError;
+use rslam_render::RenderError;
 
 pub fn pipeline(e: PipelineError) -> PyErr {
     match e {
@@ -15,7 +16,23 @@ pub fn pipeline(e: PipelineError) -> PyErr {
         PipelineError::Core(c) => core(c),
         PipelineError::Option { .. } => PyValueError::new_err(e.to_string()),
         PipelineError::Input { .. } => PyOSError::new_err(e.to_string()),
+        PipelineError::Render(r) => render(r),
         _ => PyRuntimeError::new_err(e.to_string()),
+    }
+}
+
+/// A scene, mesh or path that cannot be used is the caller's; the GPU's failures are not.
+fn render(e: RenderError) -> PyErr {
+    let message = e.to_string();
+    match e {
+        RenderError::Core(c) => core(c),
+        RenderError::Io { .. } => PyOSError::new_err(message),
+        RenderError::UnknownScene { .. }
+        | RenderError::UnsupportedFormat { .. }
+        | RenderError::BadMesh { .. }
+        | RenderError::BadTexture { .. }
+        | RenderError::Actors { .. } => PyValueError::new_err(message),
+        _ => PyRuntimeError::new_err(message),
     }
 }
 

@@ -1,13 +1,15 @@
 //! `rslam.render` and `rslam.scene_poses`: a scene drawn along poses through the pipeline's
 //! in-memory API (rasterizer, then the spec's corruptions), frames back as numpy arrays.
 
+use std::path::PathBuf;
+
 use numpy::PyArrayMethods;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use rslam_core::{MaskImage, Pose};
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{FramesInMemory, SceneJob};
+use rslam_pipeline::{ActorFiles, FramesInMemory, SceneJob};
 use rslam_render::splat::{CaptureOptions, SplatDepth, SplatSettings};
 
 use crate::arrays::{colors_to_numpy, depth_to_numpy, masks_to_numpy, ColorLayout, DepthUnits};
@@ -49,7 +51,9 @@ pub(crate) fn pose_of_matrix(m: &[[f64; 4]; 4]) -> Pose {
 ///         metres are refused on a capture.
 ///     capture_depth: a capture's depth, 'expected' (default) or 'median'.
 ///     capture_min_opacity: a capture's pixels under this accumulated opacity get depth 0.
-///     masks: also return the instance masks (``actors``): which walker each pixel sees.
+///     actors: a user's actors, a list of (mesh file, path file) pairs, as ``rslam render
+///         --actor MESH PATH``: rigid meshes moved along trajectory files (a built-in scene).
+///     masks: also return the instance masks (``actors``): which actor each pixel sees.
 ///
 /// Returns:
 ///     (rgb, depth): uint8 NxHxWx3 sRGB and float32 NxHxW z-depth in metres (0 = nothing hit),
@@ -68,6 +72,7 @@ pub(crate) fn pose_of_matrix(m: &[[f64; 4]; 4]) -> Pose {
     capture_scale = None,
     capture_depth = "expected",
     capture_min_opacity = 0.5,
+    actors = Vec::new(),
     masks = false,
 ))]
 #[allow(clippy::too_many_arguments)] // Python's keyword arguments
@@ -82,6 +87,7 @@ pub fn render<'py>(
     capture_scale: Option<f64>,
     capture_depth: &str,
     capture_min_opacity: f32,
+    actors: Vec<(PathBuf, PathBuf)>,
     masks: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let depth: SplatDepth =
@@ -112,7 +118,9 @@ pub fn render<'py>(
             },
             dataparser_transforms: None,
         },
-        actor_files: Vec::new(),
+        actor_files: (actors.into_iter())
+            .map(|(mesh, path)| ActorFiles { mesh, path })
+            .collect(),
     };
     let frames = py.detach(|| -> Result<_, RunError> {
         let ctx = gpu::context().map_err(RunError::NoGpu)?;

@@ -80,3 +80,64 @@ def test_masks_read_by_pillow_and_rosbags_say_where_the_walkers_are(rslam_bin, t
     fractions = [json.loads((tmp_path / fmt / "rslam.json").read_text())["extra"]["masks"]["dynamic_fraction"]
                  for fmt in ["tum", "ros2"]]
     assert fractions[0] == fractions[1] == [round(float((m > 0).mean()), 6) for _, m in masks]
+
+
+BOX_PLY = """ply
+format ascii 1.0
+element vertex 8
+property float x
+property float y
+property float z
+property uchar red
+property uchar green
+property uchar blue
+element face 12
+property list uchar int vertex_indices
+end_header
+-0.18 -0.18 0 200 80 40
+0.18 -0.18 0 200 80 40
+0.18 0.18 0 200 80 40
+-0.18 0.18 0 200 80 40
+-0.18 -0.18 0.8 200 80 40
+0.18 -0.18 0.8 200 80 40
+0.18 0.18 0.8 200 80 40
+-0.18 0.18 0.8 200 80 40
+3 0 2 1
+3 0 3 2
+3 4 5 6
+3 4 6 7
+3 0 1 5
+3 0 5 4
+3 1 2 6
+3 1 6 5
+3 2 3 7
+3 2 7 6
+3 3 0 4
+3 3 4 7
+"""
+
+
+def test_a_users_actor_is_drawn_where_its_mask_says_and_a_bad_path_is_refused(rslam_bin, tmp_path):
+    """rslam.render(..., actors=[(mesh, path)]) as `rslam render --actor`: a box carried along a
+    walker's path (from a render's manifest) hides the room only where its mask (id 1) is; a path
+    out of the room is refused naming the file and lines."""
+    from conftest import run_cli
+
+    run_cli(rslam_bin, "render", "--scene", "office1", "--camera", CAMERA, "--frames", "120",
+            "--seed", "3", "--perturb", "actors:2", "--format", "tum", "--out", tmp_path / "walkers")
+    walker = [frame[0] for frame in json.loads((tmp_path / "walkers/rslam.json").read_text())["extra"]["actors"]["frames"]]
+    path = tmp_path / "path.txt"
+    path.write_text("".join(f"{j * 0.05:.6f} {x} {y} 0 0 0 0 1\n" for j, (x, y, *_) in enumerate(walker)))
+    mesh = tmp_path / "box.ply"
+    mesh.write_text(BOX_PLY)
+    poses = rslam.scene_poses("office1")[:120]
+    clean = rslam.render("office1", poses, camera=CAMERA)
+    rgb, depth, mask = rslam.render("office1", poses, camera=CAMERA, actors=[(str(mesh), str(path))], masks=True)
+    assert set(np.unique(mask)) == {0, 1}
+    assert np.array_equal(depth[mask == 0], clean[1][mask == 0])
+    on = (mask == 1) & (clean[1] > 0)
+    assert (depth[on] <= clean[1][on]).all() and (depth[on] < clean[1][on]).mean() > 0.95
+    far = tmp_path / "far.txt"
+    far.write_text("0 20 20 0 0 0 0 1\n")
+    with pytest.raises(ValueError, match="far.txt: line 1"):
+        rslam.render("office1", poses[:4], camera=CAMERA, actors=[(str(mesh), str(far))])
