@@ -14,6 +14,7 @@ use crate::perturb_dataset::{dataset_plan, output_ground_truth};
 use crate::pipeline::Pipeline;
 use crate::plan::FramePlan;
 use crate::progress::Silent;
+use crate::scene_job::ActorFiles;
 use crate::scene_job::SceneJob;
 use crate::shown_frame::{Held, ShownFrame, ShownSources};
 use crate::sink::{MemorySink, RgbdFrame};
@@ -32,7 +33,12 @@ pub struct FramesInMemory<S> {
 }
 
 enum Origin {
-    Scene { clean: Trajectory, rate_hz: f64 },
+    Scene {
+        clean: Trajectory,
+        rate_hz: f64,
+        /// The job's own actors, planned again with the walkers when the path or spec changes.
+        actor_files: Vec<ActorFiles>,
+    },
     Dataset(Box<SourceDataset>),
     Buffers,
 }
@@ -79,6 +85,7 @@ impl FramesInMemory<SceneSource> {
             origin: Origin::Scene {
                 clean: resolved.clean,
                 rate_hz: job.rate_hz,
+                actor_files: job.actor_files.clone(),
             },
             generation: 0,
         })
@@ -96,7 +103,12 @@ impl FramesInMemory<SceneSource> {
         spec: &PerturbSpec,
         seed: u64,
     ) -> Result<(), PipelineError> {
-        let Origin::Scene { clean, rate_hz } = &self.origin else {
+        let Origin::Scene {
+            clean,
+            rate_hz,
+            actor_files,
+        } = &self.origin
+        else {
             return Err(PipelineError::Worker(
                 "scene frames without their path".into(),
             ));
@@ -108,9 +120,11 @@ impl FramesInMemory<SceneSource> {
         let path_changed = deviated.poses != self.pipeline.source().poses();
         let with_walkers = !(spec.world.is_empty() && self.spec.world.is_empty());
         let walkers_changed = with_walkers && (spec.world != self.spec.world || seed != self.seed);
-        if walkers_changed || (path_changed && !spec.world.is_empty()) {
+        let has_actors = !spec.world.is_empty() || !actor_files.is_empty();
+        if walkers_changed || (path_changed && has_actors) {
             let scene = self.pipeline.source().scene().clone();
-            let actors = scene_actors::plan(&scene, (spec, &[]), seed, &deviated.poses, rate_hz)?;
+            let files = actor_files.as_slice();
+            let actors = scene_actors::plan(&scene, (spec, files), seed, &deviated.poses, rate_hz)?;
             self.pipeline.source_mut().set_actors(ctx, actors)?;
         }
         let shutter_changed = self
