@@ -1,23 +1,26 @@
-//! The world items on a scene job: walkers planned once per job from the spec, the seed and the
-//! camera's path (so every camera of a rig sees the same people at the same instant), or a
-//! user's actors (a rigid mesh along a path file each, checked against the scene and the
-//! camera's path); refused for a scene without a free floor, and recorded in the manifest
-//! (`extra.actors`: each walker's build, and per frame its position, heading and gait phase; each
-//! user's actor's files and their BLAKE3).
+//! The world items on a scene job: walkers and moved objects planned once per job from the spec,
+//! the seed and the camera's path (so every camera of a rig sees the same people and things at
+//! the same instant), or a user's actors (a rigid mesh along a path file each, checked against
+//! the scene and the camera's path); refused for a scene without a free floor, and recorded in
+//! the manifest (`extra.actors`: each walker's build, and per frame its position, heading and
+//! gait phase; each object's kind and when it moves; each user's actor's files and their
+//! BLAKE3; per frame every rigid actor's pose).
 
 use std::sync::Arc;
 
 use rslam_core::Pose;
 use rslam_perturb::{Need, PerturbSpec};
-use rslam_render::actors::{Actors, CameraTrack, RigidActor, WalkerParams};
+use rslam_render::actors::{
+    Actors, CameraTrack, ObjectParams, RigidActor, RigidOrigin, WalkerParams,
+};
 use rslam_render::Scene;
 
 use crate::plan::FramePlan;
 use crate::scene_job::ActorFiles;
 use crate::{settings, JobPart, PipelineError};
 
-/// The walkers of `spec`, or the user's actors of `files`, along `poses` (source frames at
-/// `rate_hz`, before `fast`); `None` without either.
+/// The walkers and objects of `spec`, or the user's actors of `files`, along `poses` (source
+/// frames at `rate_hz`, before `fast`); `None` without any.
 pub fn plan(
     scene: &Scene,
     (spec, files): (&PerturbSpec, &[ActorFiles]),
@@ -25,7 +28,7 @@ pub fn plan(
     poses: &[Pose],
     rate_hz: f64,
 ) -> Result<Option<Arc<Actors>>, PipelineError> {
-    if spec.world.actors.is_none() && files.is_empty() {
+    if spec.world.is_empty() && files.is_empty() {
         return Ok(None);
     }
     if scene.floor.is_none() {
@@ -43,7 +46,7 @@ pub fn plan(
             .map(|p| (p.rotation * glam::DVec3::Z).as_vec3())
             .collect(),
     };
-    let Some(walkers) = spec.world.actors else {
+    if spec.world.is_empty() {
         let rigid = (files.iter())
             .map(|f| RigidActor::load(&f.mesh, &f.path))
             .collect::<Result<Vec<_>, _>>()?;
@@ -53,17 +56,23 @@ pub fn plan(
         return Err(PipelineError::option(
             JobPart::Actor,
             format!(
-                "{}: walkers (actors:S) do not give way to a user's actors yet; use one or the other",
+                "{}: walkers and objects (actors:S, objects:S) do not give way to a user's actors yet; use one or the other",
                 files[0].mesh.display()
             ),
         ));
     }
-    let params = WalkerParams {
-        count: walkers.count,
-        speed_m_s: walkers.speed_m_s as f32,
-        near_m: walkers.near_m as f32,
-    };
-    Ok(Some(Arc::new(Actors::plan(scene, &params, seed, &camera)?)))
+    let walkers = spec.world.actors.map(|w| WalkerParams {
+        count: w.count,
+        speed_m_s: w.speed_m_s as f32,
+        near_m: w.near_m as f32,
+    });
+    let objects = spec.world.objects.map(|o| ObjectParams {
+        count: o.count,
+        speed_m_s: o.speed_m_s as f32,
+        near_m: o.near_m as f32,
+    });
+    let params = (walkers.as_ref(), objects.as_ref());
+    Ok(Some(Arc::new(Actors::plan(scene, params, seed, &camera)?)))
 }
 
 /// Puts the walkers' builds and each output frame's walker poses (at its colour's capture time,
@@ -87,17 +96,32 @@ pub fn record(extra: &mut serde_json::Value, actors: Option<&Actors>, plan: &Fra
             })
         })
         .collect();
-    let user: Vec<serde_json::Value> = (actors.rigid_actors().iter())
-        .map(|a| {
-            serde_json::json!({
-                "mesh": a.mesh_file.display().to_string(),
-                "mesh_blake3": a.mesh_blake3,
-                "path": a.path_file.display().to_string(),
-                "path_blake3": a.path_blake3,
+    let (mut user, mut objects) = (Vec::new(), Vec::new());
+    for a in actors.rigid_actors() {
+        match &a.origin {
+            RigidOrigin::Files {
+                mesh_file,
+                path_file,
+                mesh_blake3,
+                path_blake3,
+                ..
+            } => user.push(serde_json::json!({
+                "mesh": mesh_file.display().to_string(),
+                "mesh_blake3": mesh_blake3,
+                "path": path_file.display().to_string(),
+                "path_blake3": path_blake3,
                 "footprint_radius_m": round(a.radius),
-            })
-        })
-        .collect();
+            })),
+            RigidOrigin::Object(object) => objects.push(serde_json::json!({
+                "kind": object.kind,
+                "moves_s": (object.moves.iter())
+                    .map(|m| m.map(|t| (t * 1e4).round() / 1e4))
+                    .collect::<Vec<_>>(),
+                "footprint_radius_m": round(a.radius),
+                "closest_to_camera_m": round(object.closest_m),
+            })),
+        }
+    }
     let frames: Vec<Vec<[f64; 5]>> = (plan.frames.iter())
         .map(|frame| {
             let poses = actors.poses_at(frame.rgb_time);
@@ -109,10 +133,25 @@ pub fn record(extra: &mut serde_json::Value, actors: Option<&Actors>, plan: &Fra
                 .collect()
         })
         .collect();
+    let rigid_frames: Vec<Vec<[f64; 7]>> = (plan.frames.iter())
+        .map(|frame| {
+            (actors.rigid_actors().iter())
+                .map(|a| {
+                    let (turn, at) = a.pose_at(frame.rgb_time);
+                    let [x, y, z] = at.to_array().map(round);
+                    let [qx, qy, qz, qw] = turn.to_array().map(round);
+                    [x, y, z, qx, qy, qz, qw]
+                })
+                .collect()
+        })
+        .collect();
     extra["actors"] = serde_json::json!({
         "walkers": walkers,
+        "objects": objects,
         "user": user,
         "frame_fields": ["x_m", "y_m", "heading_rad", "gait_phase", "step_m"],
         "frames": frames,
+        "rigid_frame_fields": ["x_m", "y_m", "z_m", "qx", "qy", "qz", "qw"],
+        "rigid_frames": rigid_frames,
     });
 }

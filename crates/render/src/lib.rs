@@ -15,6 +15,6 @@ pub mod splat;
 pub use error::RenderError;
 pub use raster::Rasterizer;
 pub use scene::{
-    agent_trajectory, builtin_path_length, load_scene, load_scene_scaled, FreeFloor, LightKind,
-    LightLayers, Mesh, Scene, Texture, Vertex, BUILTIN_SCENES, MAX_LIGHT_LAYERS,
+    agent_trajectory, builtin_path_length, load_scene, load_scene_scaled, Door, FreeFloor,
+    LightKind, LightLayers, Mesh, Scene, Texture, Vertex, BUILTIN_SCENES, MAX_LIGHT_LAYERS,
 };

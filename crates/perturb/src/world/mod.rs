@@ -1,28 +1,38 @@
 //! Items that change the world a scene's camera films, not the camera or its frames
-//! (docs/src/perturbations.md, "A world that moves"): people walking through the scene
-//! ([`walkers`]). A job draws them into every render at the render's instant, so every sensor,
-//! shutter and lens sees them where they are.
+//! (docs/src/perturbations.md, "A world that moves"): people walking through the scene and
+//! things moved through it ([`movers`]). A job draws them into every render at the render's
+//! instant, so every sensor, shutter and lens sees them where they are.
 
-pub mod walkers;
+pub mod movers;
 
 use serde::{Deserialize, Serialize};
 
-pub use walkers::Walkers;
+pub use movers::{MoverKind, MovingObjects, ObjectKind, WalkerKind, Walkers};
 
 use crate::applies::{ItemEntry, Need};
 
-pub static WORLD_ITEMS: &[ItemEntry] = &[ItemEntry {
-    name: walkers::NAME,
-    syntax: "actors:1-5 | actors:COUNT/SPEED/NEAR",
-    description: "people walking through the scene: COUNT articulated walkers at SPEED m/s on curved paths over the free floor that keep clear of the furniture, each other and the camera, entering and leaving the view and passing within NEAR m of the camera (or as near as the floor has room for; the manifest has each walker's closest approach); severities 1-5 = 1/0.6/2, 1/1/1.2, 2/1.1/0.8, 2/1.2/0.5, 3/1.4/0.4 (like TUM fr3 sitting, walking_static, walking_xyz, Bonn person_tracking, crowd)",
-    needs: &[Need::Scene, Need::FreeFloor],
-}];
+pub static WORLD_ITEMS: &[ItemEntry] = &[
+    ItemEntry {
+        name: WalkerKind::NAME,
+        syntax: "actors:1-5 | actors:COUNT/SPEED/NEAR",
+        description: "people walking through the scene: COUNT articulated walkers at SPEED m/s on curved paths over the free floor that keep clear of the furniture, each other and the camera, entering and leaving the view and passing within NEAR m of the camera (or as near as the floor has room for; the manifest has each walker's closest approach); severities 1-5 = 1/0.6/2, 1/1/1.2, 2/1.1/0.8, 2/1.2/0.5, 3/1.4/0.4 (like TUM fr3 sitting, walking_static, walking_xyz, Bonn person_tracking, crowd)",
+        needs: &[Need::Scene, Need::FreeFloor],
+    },
+    ItemEntry {
+        name: ObjectKind::NAME,
+        syntax: "objects:1-5 | objects:COUNT/SPEED/NEAR",
+        description: "things moved through the scene: COUNT rigid objects, first the room's door swinging open while the camera sees it and shutting again (as wide as the furniture lets it), then chairs pushed over the free floor at up to SPEED m/s, the first to within NEAR m of the camera; nothing touches the scene, the camera, a walker or another object at any instant; severities 1-5 = 1/0.4/2.5, 2/0.5/2, 2/0.6/1.2, 3/0.7/0.8, 4/0.9/0.5 (like Bonn placing_nonobstructing_box, moving_nonobstructing_box, moving_obstructing_box, moving_obstructing_box2, and beyond)",
+        needs: &[Need::Scene, Need::FreeFloor],
+    },
+];
 
 /// The world items of a spec.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct WorldSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub actors: Option<Walkers>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objects: Option<MovingObjects>,
 }
 
 /// Whether `name` is a world item.
@@ -36,8 +46,11 @@ impl WorldSpec {
         if let Some(m) = mode {
             return Err(format!("{name} takes no mode, got '@{m}'"));
         }
-        debug_assert_eq!(name, walkers::NAME);
-        self.actors = Some(Walkers::parse(value)?);
+        if name == ObjectKind::NAME {
+            self.objects = Some(MovingObjects::parse(value)?);
+        } else {
+            self.actors = Some(Walkers::parse(value)?);
+        }
         Ok(())
     }
 
@@ -47,7 +60,10 @@ impl WorldSpec {
 
     /// The items as written canonically.
     pub fn items(&self) -> Vec<String> {
-        self.actors.iter().map(|w| w.to_string()).collect()
+        let walkers = self.actors.iter().map(|w| w.to_string());
+        walkers
+            .chain(self.objects.iter().map(|o| o.to_string()))
+            .collect()
     }
 }
 
@@ -59,5 +75,7 @@ mod tests {
     fn the_description_states_the_severity_table() {
         let table = format!("severities 1-5 = {}", Walkers::severities());
         assert!(WORLD_ITEMS[0].description.contains(&table), "{table}");
+        let table = format!("severities 1-5 = {}", MovingObjects::severities());
+        assert!(WORLD_ITEMS[1].description.contains(&table), "{table}");
     }
 }

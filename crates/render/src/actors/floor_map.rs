@@ -296,6 +296,7 @@ mod tests {
             free_centre: [0.0; 2],
             free_half: [1.5; 2],
             ceiling: 2.5,
+            door: None,
         };
         let map = FloorMap::new(&mesh, &floor, 1.9);
         let slack = CELL * std::f32::consts::FRAC_1_SQRT_2 + AXIS_STEP / 2.0;

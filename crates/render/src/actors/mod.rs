@@ -9,6 +9,7 @@
 mod floor_map;
 mod footprint;
 mod light_probe;
+mod objects;
 mod plan;
 mod rigid;
 mod walk_path;
@@ -16,8 +17,9 @@ mod walker;
 
 pub use floor_map::FloorMap;
 pub use footprint::Footprint;
+pub use objects::ObjectParams;
 pub use plan::{CameraTrack, WalkerParams, CAMERA_CLEARANCE};
-pub use rigid::RigidActor;
+pub use rigid::{MovedObject, RigidActor, RigidLight, RigidOrigin};
 pub use walk_path::{Route, Stride, WalkPath};
 pub use walker::{BodyMaterial, PosedMesh, WalkerBody, MAX_STRIDE};
 
@@ -58,12 +60,15 @@ pub struct WalkerPose {
     pub step: f32,
 }
 
-/// The walkers or the user's actors of a job and what lights them.
+/// The walkers and moved objects, or the user's actors, of a job and what lights them.
 pub struct Actors {
     walkers: Vec<Walker>,
     rigid: Vec<RigidActor>,
-    /// Texture layer of each rigid actor's first texture.
+    /// Texture layer of each rigid actor's first texture (0 for one that uses the scene's).
     rigid_layers: Vec<u32>,
+    /// Triangles of the scene the actors take over (a door that swings): `(start, end)` in its
+    /// index buffer.
+    hides: Vec<(u32, u32)>,
     probe: LightProbe,
     /// Texture layer of the first clothing texture: the scene's own come first.
     first_cloth: u32,
@@ -93,16 +98,33 @@ impl ActorMesh {
 }
 
 impl Actors {
-    /// Walkers for `scene` as `params` say, drawn from `seed`, clear of the camera on `camera`.
+    /// Walkers and moved objects for `scene` as `params` say, drawn from `seed`, clear of the
+    /// camera on `camera` and of each other (the objects give way to the walkers).
     pub fn plan(
         scene: &Scene,
-        params: &WalkerParams,
+        params: (Option<&WalkerParams>, Option<&ObjectParams>),
         seed: u64,
         camera: &CameraTrack,
     ) -> Result<Self, RenderError> {
         let (mut actors, floor) = Self::lit_by(scene)?;
-        actors.walkers = plan::walkers(scene, &floor, params, seed, camera)
-            .map_err(|message| refusal(scene, message))?;
+        if let Some(walkers) = params.0 {
+            actors.walkers = plan::walkers(scene, &floor, walkers, seed, camera)
+                .map_err(|message| refusal(scene, message))?;
+        }
+        if let Some(objects) = params.1 {
+            let map = FloorMap::new(&scene.mesh, &floor, plan::TALLEST);
+            let moved = objects::plan(scene, &map, objects, seed, (camera, &actors.walkers))
+                .map_err(|message| refusal(scene, message))?;
+            for object in moved {
+                if let RigidOrigin::Object(MovedObject { kind: "door", .. }) = object.origin {
+                    actors
+                        .hides
+                        .extend(floor.door.iter().flat_map(|d| d.indices));
+                }
+                actors.rigid_layers.push(0);
+                actors.rigid.push(object);
+            }
+        }
         Ok(actors)
     }
 
@@ -137,11 +159,25 @@ impl Actors {
             walkers: Vec::new(),
             rigid: Vec::new(),
             rigid_layers: Vec::new(),
+            hides: Vec::new(),
             probe,
             first_cloth: scene.textures.len() as u32,
             textures: crate::scene::builtin::clothing_textures().to_vec(),
         };
         Ok((actors, floor))
+    }
+
+    /// The scene's triangles less those the actors take over.
+    pub fn scene_indices<'a>(&self, scene: &'a Scene) -> std::borrow::Cow<'a, [u32]> {
+        if self.hides.is_empty() {
+            return std::borrow::Cow::Borrowed(&scene.mesh.indices);
+        }
+        let hidden =
+            |i: usize| (self.hides.iter()).any(|&(a, b)| (a as usize..b as usize).contains(&i));
+        let kept = (scene.mesh.indices.chunks_exact(3).enumerate())
+            .filter(|(t, _)| !hidden(3 * t))
+            .flat_map(|(_, corners)| corners.iter().copied());
+        std::borrow::Cow::Owned(kept.collect())
     }
 
     pub fn rigid_actors(&self) -> &[RigidActor] {
@@ -212,13 +248,26 @@ impl Actors {
             (out.actor_vertices).push(base as usize..out.mesh.vertices.len());
         }
         for (actor, &first_layer) in self.rigid.iter().zip(&self.rigid_layers) {
-            let (turn, origin) = actor.pose_at(t);
-            let cubes = self.probe.cubes_at(origin.truncate());
+            let (moving, still) = (actor.pose_at(t), actor.rest_pose());
+            let cubes = self.probe.cubes_at(moving.1.truncate());
             let base = out.mesh.vertices.len() as u32;
-            for (v, normal) in actor.mesh.vertices.iter().zip(&actor.normals) {
+            let vertices = actor.mesh.vertices.iter().zip(&actor.normals);
+            for (i, (v, normal)) in vertices.enumerate() {
+                let (turn, origin) = if i < actor.still_from { moving } else { still };
                 let position = origin + turn * Vec3::from(v.position);
-                let tint = [0, 1, 2].map(|c| unit_srgb_to_linear(f32::from(v.color[c]) / 255.0));
-                let color = self.light(&cubes, position, turn * *normal, tint, &mut out.light);
+                let color = match &actor.light {
+                    RigidLight::Probe => {
+                        let tint =
+                            [0, 1, 2].map(|c| unit_srgb_to_linear(f32::from(v.color[c]) / 255.0));
+                        self.light(&cubes, position, turn * *normal, tint, &mut out.light)
+                    }
+                    RigidLight::Baked(layers) => {
+                        let count = self.layer_count();
+                        out.light
+                            .extend_from_slice(&layers[i * count..(i + 1) * count]);
+                        v.color
+                    }
+                };
                 out.mesh.vertices.push(Vertex {
                     position: position.into(),
                     uv: v.uv,

@@ -96,7 +96,13 @@ impl CameraTrack {
         self.positions[i - 1].lerp(self.positions[i], f)
     }
 
-    fn duration(&self) -> f64 {
+    /// Where the camera looks at `t`: the axis of the pose at or before it.
+    pub fn axis_at(&self, t: f64) -> Vec3 {
+        let i = self.times.partition_point(|&x| x <= t).max(1) - 1;
+        self.axes[i.min(self.axes.len() - 1)]
+    }
+
+    pub(super) fn duration(&self) -> f64 {
         self.times.last().copied().unwrap_or(0.0)
     }
 
@@ -160,7 +166,7 @@ pub(super) fn walkers(
 
 /// Whether the floor point `p` lies in front of a camera at `eye` looking along `axis`, between
 /// [`VIEW_DISTANCE`] metres and within [`VIEW_HALF_ANGLE`] of the axis over the floor.
-fn in_view(eye: Vec3, axis: Vec3, p: Vec2) -> bool {
+pub(super) fn in_view(eye: Vec3, axis: Vec3, p: Vec2) -> bool {
     let to = p - eye.truncate();
     let forward = axis.truncate().normalize_or_zero();
     let distance = to.length();
@@ -170,7 +176,7 @@ fn in_view(eye: Vec3, axis: Vec3, p: Vec2) -> bool {
 
 /// The points of `way` where it must turn: each kept point sees the next one over cells with
 /// `clearance` all along the straight line between them.
-fn corners(map: &FloorMap, way: &[Vec2], clearance: f32) -> Vec<Vec2> {
+pub(super) fn corners(map: &FloorMap, way: &[Vec2], clearance: f32) -> Vec<Vec2> {
     let sees = |a: Vec2, b: Vec2| {
         let pieces = (a.distance(b) / LINE_OF_SIGHT_STEP).ceil().max(1.0) as usize;
         (0..=pieces).all(|i| map.clearance(a.lerp(b, i as f32 / pieces as f32)) >= clearance)

@@ -1,15 +1,16 @@
-//! A user's actor: a rigid mesh (PLY, OBJ or glTF, in its own frame, z up) moved along a path file
-//! in any trajectory format rslam reads, each pose the mesh's frame in the world at its time:
-//! linear in position and spherical in rotation between poses, at rest before the first and after
-//! the last. Its footprint on the floor is the circle round its origin that holds every vertex;
-//! the path is checked every few milliseconds to keep that clear of walls, furniture and the
-//! camera, and an error names the path file's line.
+//! A rigid actor: a mesh moved along timed poses, linear in position and spherical in rotation
+//! between them, at rest before the first and after the last. Either a user's: a mesh file (PLY,
+//! OBJ or glTF, in its own frame, z up) along a path file in any trajectory format rslam reads,
+//! whose footprint on the floor (the circle round its origin that holds every vertex) is checked
+//! every few milliseconds to keep clear of walls, furniture and the camera, an error naming the
+//! path file's line; or one of the things `objects` moves (a door, a pushed chair), planned
+//! clear of everything by [`super::objects`].
 
 use std::path::{Path, PathBuf};
 
 use glam::{DQuat, Quat, Vec2, Vec3};
 use rslam_core::trajectory_io::{read_trajectory_with, ReadOptions};
-use rslam_core::{read_text_file, Pose};
+use rslam_core::{read_text_file, Pose, Trajectory};
 
 use super::plan::{CameraTrack, CAMERA_CLEARANCE};
 use super::FloorMap;
@@ -21,26 +22,93 @@ const CHECK_STEP_S: f64 = 0.005;
 /// A rigid mesh along its path.
 #[derive(Clone, Debug)]
 pub struct RigidActor {
-    pub mesh_file: PathBuf,
-    pub path_file: PathBuf,
-    /// BLAKE3 (hex) of each file as read.
-    pub mesh_blake3: String,
-    pub path_blake3: String,
-    /// In its own frame; texture layers index [`RigidActor::textures`].
+    pub origin: RigidOrigin,
+    /// In its own frame; texture layers index [`RigidActor::textures`], or the scene's when it
+    /// has none of its own.
     pub mesh: Mesh,
     /// Per vertex, its own frame.
     pub normals: Vec<Vec3>,
     pub textures: Vec<Texture>,
+    pub light: RigidLight,
+    /// Vertices from this one on stay where the first pose puts them (the dark opening a door
+    /// leaves as it swings).
+    pub still_from: usize,
     /// The radius round its origin, over the floor, that holds every vertex, metres.
     pub radius: f32,
     times: Vec<f64>,
     /// The mesh's frame in the world at each time.
     poses: Vec<Pose>,
-    /// The path file's line of each pose.
-    lines: Vec<usize>,
+}
+
+/// Where a rigid actor comes from.
+#[derive(Clone, Debug)]
+pub enum RigidOrigin {
+    /// A user's mesh and path files, with the BLAKE3 (hex) of each as read and the path file's
+    /// line of each pose.
+    Files {
+        mesh_file: PathBuf,
+        path_file: PathBuf,
+        mesh_blake3: String,
+        path_blake3: String,
+        lines: Vec<usize>,
+    },
+    /// A thing `objects` moves.
+    Object(MovedObject),
+}
+
+/// What `objects` moved, for the manifest.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MovedObject {
+    /// `door` or `chair`.
+    pub kind: &'static str,
+    /// Seconds from the start at which it starts and stops moving (a door: opening, then
+    /// closing).
+    pub moves: Vec<[f64; 2]>,
+    /// The nearest its footprint comes to the camera centre, metres.
+    pub closest_m: f32,
+}
+
+/// How a rigid actor is lit.
+#[derive(Clone, Debug)]
+pub enum RigidLight {
+    /// By the scene's light probe where it stands, its vertex colours as albedo.
+    Probe,
+    /// As the scene baked it in place (a door of the scene): its vertex colours and, per
+    /// vertex and light layer, linear RGB (`layers[v * count + l]`).
+    Baked(Vec<[f32; 3]>),
 }
 
 impl RigidActor {
+    /// A planned object: `mesh` in its own frame at `path`'s poses.
+    pub(super) fn object(
+        object: MovedObject,
+        (mesh, light, still_from): (Mesh, RigidLight, usize),
+        path: Trajectory,
+    ) -> Self {
+        Self {
+            origin: RigidOrigin::Object(object),
+            normals: vertex_normals(&mesh),
+            radius: footprint_radius(&mesh),
+            mesh,
+            textures: Vec::new(),
+            light,
+            still_from,
+            times: path.timestamps,
+            poses: path.poses,
+        }
+    }
+
+    pub(super) fn set_closest(&mut self, closest_m: f32) {
+        if let RigidOrigin::Object(object) = &mut self.origin {
+            object.closest_m = closest_m;
+        }
+    }
+
+    /// Where its first pose puts it: where its still vertices stay.
+    pub fn rest_pose(&self) -> (Quat, Vec3) {
+        self.pose_at(f64::NEG_INFINITY)
+    }
+
     /// Reads `mesh_file` and `path_file`; an error names the file that cannot be read.
     pub fn load(mesh_file: &Path, path_file: &Path) -> Result<Self, RenderError> {
         let scene = load_scene(&mesh_file.to_string_lossy())?;
@@ -61,19 +129,20 @@ impl RigidActor {
             .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
             .map(|(i, _)| i + 1)
             .collect();
-        let radius = (scene.mesh.vertices.iter())
-            .map(|v| Vec2::new(v.position[0], v.position[1]).length())
-            .fold(0.0, f32::max);
         Ok(Self {
-            mesh_file: mesh_file.into(),
-            path_file: path_file.into(),
-            mesh_blake3: blake3::hash(&mesh_bytes).to_hex().to_string(),
-            path_blake3: blake3::hash(text.as_bytes()).to_hex().to_string(),
+            origin: RigidOrigin::Files {
+                mesh_file: mesh_file.into(),
+                path_file: path_file.into(),
+                mesh_blake3: blake3::hash(&mesh_bytes).to_hex().to_string(),
+                path_blake3: blake3::hash(text.as_bytes()).to_hex().to_string(),
+                lines: lines.into_iter().take(path.poses.len()).collect(),
+            },
             normals: vertex_normals(&scene.mesh),
+            radius: footprint_radius(&scene.mesh),
+            still_from: scene.mesh.vertices.len(),
             mesh: scene.mesh,
             textures: scene.textures,
-            radius,
-            lines: lines.into_iter().take(path.poses.len()).collect(),
+            light: RigidLight::Probe,
             times: path.timestamps,
             poses: path.poses,
         })
@@ -102,7 +171,11 @@ impl RigidActor {
     /// it or that it rests at before the first and after the last ("line 11").
     fn lines_at(&self, t: f64) -> String {
         let i = self.times.partition_point(|&x| x <= t);
-        let line = |k: usize| self.lines.get(k).copied().unwrap_or(0);
+        let lines: &[usize] = match &self.origin {
+            RigidOrigin::Files { lines, .. } => lines,
+            RigidOrigin::Object(_) => &[],
+        };
+        let line = |k: usize| lines.get(k).copied().unwrap_or(0);
         match i {
             0 => format!("line {}", line(0)),
             i if i == self.times.len() || self.times[i - 1] == t => format!("line {}", line(i - 1)),
@@ -136,8 +209,12 @@ impl RigidActor {
                 None
             };
             if let Some(message) = problem {
+                let path = match &self.origin {
+                    RigidOrigin::Files { path_file, .. } => path_file.clone(),
+                    RigidOrigin::Object(object) => PathBuf::from(object.kind),
+                };
                 return Err(RenderError::BadMesh {
-                    path: self.path_file.clone(),
+                    path,
                     message: format!("{}: {message}", self.lines_at(t)),
                 });
             }
@@ -148,6 +225,13 @@ impl RigidActor {
 
 fn quat(q: DQuat) -> Quat {
     Quat::from_xyzw(q.x as f32, q.y as f32, q.z as f32, q.w as f32)
+}
+
+/// The radius round the origin, over the floor, that holds every vertex of `mesh`.
+fn footprint_radius(mesh: &Mesh) -> f32 {
+    (mesh.vertices.iter())
+        .map(|v| Vec2::new(v.position[0], v.position[1]).length())
+        .fold(0.0, f32::max)
 }
 
 /// Area-weighted vertex normals.

@@ -82,8 +82,12 @@ impl MeshRasterizer {
         let first = first_actor_vertex as u32;
         // Actors first: they stand in front of much of the room, and the depth test then skips
         // what they hide instead of shading it twice.
+        let scene_indices = match &actors {
+            Some(actors) => actors.scene_indices(scene),
+            None => std::borrow::Cow::Borrowed(&scene.mesh.indices[..]),
+        };
         let all_indices: Vec<u32> = (at_start.mesh.indices.iter().map(|i| first + i))
-            .chain(scene.mesh.indices.iter().copied())
+            .chain(scene_indices.iter().copied())
             .collect();
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("scene vertices"),

@@ -89,6 +89,25 @@ pub struct FreeFloor {
     pub free_centre: [f32; 2],
     pub free_half: [f32; 2],
     pub ceiling: f32,
+    /// The room's closed door, which `objects` can swing open.
+    pub door: Option<Door>,
+}
+
+/// A built-in room's door leaf, closed: world metres, z = 0 at its foot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Door {
+    /// The foot of the hinge edge on the leaf's room side.
+    pub hinge: [f32; 3],
+    /// Unit vector along the wall from the hinge to the leaf's free edge.
+    pub along: [f32; 2],
+    /// Unit vector from the wall into the room: the leaf opens this way.
+    pub into_room: [f32; 2],
+    pub width: f32,
+    pub height: f32,
+    /// From the leaf's room side back to the wall.
+    pub thickness: f32,
+    /// The leaf's and its handle's triangles: `(start, end)` in the scene's index buffer.
+    pub indices: [(u32, u32); 2],
 }
 
 impl Mesh {

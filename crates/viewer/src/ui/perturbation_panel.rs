@@ -3,7 +3,7 @@
 //! the seed; the spec string of the shown frame, copyable, and a field to type one.
 
 use rslam_perturb::light::{Daylight, Flicker, LightSpec, Switching};
-use rslam_perturb::world::Walkers;
+use rslam_perturb::world::{MovingObjects, Walkers};
 use rslam_perturb::{find, Severity};
 
 use crate::app::ViewerApp;
@@ -190,6 +190,12 @@ fn stream_items(ui: &mut egui::Ui, app: &mut ViewerApp) {
             "actors: people walking through",
             &mut editor.world.actors,
             Walkers::parse,
+        );
+        severity_item(
+            ui,
+            "objects: a door swinging, chairs pushed",
+            &mut editor.world.objects,
+            MovingObjects::parse,
         );
     }
     ui.horizontal(|ui| {

@@ -145,6 +145,11 @@ impl MeshBuilder {
 
     /// The mesh with its lighting baked into the vertex colours, and each light's share of them
     /// ([`LightLayers`]); `layer_albedo[l]` is the mean linear colour of texture layer `l`.
+    /// Indices so far: where the next piece's triangles start in the finished mesh.
+    pub fn index_count(&self) -> u32 {
+        self.mesh.indices.len() as u32
+    }
+
     pub fn finish(mut self, layer_albedo: &[Vec3]) -> (Mesh, LightLayers) {
         let tints: Vec<Vec3> = self.tints.iter().map(|&t| linear(t)).collect();
         let albedo: Vec<Vec3> = tints

@@ -109,12 +109,14 @@ pub fn build(name: &str) -> Option<Scene> {
     (plan.furnish)(&mut b, &style, &room);
     let track = track(&plan);
     let trajectory = trajectory::default_trajectory(&track, path_seed(seed, 0), 0.0);
+    let door = b.doors.first().copied();
     let mut scene = b.finish(name, trajectory);
     scene.floor = Some(FreeFloor {
         room_half: track.room_half.into(),
         free_centre: track.centre.into(),
         free_half: track.half.into(),
         ceiling: track.height,
+        door,
     });
     Some(scene)
 }

@@ -12,11 +12,13 @@ use super::mesh_builder::{Faces, Frame, Material, MeshBuilder, UvMap};
 use super::rng::Rng;
 use super::textures::{self, Pattern, Rgb, TextureSpec};
 use crate::scene::srgb::srgb_to_linear;
-use crate::{Scene, Texture};
+use crate::{Door, Scene, Texture};
 
 pub struct SceneBuilder {
     pub mesh: MeshBuilder,
     pub rng: Rng,
+    /// The room's doors, as they are built.
+    pub doors: Vec<Door>,
     specs: Vec<TextureSpec>,
     layers: HashMap<TextureSpec, u32>,
 }
@@ -26,6 +28,7 @@ impl SceneBuilder {
         Self {
             mesh: MeshBuilder::new(lighting),
             rng: Rng::new(seed),
+            doors: Vec::new(),
             specs: Vec::new(),
             layers: HashMap::new(),
         }

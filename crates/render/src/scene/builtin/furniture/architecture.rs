@@ -8,6 +8,7 @@ use super::super::mesh_builder::{Faces, Frame, Material};
 use super::super::scene_builder::SceneBuilder;
 use super::super::textures::Pattern;
 use super::Style;
+use crate::scene::Door;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Wall {
@@ -108,6 +109,7 @@ impl Room {
         let f = self.wall_frame(wall, along);
         let (hw, h) = (0.45, 2.05);
         let leaf = b.unique(Pattern::Door);
+        let leaf_start = b.mesh.index_count();
         b.cuboid(
             &f,
             Vec3::new(-hw, -0.03, 0.0),
@@ -116,6 +118,7 @@ impl Room {
                 .with(Faces::FRONT, leaf)
                 .without(Faces::BACK),
         );
+        let leaf_end = b.mesh.index_count();
         let trim = Faces::all(s.paint).without(Faces::BACK);
         b.cuboid(
             &f,
@@ -135,12 +138,23 @@ impl Room {
             Vec3::new(hw, 0.0, h + 0.08),
             trim,
         );
+        let handle_start = b.mesh.index_count();
         b.cuboid(
             &f,
             Vec3::new(hw - 0.2, -0.09, 1.0),
             Vec3::new(hw - 0.06, -0.03, 1.03),
             s.metal,
         );
+        let into_room = f.vector(Vec3::NEG_Y).truncate();
+        b.doors.push(Door {
+            hinge: f.point(Vec3::new(-hw, -0.03, 0.0)).into(),
+            along: f.vector(Vec3::X).truncate().into(),
+            into_room: into_room.into(),
+            width: 2.0 * hw,
+            height: h,
+            thickness: 0.03,
+            indices: [(leaf_start, leaf_end), (handle_start, b.mesh.index_count())],
+        });
     }
 
     /// A window (the view outside is a picture behind the frame) with a sill and two curtains.

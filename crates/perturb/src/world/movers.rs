@@ -1,0 +1,190 @@
+//! The world items that move things through the scene, `actors:S` (people walking) and
+//! `objects:S` (a door swinging, chairs pushed): COUNT things at SPEED metres per second coming
+//! within NEAR metres of the camera (never closer than their size allows: they keep clear of the
+//! camera, the scene and each other at every instant). Each kind states its severity table and
+//! limits ([`MoverKind`]); parsing and the canonical form are shared.
+
+use std::fmt;
+use std::marker::PhantomData;
+
+use serde::{Deserialize, Serialize};
+
+/// What one world item moves, and its limits.
+pub trait MoverKind {
+    const NAME: &'static str;
+    /// What COUNT counts, for messages.
+    const NOUN: &'static str;
+    /// (count, metres per second, closest approach to the camera in metres) at severities
+    /// 1..=5.
+    const TABLE: [(u32, f64, f64); 5];
+    const MAX_COUNT: u32;
+    const SPEEDS: (f64, f64);
+    const NEAR: (f64, f64);
+    /// An explicit form for messages.
+    const EXAMPLE: &'static str;
+}
+
+/// People walking through the scene (`actors`).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct WalkerKind;
+
+/// Things moved through the scene (`objects`).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct ObjectKind;
+
+impl MoverKind for WalkerKind {
+    const NAME: &'static str = "actors";
+    const NOUN: &'static str = "walkers";
+    /// Each like a published dynamic sequence: one person moving slowly at a distance (TUM fr3
+    /// `sitting_*`: people at a desk, little in view), one walking through the room (TUM
+    /// `walking_static`), two walking round near the camera (TUM `walking_xyz`), two passing
+    /// just in front of it (Bonn `person_tracking`), three hurrying past it (Bonn `crowd`).
+    const TABLE: [(u32, f64, f64); 5] = [
+        (1, 0.6, 2.0),
+        (1, 1.0, 1.2),
+        (2, 1.1, 0.8),
+        (2, 1.2, 0.5),
+        (3, 1.4, 0.4),
+    ];
+    /// Each needs room on a built-in scene's floor.
+    const MAX_COUNT: u32 = 8;
+    /// Walking speeds a person keeps up.
+    const SPEEDS: (f64, f64) = (0.2, 2.0);
+    const NEAR: (f64, f64) = (0.4, 5.0);
+    const EXAMPLE: &'static str = "actors:3 or actors:2/1.2/0.8";
+}
+
+impl MoverKind for ObjectKind {
+    const NAME: &'static str = "objects";
+    const NOUN: &'static str = "things moved";
+    /// The door swings (Bonn `placing_nonobstructing_box`: one object moved at a distance); the
+    /// door and a chair pushed across the room (`moving_nonobstructing_box`); a chair pushed
+    /// to just over a metre from the camera (`moving_obstructing_box`); two chairs, one
+    /// pushed right in front of it (`moving_obstructing_box2`); three, faster and nearer.
+    const TABLE: [(u32, f64, f64); 5] = [
+        (1, 0.4, 2.5),
+        (2, 0.5, 2.0),
+        (2, 0.6, 1.2),
+        (3, 0.7, 0.8),
+        (4, 0.9, 0.5),
+    ];
+    /// The door and up to five chairs.
+    const MAX_COUNT: u32 = 6;
+    /// How fast a pushed chair goes at most.
+    const SPEEDS: (f64, f64) = (0.1, 1.5);
+    const NEAR: (f64, f64) = (0.3, 5.0);
+    const EXAMPLE: &'static str = "objects:2 or objects:3/0.6/1";
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Movers<K> {
+    /// The severity it was given as, if any (the canonical form then writes it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub severity: Option<u8>,
+    pub count: u32,
+    /// Metres per second: a walker's walking speed, a pushed object's top speed.
+    pub speed_m_s: f64,
+    /// How close each walker, or the first pushed object, comes to the camera: metres between
+    /// its edge and the camera centre.
+    pub near_m: f64,
+    #[serde(skip)]
+    kind: PhantomData<K>,
+}
+
+/// `actors:S`: people walking through the scene.
+pub type Walkers = Movers<WalkerKind>;
+/// `objects:S`: the room's door swinging, chairs pushed across the floor.
+pub type MovingObjects = Movers<ObjectKind>;
+
+impl<K: MoverKind> Movers<K> {
+    pub fn parse(value: &str) -> Result<Self, String> {
+        if let Some(s) = crate::spec::parse_severity(value) {
+            let (count, speed_m_s, near_m) = K::TABLE[s as usize - 1];
+            return Ok(Self::new(Some(s), count, speed_m_s, near_m));
+        }
+        let expected = format!(
+            "a severity 1-5 or COUNT/SPEED/NEAR (1-{} {}, {}-{} m/s, a closest approach of {}-{} m), e.g. {}",
+            K::MAX_COUNT,
+            K::NOUN,
+            K::SPEEDS.0,
+            K::SPEEDS.1,
+            K::NEAR.0,
+            K::NEAR.1,
+            K::EXAMPLE
+        );
+        let parsed: Option<Vec<f64>> = value
+            .split('/')
+            .map(|v| v.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect();
+        let valid = |v: &Vec<f64>| {
+            v.len() == 3
+                && v[0].fract() == 0.0
+                && (1.0..=f64::from(K::MAX_COUNT)).contains(&v[0])
+                && (K::SPEEDS.0..=K::SPEEDS.1).contains(&v[1])
+                && (K::NEAR.0..=K::NEAR.1).contains(&v[2])
+        };
+        let v = parsed
+            .filter(valid)
+            .ok_or_else(|| format!("'{value}': expected {expected}"))?;
+        Ok(Self::new(None, v[0] as u32, v[1], v[2]))
+    }
+
+    fn new(severity: Option<u8>, count: u32, speed_m_s: f64, near_m: f64) -> Self {
+        Self {
+            severity,
+            count,
+            speed_m_s,
+            near_m,
+            kind: PhantomData,
+        }
+    }
+
+    /// The severities' parameters as the catalogue's description states them: `1/0.6/2, …`.
+    #[cfg(test)]
+    pub(crate) fn severities() -> String {
+        K::TABLE.map(|(c, s, n)| format!("{c}/{s}/{n}")).join(", ")
+    }
+}
+
+impl<K: MoverKind> fmt::Display for Movers<K> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.severity {
+            Some(s) => write!(f, "{}:{s}", K::NAME),
+            None => write!(
+                f,
+                "{}:{}/{}/{}",
+                K::NAME,
+                self.count,
+                self.speed_m_s,
+                self.near_m
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_severities_and_explicit_forms() {
+        let w = Walkers::parse("5").unwrap();
+        assert_eq!((w.count, w.speed_m_s, w.near_m), (3, 1.4, 0.4));
+        assert_eq!(w.to_string(), "actors:5");
+        let e = Walkers::parse("2/1.2/0.8").unwrap();
+        assert_eq!((e.count, e.speed_m_s, e.near_m), (2, 1.2, 0.8));
+        assert_eq!(e.to_string(), "actors:2/1.2/0.8");
+        assert_eq!(Walkers::parse(&e.to_string()[7..]).unwrap(), e);
+        for bad in [
+            "0", "6", "0/1/1", "9/1/1", "1.5/1/1", "2/3/1", "2/1/0.1", "2/1", "x",
+        ] {
+            let message = Walkers::parse(bad).unwrap_err();
+            assert!(message.contains("COUNT/SPEED/NEAR"), "{bad}: {message}");
+        }
+        let o = MovingObjects::parse("3/0.6/1").unwrap();
+        assert_eq!(o.to_string(), "objects:3/0.6/1");
+        assert_eq!(MovingObjects::parse("4").unwrap().count, 3);
+        let message = MovingObjects::parse("7/0.5/1").unwrap_err();
+        assert!(message.contains("1-6 things moved"), "{message}");
+    }
+}

@@ -1,0 +1,239 @@
+//! A chair pushed across the room: it stands from the start where the camera never comes, is
+//! pushed at an instant past a point NEAR metres from the camera and on to another such place
+//! (the shortest ways over the free floor, an open Catmull–Rom spline through their corners),
+//! speeding up and slowing down, turning a little as it goes, and stays there.
+
+use std::f32::consts::TAU;
+
+use glam::{DQuat, DVec3, Vec2, Vec3};
+use rslam_core::Pose;
+
+use super::{sampled, Obstacles, Placed, Shape, MOTION_MARGIN};
+use crate::actors::plan::{corners, CameraTrack, CAMERA_CLEARANCE};
+use crate::actors::{FloorMap, MovedObject, RigidActor, RigidLight};
+use crate::scene::builtin::rng::Rng;
+use crate::{Mesh, Vertex};
+
+/// Frame and seat colours (sRGB): light wood, dark wood, black, white, red and blue paint.
+const PAINTS: [[u8; 3]; 6] = [
+    [196, 160, 112],
+    [104, 72, 48],
+    [40, 40, 44],
+    [228, 226, 218],
+    [150, 44, 36],
+    [52, 88, 140],
+];
+/// Metres from where it stands to the point near the camera, and on, as the crow flies.
+const DISTANCE: (f32, f32) = (1.0, 3.5);
+/// Half the seat's width and depth, and the legs' thickness, metres.
+const HALF_SEAT: (f32, f32) = (0.21, 0.2);
+const LEG: f32 = 0.035;
+/// Metres more than the camera clearance a standing chair keeps from every place the camera
+/// passes.
+const PARKING_GAP: f32 = 0.1;
+/// Radians it turns on the way, at most either way.
+const TURN: f32 = 0.6;
+/// Spline samples per corner-to-corner span.
+const SAMPLES_PER_SPAN: usize = 16;
+/// Seconds from the start before anything is pushed.
+const FIRST_PUSH_S: f64 = 0.5;
+
+/// The radius round a chair's origin that holds it.
+fn radius() -> f32 {
+    HALF_SEAT.0.hypot(HALF_SEAT.1)
+}
+
+/// Where a chair can stand all through: cells with room for it that the camera never comes near.
+pub(super) fn parking(map: &FloorMap, camera: &CameraTrack) -> Vec<Vec2> {
+    let keep = radius() + CAMERA_CLEARANCE + PARKING_GAP;
+    (map.free_cells(radius() + MOTION_MARGIN).into_iter())
+        .filter(|p| (camera.positions.iter()).all(|c| c.truncate().distance(*p) >= keep))
+        .collect()
+}
+
+/// One try at a chair pushed past `near` metres of the camera at `speed` (top, metres per
+/// second), between two of the `parking` places; `None` when this draw does not fit.
+pub(super) fn plan(
+    map: &FloorMap,
+    rng: &mut Rng,
+    (speed, near): (f32, f32),
+    (obstacles, parking): (&Obstacles, &[Vec2]),
+) -> Option<Placed> {
+    let camera = obstacles.camera;
+    let mesh = chair(rng);
+    let radius = radius();
+    let roomy = radius + MOTION_MARGIN;
+    let meet = f64::from(rng.range(0.15, 0.85)) * camera.duration();
+    let eye = camera.at(meet);
+    // In front of the camera, within the half-angle a walker's stops are drawn in.
+    let bearing = camera.axis_at(meet).truncate().to_angle() + rng.range(-0.5, 0.5);
+    let passing =
+        eye.truncate() + Vec2::from_angle(bearing) * (near + radius + rng.range(0.0, 0.2));
+    if map.clearance(passing) < roomy {
+        return None;
+    }
+
+    let mut stands = || {
+        let far: Vec<Vec2> = (parking.iter())
+            .filter(|p| (DISTANCE.0..DISTANCE.1).contains(&p.distance(passing)))
+            .copied()
+            .collect();
+        (!far.is_empty()).then(|| far[rng.int(0, far.len() as i64) as usize])
+    };
+    let (start, end) = (stands()?, stands()?);
+    let mut through = vec![start];
+    for (from, to) in [(start, passing), (passing, end)] {
+        let way = map.way(from, to, roomy)?;
+        through.extend(corners(map, &way, roomy).into_iter().skip(1));
+        through.push(to);
+    }
+    let (points, lengths) = open_spline(&through);
+    if points.iter().any(|&p| map.clearance(p) < roomy) {
+        return None;
+    }
+    let length = *lengths.last()?;
+    let passing_at = lengths[points.iter().position(|p| p.distance(passing) < 1e-4)?];
+    let push_s = 1.5 * f64::from(length / speed);
+    let from = (meet - push_s * unease(f64::from(passing_at / length))).max(FIRST_PUSH_S);
+    if from + push_s > camera.duration() {
+        return None;
+    }
+    let (yaw, turn) = (rng.range(0.0, TAU), rng.range(-TURN, TURN));
+    let moves = vec![[from, from + push_s]];
+    let path = sampled(&moves, |_, eased| {
+        let at = along(&points, &lengths, eased as f32 * length);
+        Pose::new(
+            DQuat::from_rotation_z(f64::from(yaw + turn * eased as f32)),
+            DVec3::new(f64::from(at.x), f64::from(at.y), 0.0),
+        )
+    });
+    let object = MovedObject {
+        kind: "chair",
+        moves,
+        closest_m: 0.0,
+    };
+    let mut actor = RigidActor::object(object, (mesh, RigidLight::Probe, usize::MAX), path);
+    let closest = obstacles.clear(&actor, Shape::Round)?;
+    actor.set_closest(closest);
+    Some(Placed {
+        actor,
+        shape: Shape::Round,
+    })
+}
+
+/// The share of the time at which [`super::ease`] reaches `share` of the way.
+fn unease(share: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if super::ease(mid) < share {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// An open Catmull–Rom spline through `points` (the ends repeated), densely sampled, and the
+/// arc length at each sample.
+fn open_spline(points: &[Vec2]) -> (Vec<Vec2>, Vec<f32>) {
+    let n = points.len();
+    let at = |i: isize| points[i.clamp(0, n as isize - 1) as usize];
+    let mut samples = Vec::new();
+    for i in 0..n.saturating_sub(1) as isize {
+        let [p0, p1, p2, p3] = [at(i - 1), at(i), at(i + 1), at(i + 2)];
+        for s in 0..SAMPLES_PER_SPAN {
+            let t = s as f32 / SAMPLES_PER_SPAN as f32;
+            let (t2, t3) = (t * t, t * t * t);
+            samples.push(
+                0.5 * ((2.0 * p1)
+                    + (p2 - p0) * t
+                    + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t2
+                    + (3.0 * p1 - p0 - 3.0 * p2 + p3) * t3),
+            );
+        }
+    }
+    samples.push(points[n - 1]);
+    let mut lengths = vec![0.0];
+    for w in samples.windows(2) {
+        lengths.push(lengths.last().copied().unwrap_or(0.0) + w[0].distance(w[1]));
+    }
+    (samples, lengths)
+}
+
+/// The point `s` metres along the samples.
+fn along(points: &[Vec2], lengths: &[f32], s: f32) -> Vec2 {
+    let i = lengths
+        .partition_point(|&l| l <= s)
+        .clamp(1, points.len() - 1);
+    let span = lengths[i] - lengths[i - 1];
+    let f = if span > 0.0 {
+        ((s - lengths[i - 1]) / span).min(1.0)
+    } else {
+        0.0
+    };
+    points[i - 1].lerp(points[i], f)
+}
+
+/// A four-legged chair with a backrest, its origin under the seat's centre, the back towards −x;
+/// painted from [`PAINTS`].
+fn chair(rng: &mut Rng) -> Mesh {
+    let pick = |rng: &mut Rng| {
+        let [r, g, b] = PAINTS[rng.int(0, PAINTS.len() as i64) as usize];
+        [r, g, b, 255]
+    };
+    let (frame, seat) = (pick(rng), pick(rng));
+    let ((hx, hy), leg) = (HALF_SEAT, LEG);
+    let mut mesh = Mesh::default();
+    cuboid(&mut mesh, [-hx, -hy, 0.43], [hx, hy, 0.47], seat);
+    for (x, y) in [
+        (-hx, -hy),
+        (-hx, hy - leg),
+        (hx - leg, -hy),
+        (hx - leg, hy - leg),
+    ] {
+        let top = if x < 0.0 { 0.88 } else { 0.43 };
+        cuboid(&mut mesh, [x, y, 0.0], [x + leg, y + leg, top], frame);
+    }
+    cuboid(
+        &mut mesh,
+        [-hx, -hy + leg, 0.62],
+        [-hx + 0.02, hy - leg, 0.84],
+        seat,
+    );
+    mesh
+}
+
+/// An axis-aligned box of one colour, each face its own four vertices (flat normals).
+fn cuboid(mesh: &mut Mesh, min: [f32; 3], max: [f32; 3], color: [u8; 4]) {
+    let (lo, hi) = (Vec3::from(min), Vec3::from(max));
+    let corner = |i: usize| {
+        Vec3::new(
+            if i & 1 != 0 { hi.x } else { lo.x },
+            if i & 2 != 0 { hi.y } else { lo.y },
+            if i & 4 != 0 { hi.z } else { lo.z },
+        )
+    };
+    // Each face's corners counter-clockwise seen from outside.
+    const FACES: [[usize; 4]; 6] = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    for face in FACES {
+        let first = mesh.vertices.len() as u32;
+        for (k, &c) in face.iter().enumerate() {
+            mesh.vertices.push(Vertex {
+                position: corner(c).into(),
+                uv: [(k == 1 || k == 2) as u8 as f32, (k >= 2) as u8 as f32],
+                color,
+                layer: 0,
+            });
+        }
+        mesh.indices.extend([0, 1, 2, 0, 2, 3].map(|k| first + k));
+    }
+}
