@@ -17,6 +17,7 @@ mod imu_items;
 mod light;
 mod list;
 mod motion;
+mod objects;
 mod perturb;
 mod perturb_euroc;
 mod perturb_tumvi;

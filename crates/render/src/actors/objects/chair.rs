@@ -10,7 +10,7 @@ use rslam_core::Pose;
 
 use super::{sampled, Obstacles, Placed, Shape, MOTION_MARGIN};
 use crate::actors::plan::{corners, CameraTrack, CAMERA_CLEARANCE};
-use crate::actors::{FloorMap, MovedObject, RigidActor, RigidLight};
+use crate::actors::{FloorMap, MovedObject, RigidActor, RigidLight, Walker};
 use crate::scene::builtin::rng::Rng;
 use crate::{Mesh, Vertex};
 
@@ -28,6 +28,10 @@ const DISTANCE: (f32, f32) = (1.0, 3.5);
 /// Half the seat's width and depth, and the legs' thickness, metres.
 const HALF_SEAT: (f32, f32) = (0.21, 0.2);
 const LEG: f32 = 0.035;
+/// The point passed near the camera lies within this angle of its axis, radians ...
+const VIEW_HALF_ANGLE: f32 = 0.5;
+/// ... in a band this many metres wide beyond NEAR (or the nearest the floor has room for).
+const PASSING_BAND: f32 = 0.25;
 /// Metres more than the camera clearance a standing chair keeps from every place the camera
 /// passes.
 const PARKING_GAP: f32 = 0.1;
@@ -43,36 +47,57 @@ fn radius() -> f32 {
     HALF_SEAT.0.hypot(HALF_SEAT.1)
 }
 
-/// Where a chair can stand all through: cells with room for it that the camera never comes near.
-pub(super) fn parking(map: &FloorMap, camera: &CameraTrack) -> Vec<Vec2> {
-    let keep = radius() + CAMERA_CLEARANCE + PARKING_GAP;
-    (map.free_cells(radius() + MOTION_MARGIN).into_iter())
-        .filter(|p| (camera.positions.iter()).all(|c| c.truncate().distance(*p) >= keep))
-        .collect()
+/// The floor as chairs see it: where one fits, and where one can stand all through (cells that
+/// neither the camera nor a walker's route ever comes near).
+pub(super) struct ChairFloor<'a> {
+    map: &'a FloorMap,
+    free: Vec<Vec2>,
+    parking: Vec<Vec2>,
 }
 
-/// One try at a chair pushed past `near` metres of the camera at `speed` (top, metres per
-/// second), between two of the `parking` places; `None` when this draw does not fit.
+impl<'a> ChairFloor<'a> {
+    pub(super) fn of(map: &'a FloorMap, camera: &CameraTrack, walkers: &[Walker]) -> Self {
+        let keep = radius() + CAMERA_CLEARANCE + PARKING_GAP;
+        let off_routes = |p: &Vec2| {
+            walkers.iter().all(|w| {
+                let reach = radius() + w.footprint.radius + w.footprint.half_length + PARKING_GAP;
+                (w.path.route().points().iter()).all(|q| q.distance(*p) >= reach)
+            })
+        };
+        let free = map.free_cells(radius() + MOTION_MARGIN);
+        let parking = (free.iter().copied())
+            .filter(|p| (camera.positions.iter()).all(|c| c.truncate().distance(*p) >= keep))
+            .filter(off_routes)
+            .collect();
+        Self { map, free, parking }
+    }
+}
+
+/// One try at a chair pushed past `near` metres of the camera (or as near as the floor has room
+/// for) at `speed` (top, metres per second), between two places it can stand; `None` when this
+/// draw does not fit.
 pub(super) fn plan(
-    map: &FloorMap,
+    floor: &ChairFloor,
     rng: &mut Rng,
     (speed, near): (f32, f32),
-    (obstacles, parking): (&Obstacles, &[Vec2]),
+    obstacles: &Obstacles,
 ) -> Option<Placed> {
+    let (map, parking) = (floor.map, &floor.parking);
     let camera = obstacles.camera;
     let mesh = chair(rng);
     let radius = radius();
     let roomy = radius + MOTION_MARGIN;
     let meet = f64::from(rng.range(0.15, 0.85)) * camera.duration();
-    let eye = camera.at(meet);
-    // In front of the camera, within the half-angle a walker's stops are drawn in.
-    let bearing = camera.axis_at(meet).truncate().to_angle() + rng.range(-0.5, 0.5);
-    let passing =
-        eye.truncate() + Vec2::from_angle(bearing) * (near + radius + rng.range(0.0, 0.2));
-    if map.clearance(passing) < roomy {
-        return None;
-    }
-
+    let eye = camera.at(meet).truncate();
+    let forward = camera.axis_at(meet).truncate().normalize_or_zero();
+    let mut ahead: Vec<(f32, Vec2)> = (floor.free.iter())
+        .map(|&p| (p.distance(eye), p))
+        .filter(|&(d, p)| d >= near + radius && (p - eye).dot(forward) >= d * VIEW_HALF_ANGLE.cos())
+        .collect();
+    ahead.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let nearest = ahead.first()?.0;
+    let band = ahead.partition_point(|(d, _)| *d < nearest + PASSING_BAND);
+    let passing = ahead[rng.int(0, band as i64) as usize].1;
     let mut stands = || {
         let far: Vec<Vec2> = (parking.iter())
             .filter(|p| (DISTANCE.0..DISTANCE.1).contains(&p.distance(passing)))

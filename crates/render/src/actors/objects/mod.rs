@@ -155,7 +155,7 @@ pub(super) fn plan(
         obstacles.placed.push(placed);
         chairs -= 1;
     }
-    let parking = chair::parking(map, camera);
+    let floor = chair::ChairFloor::of(map, camera, walkers);
     for k in 0..chairs {
         let mut rng = rng.fork(&format!("chair {k}"));
         let near = if k == 0 {
@@ -166,7 +166,7 @@ pub(super) fn plan(
         let placed = (0..ATTEMPTS)
             .find_map(|_| {
                 let speed_near = (params.speed_m_s, near);
-                chair::plan(map, &mut rng, speed_near, (&obstacles, &parking))
+                chair::plan(&floor, &mut rng, speed_near, &obstacles)
             })
             .ok_or_else(|| {
                 format!(
