@@ -1,6 +1,7 @@
-"""People walking through a scene (`actors`) in rslam.render: seeded, and only ever hiding the
-room (depth nearer where they pass, and only where their instance masks say), as `rslam render`
-draws them; the masks `rslam render` writes, read by Pillow and rosbags."""
+"""People walking through a scene (`actors`) and things moved (`objects`) in rslam.render:
+seeded, and only ever hiding the room (depth nearer where they pass, and only where their
+instance masks say), as `rslam render` draws them; the masks `rslam render` writes, read by
+Pillow and rosbags."""
 
 import json
 
@@ -26,6 +27,21 @@ def test_walkers_hide_part_of_the_room_the_same_way_every_time():
     assert (a[1][changed & (clean[1] > 0)] < clean[1][changed & (clean[1] > 0)]).all()
     assert set(np.unique(mask)) == {0, 1, 2, 3}
     assert not rslam.render("office2", poses[:2], camera=CAMERA, masks=True)[2].any()
+
+
+def test_objects_move_the_door_and_chairs_where_their_masks_say():
+    poses = rslam.scene_poses("office2")[:300]
+    clean = rslam.render("office2", poses, camera=CAMERA)
+    rgb, depth, mask = rslam.render("office2", poses, camera=CAMERA, perturb="objects:3", seed=2,
+                                    masks=True)
+    assert set(np.unique(mask)) == {0, 1, 2}, "the door and a chair"
+    changed = depth != clean[1]
+    nearer = changed & (depth < clean[1])
+    assert not (nearer & (mask == 0)).any(), "only an object comes nearer, where its mask says"
+    # Outside the masks depth changes only where the open door stood: farther, and little of it.
+    gone = changed & (mask == 0)
+    assert (depth[gone] > clean[1][gone]).all() and gone.mean() < 0.01
+    assert (nearer & (mask == 2)).any(), "the chair hides part of the room"
 
 
 def test_a_mesh_without_a_free_floor_refuses_walkers(tmp_path):
