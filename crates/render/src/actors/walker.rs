@@ -622,11 +622,11 @@ impl Part {
 /// A closed triangle mesh: counter-clockwise seen from outside, unit outward normals, UVs in
 /// metres.
 #[derive(Clone, Debug, Default, PartialEq)]
-struct Surface {
-    positions: Vec<Vec3>,
+pub(super) struct Surface {
+    pub(super) positions: Vec<Vec3>,
     normals: Vec<Vec3>,
-    uvs: Vec<Vec2>,
-    indices: Vec<u32>,
+    pub(super) uvs: Vec<Vec2>,
+    pub(super) indices: Vec<u32>,
 }
 
 impl Surface {
@@ -915,7 +915,7 @@ fn welded_normals(positions: &[Vec3], indices: &[u32], welded: &[usize]) -> Vec<
 
 /// A six-faced solid from its corners (index bits: +x end, +y side, top), each face flat and
 /// planar, with UVs in metres along its edges.
-fn hexahedron(corners: [Vec3; 8]) -> Surface {
+pub(super) fn hexahedron(corners: [Vec3; 8]) -> Surface {
     const FACES: [[usize; 4]; 6] = [
         [0, 2, 6, 4],
         [1, 3, 7, 5],

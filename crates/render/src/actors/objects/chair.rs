@@ -10,6 +10,7 @@ use rslam_core::Pose;
 
 use super::{sampled, Obstacles, Placed, Shape, MOTION_MARGIN};
 use crate::actors::plan::{corners, CameraTrack, CAMERA_CLEARANCE};
+use crate::actors::walker::hexahedron;
 use crate::actors::{FloorMap, MovedObject, RigidActor, RigidLight, Walker};
 use crate::scene::builtin::rng::Rng;
 use crate::{Mesh, Vertex};
@@ -230,35 +231,25 @@ fn chair(rng: &mut Rng) -> Mesh {
     mesh
 }
 
-/// An axis-aligned box of one colour, each face its own four vertices (flat normals).
+/// An axis-aligned box of one colour, each face flat.
 fn cuboid(mesh: &mut Mesh, min: [f32; 3], max: [f32; 3], color: [u8; 4]) {
     let (lo, hi) = (Vec3::from(min), Vec3::from(max));
-    let corner = |i: usize| {
+    let pick = |bit: bool, a: f32, b: f32| if bit { b } else { a };
+    let corners = std::array::from_fn(|i| {
         Vec3::new(
-            if i & 1 != 0 { hi.x } else { lo.x },
-            if i & 2 != 0 { hi.y } else { lo.y },
-            if i & 4 != 0 { hi.z } else { lo.z },
+            pick(i & 1 != 0, lo.x, hi.x),
+            pick(i & 2 != 0, lo.y, hi.y),
+            pick(i & 4 != 0, lo.z, hi.z),
         )
-    };
-    // Each face's corners counter-clockwise seen from outside.
-    const FACES: [[usize; 4]; 6] = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    for face in FACES {
-        let first = mesh.vertices.len() as u32;
-        for (k, &c) in face.iter().enumerate() {
-            mesh.vertices.push(Vertex {
-                position: corner(c).into(),
-                uv: [(k == 1 || k == 2) as u8 as f32, (k >= 2) as u8 as f32],
-                color,
-                layer: 0,
-            });
-        }
-        mesh.indices.extend([0, 1, 2, 0, 2, 3].map(|k| first + k));
-    }
+    });
+    let surface = hexahedron(corners);
+    let first = mesh.vertices.len() as u32;
+    let faces = surface.positions.iter().zip(&surface.uvs);
+    mesh.vertices.extend(faces.map(|(p, uv)| Vertex {
+        position: p.to_array(),
+        uv: uv.to_array(),
+        color,
+        layer: 0,
+    }));
+    (mesh.indices).extend(surface.indices.iter().map(|i| first + i));
 }
