@@ -21,7 +21,7 @@ pub static WORLD_ITEMS: &[ItemEntry] = &[
     ItemEntry {
         name: ObjectKind::NAME,
         syntax: "objects:1-5 | objects:COUNT/SPEED/NEAR",
-        description: "things moved through the scene: COUNT rigid objects, first the room's door swinging open while the camera sees it and shutting again (as wide as the furniture lets it), then chairs pushed over the free floor at up to SPEED m/s, the first to within NEAR m of the camera; nothing touches the scene, the camera, a walker or another object at any instant; severities 1-5 = 1/0.4/2.5, 2/0.5/2, 2/0.6/1.2, 3/0.7/0.8, 4/0.9/0.5 (like Bonn placing_nonobstructing_box, moving_nonobstructing_box, moving_obstructing_box, moving_obstructing_box2, and beyond)",
+        description: "things moved through the scene: COUNT objects, first the room's door swinging open while the camera sees it and shutting again (as wide as the furniture lets it), from three on a box carried past the camera by a person, the rest chairs pushed over the free floor at up to SPEED m/s, the first to within NEAR m of the camera; nothing touches the scene, the camera, a walker or another object at any instant; severities 1-5 = 1/0.4/2.5, 2/0.5/2, 2/0.6/1.2, 3/0.7/0.8, 4/0.9/0.5 (like Bonn placing_nonobstructing_box, moving_nonobstructing_box, moving_obstructing_box, moving_obstructing_box2, and beyond)",
         needs: &[Need::Scene, Need::FreeFloor],
     },
 ];

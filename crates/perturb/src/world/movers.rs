@@ -59,8 +59,9 @@ impl MoverKind for ObjectKind {
     const NOUN: &'static str = "things moved";
     /// The door swings (Bonn `placing_nonobstructing_box`: one object moved at a distance); the
     /// door and a chair pushed across the room (`moving_nonobstructing_box`); a chair pushed
-    /// to just over a metre from the camera (`moving_obstructing_box`); two chairs, one
-    /// pushed right in front of it (`moving_obstructing_box2`); three, faster and nearer.
+    /// to just over a metre from the camera (`moving_obstructing_box`); a box carried past and
+    /// a chair pushed in front of it (`moving_obstructing_box2`); a box and two chairs, faster
+    /// and nearer.
     const TABLE: [(u32, f64, f64); 5] = [
         (1, 0.4, 2.5),
         (2, 0.5, 2.0),
@@ -68,7 +69,7 @@ impl MoverKind for ObjectKind {
         (3, 0.7, 0.8),
         (4, 0.9, 0.5),
     ];
-    /// The door and up to five chairs.
+    /// The door, a carried box and up to four chairs.
     const MAX_COUNT: u32 = 6;
     /// How fast a pushed chair goes at most.
     const SPEEDS: (f64, f64) = (0.1, 1.5);

@@ -28,6 +28,7 @@ use glam::{Quat, Vec2, Vec3};
 use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
 use crate::{FreeFloor, Mesh, RenderError, Scene, Texture, Vertex};
 use light_probe::{cube_light, AmbientCube, LightProbe, PROBE_HEIGHTS};
+use plan::Walking;
 
 /// Metres of cloth per texture repeat.
 const CLOTH_REPEAT_M: f32 = 0.5;
@@ -42,7 +43,7 @@ pub struct Walker {
     /// Step length, metres.
     pub stride: f32,
     /// Colour of each [`BodyMaterial`], sRGB in [0, 1].
-    pub colours: [[f32; 3]; 5],
+    pub colours: [[f32; 3]; 6],
     /// The nearest its body comes to the camera centre, metres.
     pub closest_m: f32,
 }
@@ -107,14 +108,22 @@ impl Actors {
         camera: &CameraTrack,
     ) -> Result<Self, RenderError> {
         let (mut actors, floor) = Self::lit_by(scene)?;
+        let refused = |message| refusal(scene, message);
         if let Some(walkers) = params.0 {
-            actors.walkers = plan::walkers(scene, &floor, walkers, seed, camera)
-                .map_err(|message| refusal(scene, message))?;
+            let freely = (walkers, Walking::Freely);
+            actors.walkers =
+                plan::walkers(scene, &floor, freely, seed, camera, Vec::new()).map_err(refused)?;
+        }
+        if let Some(carriers) = params.1.and_then(ObjectParams::box_carriers) {
+            let carrying = (&carriers, Walking::Carrying);
+            let earlier = std::mem::take(&mut actors.walkers);
+            actors.walkers =
+                plan::walkers(scene, &floor, carrying, seed, camera, earlier).map_err(refused)?;
         }
         if let Some(objects) = params.1 {
             let map = FloorMap::new(&scene.mesh, &floor, plan::TALLEST);
             let moved = objects::plan(scene, &map, objects, seed, (camera, &actors.walkers))
-                .map_err(|message| refusal(scene, message))?;
+                .map_err(refused)?;
             for object in moved {
                 if let RigidOrigin::Object(MovedObject { kind: "door", .. }) = object.origin {
                     actors
@@ -306,7 +315,7 @@ impl Actors {
             BodyMaterial::Top => self.first_cloth,
             BodyMaterial::Trousers => self.first_cloth + 1,
             BodyMaterial::Shoes => self.first_cloth + 2,
-            BodyMaterial::Skin | BodyMaterial::Hair => 0,
+            BodyMaterial::Skin | BodyMaterial::Hair | BodyMaterial::Carton => 0,
         }
     }
 }

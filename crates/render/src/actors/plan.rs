@@ -119,23 +119,38 @@ impl CameraTrack {
     }
 }
 
-/// The walkers, or why none fit.
+/// Who walks: people (`actors`), or people carrying a box (`objects`), drawn from streams of
+/// their own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Walking {
+    Freely,
+    Carrying,
+}
+
+/// `params.count` more walkers after `walkers` (who keep their way: the new ones give way to
+/// them), or why they do not fit.
 pub(super) fn walkers(
     scene: &Scene,
     floor: &FreeFloor,
-    params: &WalkerParams,
+    (params, walking): (&WalkerParams, Walking),
     seed: u64,
     camera: &CameraTrack,
+    mut walkers: Vec<Walker>,
 ) -> Result<Vec<Walker>, String> {
     if camera.times.is_empty() {
         return Err("people need the camera's path to keep clear of, and it is empty".into());
     }
     let map = FloorMap::new(&scene.mesh, floor, TALLEST);
-    let rng = Rng::new(seed).fork("actors");
-    let mut walkers: Vec<Walker> = Vec::new();
+    let (rng, who) = match walking {
+        Walking::Freely => (Rng::new(seed).fork("actors"), "walker"),
+        Walking::Carrying => (Rng::new(seed).fork("carriers"), "box carrier"),
+    };
     for k in 0..params.count as usize {
         let mut rng = rng.fork(&format!("walker {k}"));
-        let body = WalkerBody::new(&mut rng);
+        let body = match walking {
+            Walking::Freely => WalkerBody::new(&mut rng),
+            Walking::Carrying => WalkerBody::new(&mut rng).carrying(&mut rng),
+        };
         let colours = clothing(&mut rng);
         let stride = stride_of(params.speed_m_s, body.height());
         let footprint = Footprint::of(&body, stride);
@@ -147,7 +162,7 @@ pub(super) fn walkers(
             })
             .ok_or_else(|| {
                 format!(
-                    "walker {} of {}: no path over the free floor keeps clear of the furniture, the camera and the other walkers in {ATTEMPTS} tries; ask for fewer walkers",
+                    "{who} {} of {}: no path over the free floor keeps clear of the furniture, the camera and the other walkers in {ATTEMPTS} tries; ask for fewer walkers",
                     k + 1,
                     params.count,
                 )
@@ -378,7 +393,7 @@ fn walk(
 
 /// Colours of a walker's top, trousers, skin, hair and shoes (the order of
 /// [`super::BodyMaterial`]), sRGB: muted everyday clothes.
-fn clothing(rng: &mut Rng) -> [[f32; 3]; 5] {
+fn clothing(rng: &mut Rng) -> [[f32; 3]; 6] {
     const TOPS: [[f32; 3]; 8] = [
         [0.16, 0.2, 0.34],
         [0.55, 0.56, 0.58],
@@ -409,6 +424,8 @@ fn clothing(rng: &mut Rng) -> [[f32; 3]; 5] {
         [0.72, 0.6, 0.38],
         [0.6, 0.6, 0.6],
     ];
+    // Brown corrugated board.
+    const CARTON: [f32; 3] = [0.66, 0.5, 0.33];
     const SHOES: [[f32; 3]; 3] = [[0.1, 0.1, 0.1], [0.35, 0.22, 0.14], [0.85, 0.85, 0.85]];
     let mut pick = |choices: &[[f32; 3]]| choices[rng.int(0, choices.len() as i64) as usize];
     [
@@ -417,5 +434,6 @@ fn clothing(rng: &mut Rng) -> [[f32; 3]; 5] {
         pick(&SKIN),
         pick(&HAIR),
         pick(&SHOES),
+        CARTON,
     ]
 }

@@ -16,6 +16,16 @@ use crate::scene::builtin::rng::Rng;
 /// The longest step a body is posed with, metres.
 pub const MAX_STRIDE: f32 = 0.9;
 
+/// A carried box's depth and height, metres; its width is what the hands hold apart less
+/// [`CARTON_GRIP`] (the palms' thickness).
+const CARTON_DEPTH: (f32, f32) = (0.3, 0.4);
+const CARTON_HEIGHT: (f32, f32) = (0.22, 0.32);
+const CARTON_GRIP: f32 = 0.04;
+/// How far a carried box reaches below the palms, metres.
+const CARTON_BELOW_PALMS: f32 = 0.08;
+/// Shoulder flexion while carrying, radians.
+const CARRY_SHOULDER: f32 = 0.3;
+
 /// Fraction of a gait cycle each foot is on the floor.
 const STANCE: f32 = 0.6;
 /// A foot's own phase when its sole comes down flat after the heel strike.
@@ -69,6 +79,8 @@ pub enum BodyMaterial {
     Skin,
     Hair,
     Shoes,
+    /// A box in the hands.
+    Carton,
 }
 
 /// Triangles of posed bodies: every part of a body is a closed surface with smooth normals
@@ -91,6 +103,8 @@ pub struct PosedMesh {
 pub struct WalkerBody {
     build: Build,
     parts: Vec<Part>,
+    /// The box it carries in both hands, if any: its depth, width and height, metres.
+    carton: Option<Vec3>,
 }
 
 impl WalkerBody {
@@ -108,7 +122,27 @@ impl WalkerBody {
         let build = Build::new(stature, crown, &look);
         let mut parts = body_parts(&build, &look);
         parts.extend(head);
-        Self { build, parts }
+        Self {
+            build,
+            parts,
+            carton: None,
+        }
+    }
+
+    /// The body carrying a box in both hands before it (forearms level, palms on its sides), of
+    /// a size drawn from `rng` as wide as its hands hold apart.
+    pub fn carrying(mut self, rng: &mut Rng) -> Self {
+        let depth = rng.range(CARTON_DEPTH.0, CARTON_DEPTH.1);
+        let height = rng.range(CARTON_HEIGHT.0, CARTON_HEIGHT.1);
+        self.carton = Some(Vec3::new(depth, 0.0, height));
+        let [left, right] = self.palms(&self.skeleton(0.0, 0.0));
+        self.carton = Some(Vec3::new(depth, left.distance(right) - CARTON_GRIP, height));
+        self
+    }
+
+    /// Whether it carries a box.
+    pub fn carries(&self) -> bool {
+        self.carton.is_some()
     }
 
     /// Stature, metres (top of the head over the soles).
@@ -136,6 +170,31 @@ impl WalkerBody {
             out.indices
                 .extend(surface.indices.iter().map(|&i| base + i));
         }
+        if let Some(size) = self.carton {
+            let [left, right] = self.palms(&skeleton);
+            // Held at the middle of the palms, its bottom a little below them.
+            let centre = (left + right) / 2.0 + Vec3::Z * (size.z / 2.0 - CARTON_BELOW_PALMS);
+            let (_, turn, _) = skeleton.chest.to_scale_rotation_translation();
+            let yaw = Quat::from_rotation_z(turn.to_euler(glam::EulerRot::ZYX).0);
+            let corners = std::array::from_fn(|i| {
+                let bit = |b: usize| if i & b != 0 { 0.5 } else { -0.5 };
+                centre + yaw * (Vec3::new(bit(1), bit(2), bit(4)) * size)
+            });
+            let surface = hexahedron(corners);
+            let base = out.positions.len() as u32;
+            out.positions.extend_from_slice(&surface.positions);
+            out.normals.extend_from_slice(&surface.normals);
+            out.uvs.extend_from_slice(&surface.uvs);
+            (out.materials).extend(repeat_n(BodyMaterial::Carton, surface.positions.len()));
+            (out.indices).extend(surface.indices.iter().map(|&i| base + i));
+        }
+    }
+
+    /// The middles of the palms of a body posed as `skeleton`, left then right.
+    fn palms(&self, skeleton: &Skeleton) -> [Vec3; 2] {
+        let b = &self.build;
+        let reach = b.forearm + 0.5 * b.hand;
+        Side::BOTH.map(|side| skeleton.arms[side as usize][1].transform_point3(Vec3::NEG_Z * reach))
     }
 
     /// The farthest any vertex gets from the body's axis over the gait at steps up to
@@ -269,9 +328,13 @@ impl WalkerBody {
     }
 
     /// Upper arm and forearm of `side`, hanging from the shoulder and swinging against the leg.
+    /// Carrying, the arm holds still: the upper arm a little forward, the forearm level.
     fn arm(&self, chest: &Affine3A, chest_turn: Quat, side: Side, gait: &Gait) -> [Affine3A; 2] {
         let b = &self.build;
-        let swing = gait.arm_swing(side);
+        let (swing, elbow) = match self.carton {
+            Some(_) => (CARRY_SHOULDER, FRAC_PI_2 - CARRY_SHOULDER),
+            None => (gait.arm_swing(side), gait.elbow(gait.arm_swing(side))),
+        };
         let shoulder =
             chest.transform_point3(Vec3::new(0.0, side.sign() * b.shoulder_half, b.shoulder));
         let turn = chest_turn
@@ -279,7 +342,7 @@ impl WalkerBody {
             * Quat::from_rotation_y(-swing);
         let upper = Affine3A::from_rotation_translation(turn, shoulder);
         let elbow = Affine3A::from_rotation_translation(
-            Quat::from_rotation_y(-gait.elbow(swing)),
+            Quat::from_rotation_y(-elbow),
             Vec3::NEG_Z * b.upper_arm,
         );
         [upper, upper * elbow]
@@ -1001,8 +1064,7 @@ mod tests {
 
     /// Where `side`'s hand is.
     fn hand(body: &WalkerBody, skeleton: &Skeleton, side: Side) -> Vec3 {
-        let reach = body.build.forearm + 0.5 * body.build.hand;
-        skeleton.arms[side as usize][1].transform_point3(Vec3::NEG_Z * reach)
+        body.palms(skeleton)[side as usize]
     }
 
     #[test]
@@ -1187,6 +1249,62 @@ mod tests {
         let left = hand(&body, &standing, Side::Left);
         let right = hand(&body, &standing, Side::Right);
         assert!((left.x - right.x).abs() < 1e-5 && (left.y + right.y).abs() < 1e-5);
+    }
+
+    /// Carrying, at every phase of a walk the box lies level between the palms (each palm at
+    /// its side, within the grip, between its bottom and top), in front of the chest, and the
+    /// arms hold still while the legs walk.
+    #[test]
+    fn a_carried_box_stays_between_the_palms() {
+        for seed in SEEDS {
+            let body = WalkerBody::new(&mut Rng::new(seed)).carrying(&mut Rng::new(seed + 100));
+            let size = body.carton.unwrap();
+            assert!(
+                (0.25..0.7).contains(&size.y),
+                "seed {seed}: box {size} wide"
+            );
+            let first = body.skeleton(0.0, USUAL_STRIDE);
+            for phase in phases() {
+                let skeleton = body.skeleton(phase, USUAL_STRIDE);
+                let mesh = posed(&body, phase, USUAL_STRIDE);
+                let carton: Vec<Vec3> = (mesh.positions.iter().zip(&mesh.materials))
+                    .filter(|(_, &m)| m == BodyMaterial::Carton)
+                    .map(|(&p, _)| p)
+                    .collect();
+                assert_eq!(carton.len(), 24, "a box of six faces");
+                let centre = carton.iter().sum::<Vec3>() / 24.0;
+                let chest = skeleton.chest.translation;
+                assert!(
+                    centre.x - size.x / 2.0 > chest.x + 0.1,
+                    "phase {phase}: box in the chest"
+                );
+                let (bottom, top) = (centre.z - size.z / 2.0, centre.z + size.z / 2.0);
+                let (_, turn, _) = skeleton.chest.to_scale_rotation_translation();
+                let yaw = turn.to_euler(glam::EulerRot::ZYX).0;
+                for palm in body.palms(&skeleton) {
+                    let local = Quat::from_rotation_z(-yaw) * (palm - centre);
+                    let side_gap = local.y.abs() - size.y / 2.0;
+                    assert!(
+                        (side_gap - CARTON_GRIP / 2.0).abs() < 1e-3,
+                        "phase {phase}: palm {side_gap} m off the box's side"
+                    );
+                    assert!(
+                        local.x.abs() < size.x / 2.0,
+                        "phase {phase}: palm beyond the box"
+                    );
+                    assert!(
+                        (bottom..top).contains(&palm.z),
+                        "phase {phase}: palm at {}",
+                        palm.z
+                    );
+                }
+                let arm = |s: &Skeleton| s.arms[0][1].matrix3.z_axis;
+                assert!(
+                    arm(&skeleton).angle_between(arm(&first)) < 0.2,
+                    "phase {phase}: arm swings"
+                );
+            }
+        }
     }
 
     /// The least and most of `f`, in degrees, over the phases in `range` (of [`phases`],

@@ -12,6 +12,7 @@ use rslam_core::{Pose, Trajectory};
 
 use super::footprint::segment_distance;
 use super::plan::{CameraTrack, CAMERA_CLEARANCE};
+use super::WalkerParams;
 use super::{FloorMap, RigidActor, Walker};
 use crate::scene::builtin::rng::Rng;
 use crate::Scene;
@@ -25,19 +26,35 @@ const MOTION_MARGIN: f32 = 0.02;
 const OBJECT_GAP: f32 = 0.05;
 /// Seconds between the poses a motion is sampled at (linear between them).
 const POSE_STEP_S: f64 = 0.02;
+/// A person carrying a box walks this fast, metres per second.
+const CARRYING_SPEED: f32 = 0.9;
+/// The nearest a walker's path is planned to the camera, metres (`actors`' least NEAR).
+const MIN_WALKER_NEAR: f32 = 0.4;
 /// Tries per object before the floor counts as too crowded.
 const ATTEMPTS: usize = 300;
 
 /// How many things move, how fast and how near the camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ObjectParams {
-    /// Things moved: the door first, where the scene has one that has room to swing, then
-    /// chairs.
+    /// Things moved: the door, where the scene has one that has room to swing; from three on, a
+    /// box carried by a person; the rest chairs.
     pub count: u32,
     /// A pushed chair's top speed, metres per second.
     pub speed_m_s: f32,
     /// How near the first pushed chair's footprint comes to the camera centre, metres.
     pub near_m: f32,
+}
+
+impl ObjectParams {
+    /// People carrying a box among the things moved: one from three things on, walking at a
+    /// laden pace to within NEAR of the camera (or the nearest a walker may come).
+    pub fn box_carriers(&self) -> Option<WalkerParams> {
+        (self.count >= 3).then(|| WalkerParams {
+            count: 1,
+            speed_m_s: CARRYING_SPEED,
+            near_m: self.near_m.max(MIN_WALKER_NEAR),
+        })
+    }
 }
 
 /// What a planned object covers of the floor at an instant: the points within `radius` of the
@@ -150,7 +167,8 @@ pub(super) fn plan(
     };
     let door = (scene.floor.and_then(|f| f.door))
         .and_then(|d| door::plan(scene, &d, &mut rng.fork("door"), &obstacles));
-    let mut chairs = params.count as usize;
+    let carried = usize::from(params.box_carriers().is_some());
+    let mut chairs = params.count as usize - carried;
     if let Some(placed) = door {
         obstacles.placed.push(placed);
         chairs -= 1;
