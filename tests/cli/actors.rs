@@ -432,7 +432,8 @@ const BOX_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x
 /// `--actor MESH PATH`: a user's box carried along a path over the free floor (a walker's, taken
 /// from another job's manifest) is drawn with its own mask id, hides the room only where its
 /// mask says, and is recorded with its files' BLAKE3; a path through a wall or the camera is
-/// refused naming the path file's lines, and unreadable files naming the file.
+/// refused naming the path file's lines, and unreadable files naming the file; beside walkers
+/// and objects, they give way to it.
 #[test]
 fn a_users_actor_follows_its_path_and_bad_paths_are_refused_by_line() {
     let ws = Workspace::new();
@@ -490,18 +491,43 @@ fn a_users_actor_follows_its_path_and_bad_paths_are_refused_by_line() {
             "{out}: a refused job writes nothing"
         );
     }
-    let both = [
-        "render",
-        "--scene",
-        "office1",
+    // Beside walkers and objects: the walker of the same seed, whose path the box now takes,
+    // gives way to it; ids go walker, box, door.
+    let mut args = vec![
+        "render", "--scene", "office1", "--format", "tum", "--out", "b",
+    ];
+    args.extend(["--camera", SMALL_CAMERA, "--frames", "160", "--seed", "3"]);
+    args.extend([
         "--perturb",
-        "actors:2",
+        "actors:2,objects:1",
         "--actor",
         "box.ply",
         "path.txt",
-        "--out",
-        "b",
-    ];
-    ws.rslam(&both)
-        .fails_with(2, &["--actor", "one or the other"]);
+    ]);
+    ws.rslam(&args).success();
+    let actors = &manifest(&ws, "b")["extra"]["actors"];
+    assert_eq!(actors["user"].as_array().unwrap().len(), 1);
+    assert_eq!(actors["objects"][0]["kind"].as_str(), Some("door"));
+    let reach = actors["walkers"][0]["footprint_radius_m"].as_f64().unwrap()
+        + actors["user"][0]["footprint_radius_m"].as_f64().unwrap();
+    let (walker, rigid) = (
+        actors["frames"].as_array().unwrap(),
+        actors["rigid_frames"].as_array().unwrap(),
+    );
+    for (w, r) in walker.iter().zip(rigid) {
+        let d = (w[0][0].as_f64().unwrap() - r[0][0].as_f64().unwrap())
+            .hypot(w[0][1].as_f64().unwrap() - r[0][1].as_f64().unwrap());
+        assert!(d >= reach, "the walker comes {d} m from the box");
+    }
+    let mut ids = [false; 4];
+    for (name, _) in tum_frames(&ws, "b") {
+        let mask = decode_mask_png(&ws.path(&format!("b/{name}"))).unwrap();
+        for &id in &mask.data {
+            ids[usize::from(id)] = true;
+        }
+    }
+    assert!(
+        ids[..3].iter().all(|&s| s),
+        "the walker and the box are seen: {ids:?}"
+    );
 }

@@ -119,7 +119,7 @@ fn a_door_and_chairs_move_beside_walkers_with_masks_that_say_where() {
 }
 
 #[test]
-fn objects_are_refused_without_a_free_floor_or_beside_a_users_actors() {
+fn objects_are_refused_without_a_free_floor_and_for_bad_values() {
     let ws = Workspace::new();
     ws.write("mesh.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     ws.write("path.txt", "0 0 0 0.5 0 0 0 1\n0.1 0 0 0.5 0 0 0 1\n");
@@ -137,8 +137,5 @@ fn objects_are_refused_without_a_free_floor_or_beside_a_users_actors() {
             2,
             &["objects:7/1/1", "COUNT/SPEED/NEAR", "1-6 things moved"],
         );
-    let with_actor = ["--perturb", "objects:1", "--actor", "mesh.ply", "path.txt"];
-    ws.rslam(&[&room0[..], &with_actor[..]].concat())
-        .fails_with(2, &["mesh.ply", "objects:S", "use one or the other"]);
     assert!(!ws.path("bad").exists());
 }

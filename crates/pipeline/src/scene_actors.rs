@@ -1,7 +1,7 @@
-//! The world items on a scene job: walkers and moved objects planned once per job from the spec,
-//! the seed and the camera's path (so every camera of a rig sees the same people and things at
-//! the same instant), or a user's actors (a rigid mesh along a path file each, checked against
-//! the scene and the camera's path); refused for a scene without a free floor, and recorded in
+//! The world items on a scene job: a user's actors (a rigid mesh along a path file each, checked
+//! against the scene and the camera's path), and walkers and moved objects planned once per job
+//! from the spec, the seed and the camera's path (so every camera of a rig sees the same people
+//! and things at the same instant), giving way to the user's actors; refused for a scene without a free floor, and recorded in
 //! the manifest (`extra.actors`: each walker's build, and per frame its position, heading and
 //! gait phase; each object's kind and when it moves; each user's actor's files and their
 //! BLAKE3; per frame every rigid actor's pose).
@@ -11,15 +11,15 @@ use std::sync::Arc;
 use rslam_core::Pose;
 use rslam_perturb::{Need, PerturbSpec};
 use rslam_render::actors::{
-    Actors, CameraTrack, ObjectParams, RigidActor, RigidOrigin, WalkerParams,
+    Actors, CameraTrack, ObjectParams, RigidActor, RigidOrigin, WalkerParams, World,
 };
 use rslam_render::Scene;
 
 use crate::plan::FramePlan;
 use crate::scene_job::ActorFiles;
-use crate::{settings, JobPart, PipelineError};
+use crate::{settings, PipelineError};
 
-/// The walkers and objects of `spec`, or the user's actors of `files`, along `poses` (source
+/// The user's actors of `files` and the walkers and objects of `spec`, along `poses` (source
 /// frames at `rate_hz`, before `fast`); `None` without any.
 pub fn plan(
     scene: &Scene,
@@ -46,21 +46,9 @@ pub fn plan(
             .map(|p| (p.rotation * glam::DVec3::Z).as_vec3())
             .collect(),
     };
-    if spec.world.is_empty() {
-        let rigid = (files.iter())
-            .map(|f| RigidActor::load(&f.mesh, &f.path))
-            .collect::<Result<Vec<_>, _>>()?;
-        return Ok(Some(Arc::new(Actors::rigid(scene, rigid, &camera)?)));
-    };
-    if !files.is_empty() {
-        return Err(PipelineError::option(
-            JobPart::Actor,
-            format!(
-                "{}: walkers and objects (actors:S, objects:S) do not give way to a user's actors yet; use one or the other",
-                files[0].mesh.display()
-            ),
-        ));
-    }
+    let user = (files.iter())
+        .map(|f| RigidActor::load(&f.mesh, &f.path))
+        .collect::<Result<Vec<_>, _>>()?;
     let walkers = spec.world.actors.map(|w| WalkerParams {
         count: w.count,
         speed_m_s: w.speed_m_s as f32,
@@ -71,8 +59,12 @@ pub fn plan(
         speed_m_s: o.speed_m_s as f32,
         near_m: o.near_m as f32,
     });
-    let params = (walkers.as_ref(), objects.as_ref());
-    Ok(Some(Arc::new(Actors::plan(scene, params, seed, &camera)?)))
+    let world = World {
+        walkers: walkers.as_ref(),
+        objects: objects.as_ref(),
+        user,
+    };
+    Ok(Some(Arc::new(Actors::plan(scene, world, seed, &camera)?)))
 }
 
 /// Puts the walkers' builds and each output frame's walker poses (at its colour's capture time,

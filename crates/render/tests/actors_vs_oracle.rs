@@ -9,7 +9,7 @@ use glam::{DVec3, Vec2, Vec3};
 use obvhs::triangle::Triangle;
 use rslam_core::{DepthImage, Intrinsics, Pose, SurfaceBvh};
 use rslam_render::actors::{
-    Actors, CameraTrack, ObjectParams, RigidOrigin, WalkerParams, CAMERA_CLEARANCE,
+    Actors, CameraTrack, ObjectParams, RigidOrigin, WalkerParams, World, CAMERA_CLEARANCE,
 };
 use rslam_render::raster::{color_agreement, depth_agreement, edge_mask};
 use rslam_render::raycast::RayCaster;
@@ -23,6 +23,20 @@ const PARAMS: WalkerParams = WalkerParams {
     speed_m_s: 1.1,
     near_m: 0.8,
 };
+
+fn walking(params: &WalkerParams) -> World<'_> {
+    World {
+        walkers: Some(params),
+        ..World::default()
+    }
+}
+
+fn moving(params: &ObjectParams) -> World<'_> {
+    World {
+        objects: Some(params),
+        ..World::default()
+    }
+}
 
 /// A built-in scene and the first poses of its default path.
 fn along_path(name: &str) -> (Scene, Vec<Pose>, CameraTrack) {
@@ -102,9 +116,8 @@ fn frames_with_walkers_in_view(actors: &Actors, poses: &[Pose], count: usize) ->
 #[test]
 fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
     let (scene, poses, track) = along_path("room0");
-    let actors = std::sync::Arc::new(
-        Actors::plan(&scene, (Some(&PARAMS), None), 7, &track).expect("walkers"),
-    );
+    let actors =
+        std::sync::Arc::new(Actors::plan(&scene, walking(&PARAMS), 7, &track).expect("walkers"));
     let frames = frames_with_walkers_in_view(&actors, &poses, 3);
     assert_eq!(frames.len(), 3, "walkers come into view: {frames:?}");
     matches_the_oracle(&scene, actors, &poses, &frames);
@@ -215,7 +228,7 @@ fn check_depth_is_metric(depth: &DepthImage) {
 fn walkers_never_touch_the_scene_each_other_or_the_camera_and_pass_near_it() {
     // A large office, room for three walkers passing the camera.
     let (scene, _, track) = along_path("office2");
-    let actors = Actors::plan(&scene, (Some(&PARAMS), None), 11, &track).expect("walkers");
+    let actors = Actors::plan(&scene, walking(&PARAMS), 11, &track).expect("walkers");
     let obstacles = obstacles(&scene);
     let duration = track.times.last().copied().unwrap();
     let mut closest = vec![f32::INFINITY; actors.walkers().len()];
@@ -319,9 +332,9 @@ fn obstacles(scene: &Scene) -> SurfaceBvh {
 #[test]
 fn the_same_seed_gives_the_same_walkers_and_another_seed_others() {
     let (scene, _, track) = along_path("room0");
-    let a = Actors::plan(&scene, (Some(&PARAMS), None), 3, &track).unwrap();
-    let b = Actors::plan(&scene, (Some(&PARAMS), None), 3, &track).unwrap();
-    let c = Actors::plan(&scene, (Some(&PARAMS), None), 4, &track).unwrap();
+    let a = Actors::plan(&scene, walking(&PARAMS), 3, &track).unwrap();
+    let b = Actors::plan(&scene, walking(&PARAMS), 3, &track).unwrap();
+    let c = Actors::plan(&scene, walking(&PARAMS), 4, &track).unwrap();
     for t in [0.0, 3.3, 17.9] {
         assert_eq!(a.poses_at(t), b.poses_at(t));
         assert_ne!(a.poses_at(t), c.poses_at(t));
@@ -337,9 +350,8 @@ fn the_same_seed_gives_the_same_walkers_and_another_seed_others() {
 fn a_stereo_pair_sees_each_walker_at_the_disparity_its_depth_gives() {
     const BASELINE_M: f64 = 0.11;
     let (scene, poses, track) = along_path("room0");
-    let actors = std::sync::Arc::new(
-        Actors::plan(&scene, (Some(&PARAMS), None), 7, &track).expect("walkers"),
-    );
+    let actors =
+        std::sync::Arc::new(Actors::plan(&scene, walking(&PARAMS), 7, &track).expect("walkers"));
     let frames = frames_with_walkers_in_view(&actors, &poses, 2);
     let ctx = fixtures::gpu();
     let mut rasterizer =
@@ -446,9 +458,8 @@ fn kinds(actors: &Actors) -> Vec<&'static str> {
 #[test]
 fn a_swinging_door_a_pushed_chair_and_a_carried_box_match_the_oracle() {
     let (scene, poses, track) = along_path("office1");
-    let actors = std::sync::Arc::new(
-        Actors::plan(&scene, (None, Some(&OBJECTS)), 5, &track).expect("objects"),
-    );
+    let actors =
+        std::sync::Arc::new(Actors::plan(&scene, moving(&OBJECTS), 5, &track).expect("objects"));
     assert_eq!(kinds(&actors), ["door", "chair"]);
     assert!(actors.walkers().len() == 1 && actors.walkers()[0].body.carries());
     let mut frames = frames_with_objects_moving_in_view(&actors, &poses);
@@ -469,7 +480,7 @@ fn objects_never_touch_the_scene_each_other_or_the_camera() {
         near_m: 0.5,
     };
     let (scene, _, track) = along_path("office2");
-    let actors = Actors::plan(&scene, (None, Some(&params)), 2, &track).expect("objects");
+    let actors = Actors::plan(&scene, moving(&params), 2, &track).expect("objects");
     assert_eq!(kinds(&actors), ["door", "chair", "chair"]);
     let carrier = &actors.walkers()[0];
     assert!(carrier.body.carries());
@@ -566,7 +577,7 @@ fn objects_never_touch_the_scene_each_other_or_the_camera() {
 #[test]
 fn the_same_seed_moves_the_same_objects_and_another_seed_others() {
     let (scene, _, track) = along_path("room0");
-    let plan = |seed| Actors::plan(&scene, (None, Some(&OBJECTS)), seed, &track).unwrap();
+    let plan = |seed| Actors::plan(&scene, moving(&OBJECTS), seed, &track).unwrap();
     let (a, b, c) = (plan(3), plan(3), plan(4));
     let poses = |x: &Actors, t| {
         x.rigid_actors()

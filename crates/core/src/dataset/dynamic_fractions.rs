@@ -11,7 +11,7 @@ use crate::{CoreError, MaskImage};
 
 /// What a mask's ids mean, as the manifest says it.
 pub const MASK_IDS: &str =
-    "0 the static scene, k actor k: the walkers (extra.actors.walkers), then the objects (extra.actors.objects) or the user's actors (extra.actors.user), in that order from 1";
+    "0 the static scene, k actor k: the walkers (extra.actors.walkers), then the user's actors (extra.actors.user), then the objects (extra.actors.objects), in that order from 1";
 
 /// The fractions of the masks written, by frame key.
 pub(crate) struct DynamicFractions<K> {

@@ -61,7 +61,16 @@ pub struct WalkerPose {
     pub step: f32,
 }
 
-/// The walkers and moved objects, or the user's actors, of a job and what lights them.
+/// What moves through a scene, as a job asks for it.
+#[derive(Clone, Debug, Default)]
+pub struct World<'a> {
+    pub walkers: Option<&'a WalkerParams>,
+    pub objects: Option<&'a ObjectParams>,
+    /// Rigid meshes along a user's path files: walkers and objects give way to them.
+    pub user: Vec<RigidActor>,
+}
+
+/// The walkers, the user's actors and the moved objects of a job and what lights them.
 pub struct Actors {
     walkers: Vec<Walker>,
     rigid: Vec<RigidActor>,
@@ -99,31 +108,41 @@ impl ActorMesh {
 }
 
 impl Actors {
-    /// Walkers and moved objects for `scene` as `params` say, drawn from `seed`, clear of the
-    /// camera on `camera` and of each other (the objects give way to the walkers).
+    /// The world of `scene`: the user's actors, each path checked to keep clear of the scene and
+    /// of the camera on `camera`; then walkers and moved objects as `world` says, drawn from
+    /// `seed`, clear of the camera and of everything planned before them (walkers give way to
+    /// the user's actors, objects to both).
     pub fn plan(
         scene: &Scene,
-        params: (Option<&WalkerParams>, Option<&ObjectParams>),
+        world: World,
         seed: u64,
         camera: &CameraTrack,
     ) -> Result<Self, RenderError> {
         let (mut actors, floor) = Self::lit_by(scene)?;
+        let map = FloorMap::new(&scene.mesh, &floor, plan::TALLEST);
+        for actor in &world.user {
+            actor.check(&map, camera)?;
+            let first = actors.first_cloth + actors.textures.len() as u32;
+            actors.rigid_layers.push(first);
+            actors.textures.extend(actor.textures.iter().cloned());
+        }
+        actors.rigid = world.user;
         let refused = |message| refusal(scene, message);
-        if let Some(walkers) = params.0 {
+        let given_way = (Vec::new(), &actors.rigid[..]);
+        if let Some(walkers) = world.walkers {
             let freely = (walkers, Walking::Freely);
             actors.walkers =
-                plan::walkers(scene, &floor, freely, seed, camera, Vec::new()).map_err(refused)?;
+                plan::walkers(scene, &floor, freely, seed, camera, given_way).map_err(refused)?;
         }
-        if let Some(carriers) = params.1.and_then(ObjectParams::box_carriers) {
+        if let Some(carriers) = world.objects.and_then(ObjectParams::box_carriers) {
             let carrying = (&carriers, Walking::Carrying);
-            let earlier = std::mem::take(&mut actors.walkers);
+            let given_way = (std::mem::take(&mut actors.walkers), &actors.rigid[..]);
             actors.walkers =
-                plan::walkers(scene, &floor, carrying, seed, camera, earlier).map_err(refused)?;
+                plan::walkers(scene, &floor, carrying, seed, camera, given_way).map_err(refused)?;
         }
-        if let Some(objects) = params.1 {
-            let map = FloorMap::new(&scene.mesh, &floor, plan::TALLEST);
-            let moved = objects::plan(scene, &map, objects, seed, (camera, &actors.walkers))
-                .map_err(refused)?;
+        if let Some(objects) = world.objects {
+            let around = (camera, &actors.walkers[..], &actors.rigid[..]);
+            let moved = objects::plan(scene, &map, objects, seed, around).map_err(refused)?;
             for object in moved {
                 if let RigidOrigin::Object(MovedObject { kind: "door", .. }) = object.origin {
                     actors
@@ -134,25 +153,6 @@ impl Actors {
                 actors.rigid.push(object);
             }
         }
-        Ok(actors)
-    }
-
-    /// A user's rigid actors in `scene`, each path checked to keep clear of the scene and of
-    /// the camera on `camera`.
-    pub fn rigid(
-        scene: &Scene,
-        rigid: Vec<RigidActor>,
-        camera: &CameraTrack,
-    ) -> Result<Self, RenderError> {
-        let (mut actors, floor) = Self::lit_by(scene)?;
-        let map = FloorMap::new(&scene.mesh, &floor, plan::TALLEST);
-        for actor in &rigid {
-            actor.check(&map, camera)?;
-            let first = actors.first_cloth + actors.textures.len() as u32;
-            actors.rigid_layers.push(first);
-            actors.textures.extend(actor.textures.iter().cloned());
-        }
-        actors.rigid = rigid;
         Ok(actors)
     }
 

@@ -13,7 +13,7 @@ use super::floor_map::FloorMap;
 use super::footprint::{point_segment_distance, segment_distance, Footprint};
 use super::walk_path::{Route, WalkPath};
 use super::walker::{WalkerBody, MAX_STRIDE};
-use super::Walker;
+use super::{RigidActor, Walker};
 use crate::scene::builtin::rng::Rng;
 use crate::{FreeFloor, Scene};
 
@@ -127,15 +127,15 @@ pub(super) enum Walking {
     Carrying,
 }
 
-/// `params.count` more walkers after `walkers` (who keep their way: the new ones give way to
-/// them), or why they do not fit.
+/// `params.count` more walkers after `walkers`, giving way to them and to the user's `rigid`
+/// actors (who keep their way), or why they do not fit.
 pub(super) fn walkers(
     scene: &Scene,
     floor: &FreeFloor,
     (params, walking): (&WalkerParams, Walking),
     seed: u64,
     camera: &CameraTrack,
-    mut walkers: Vec<Walker>,
+    (mut walkers, rigid): (Vec<Walker>, &[RigidActor]),
 ) -> Result<Vec<Walker>, String> {
     if camera.times.is_empty() {
         return Err("people need the camera's path to keep clear of, and it is empty".into());
@@ -158,7 +158,7 @@ pub(super) fn walkers(
         let (path, closest_m) = (0..ATTEMPTS)
             .find_map(|_| {
                 let (route, meeting) = try_route(&mut rng, &floor, &footprint, params, camera)?;
-                walk(route, meeting, &footprint, params, camera, &walkers)
+                walk(route, meeting, (&footprint, params), camera, (&walkers, rigid))
             })
             .ok_or_else(|| {
                 format!(
@@ -321,12 +321,12 @@ fn try_route(
 fn walk(
     route: Route,
     meeting: Meeting,
-    footprint: &Footprint,
-    params: &WalkerParams,
+    (footprint, params): (&Footprint, &WalkerParams),
     camera: &CameraTrack,
-    others: &[Walker],
+    (others, rigid): (&[Walker], &[RigidActor]),
 ) -> Option<(WalkPath, f32)> {
     let speed = params.speed_m_s;
+    let rigid_speeds: Vec<f32> = rigid.iter().map(RigidActor::top_speed).collect();
     let closing = |other_speed: f32| {
         (speed * MOVES[1] + other_speed) * CHECK_STEP_S as f32 / 2.0 + TURN_MARGIN
     };
@@ -336,12 +336,16 @@ fn walk(
         let (p, heading) = route.at(s);
         let [a, b] = footprint.segment(p, heading);
         let to_camera = point_segment_distance(camera.at(t).truncate(), a, b) - camera_gap;
-        others.iter().fold(to_camera, |least, o| {
+        let walkers = others.iter().fold(to_camera, |least, o| {
             let gap = footprint.radius + o.footprint.radius + WALKER_GAP + closing(o.path.speed());
             let there = o.path.at(t);
             least.min(
                 segment_distance([a, b], o.footprint.segment(there.position, there.heading)) - gap,
             )
+        });
+        (rigid.iter().zip(&rigid_speeds)).fold(walkers, |least, (r, &r_speed)| {
+            let gap = footprint.radius + r.radius + WALKER_GAP + closing(r_speed);
+            least.min(point_segment_distance(r.pose_at(t).1.truncate(), a, b) - gap)
         })
     };
     // The least room over the look-ahead, moving on at `pace` times the speed from `s`.

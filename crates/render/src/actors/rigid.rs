@@ -104,6 +104,16 @@ impl RigidActor {
         }
     }
 
+    /// The fastest its origin moves over the floor, metres per second.
+    pub fn top_speed(&self) -> f32 {
+        (self.times.windows(2).zip(self.poses.windows(2)))
+            .map(|(t, p)| {
+                let d = (p[1].translation - p[0].translation).truncate().length();
+                (d / (t[1] - t[0]).max(1e-9)) as f32
+            })
+            .fold(0.0, f32::max)
+    }
+
     /// Where its first pose puts it: where its still vertices stay.
     pub fn rest_pose(&self) -> (Quat, Vec3) {
         self.pose_at(f64::NEG_INFINITY)

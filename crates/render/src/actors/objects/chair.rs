@@ -49,7 +49,7 @@ fn radius() -> f32 {
 }
 
 /// The floor as chairs see it: where one fits, and where one can stand all through (cells that
-/// neither the camera nor a walker's route ever comes near).
+/// neither the camera, a walker's route nor a user's actor ever comes near).
 pub(super) struct ChairFloor<'a> {
     map: &'a FloorMap,
     free: Vec<Vec2>,
@@ -57,8 +57,18 @@ pub(super) struct ChairFloor<'a> {
 }
 
 impl<'a> ChairFloor<'a> {
-    pub(super) fn of(map: &'a FloorMap, camera: &CameraTrack, walkers: &[Walker]) -> Self {
+    pub(super) fn of(
+        map: &'a FloorMap,
+        camera: &CameraTrack,
+        (walkers, user): (&[Walker], &[RigidActor]),
+    ) -> Self {
         let keep = radius() + CAMERA_CLEARANCE + PARKING_GAP;
+        let users: Vec<(Vec2, f32)> = (user.iter())
+            .flat_map(|a| {
+                let reach = radius() + a.radius + PARKING_GAP;
+                (camera.times.iter()).map(move |&t| (a.pose_at(t).1.truncate(), reach))
+            })
+            .collect();
         let off_routes = |p: &Vec2| {
             walkers.iter().all(|w| {
                 let reach = radius() + w.footprint.radius + w.footprint.half_length + PARKING_GAP;
@@ -69,6 +79,7 @@ impl<'a> ChairFloor<'a> {
         let parking = (free.iter().copied())
             .filter(|p| (camera.positions.iter()).all(|c| c.truncate().distance(*p) >= keep))
             .filter(off_routes)
+            .filter(|p| users.iter().all(|(q, reach)| q.distance(*p) >= *reach))
             .collect();
         Self { map, free, parking }
     }

@@ -150,20 +150,24 @@ impl Obstacles<'_> {
     }
 }
 
-/// The objects of `params` in `scene`, clear of the camera on `camera` and of `walkers`, or why
-/// none fit.
+/// The objects of `params` in `scene`, clear of the camera on `camera`, of `walkers` and of the
+/// user's actors `user`, or why none fit.
 pub(super) fn plan(
     scene: &Scene,
     map: &FloorMap,
     params: &ObjectParams,
     seed: u64,
-    (camera, walkers): (&CameraTrack, &[Walker]),
+    (camera, walkers, user): (&CameraTrack, &[Walker], &[RigidActor]),
 ) -> Result<Vec<RigidActor>, String> {
     let rng = Rng::new(seed).fork("objects");
+    let users = user.iter().map(|actor| Placed {
+        actor: actor.clone(),
+        shape: Shape::Round,
+    });
     let mut obstacles = Obstacles {
         camera,
         walkers,
-        placed: Vec::new(),
+        placed: users.collect(),
     };
     let door = (scene.floor.and_then(|f| f.door))
         .and_then(|d| door::plan(scene, &d, &mut rng.fork("door"), &obstacles));
@@ -173,7 +177,7 @@ pub(super) fn plan(
         obstacles.placed.push(placed);
         chairs -= 1;
     }
-    let floor = chair::ChairFloor::of(map, camera, walkers);
+    let floor = chair::ChairFloor::of(map, camera, (walkers, user));
     for k in 0..chairs {
         let mut rng = rng.fork(&format!("chair {k}"));
         let near = if k == 0 {
@@ -194,7 +198,8 @@ pub(super) fn plan(
             })?;
         obstacles.placed.push(placed);
     }
-    Ok(obstacles.placed.into_iter().map(|p| p.actor).collect())
+    let moved = obstacles.placed.into_iter().skip(user.len());
+    Ok(moved.map(|p| p.actor).collect())
 }
 
 /// Smoothstep: 0 at 0, 1 at 1, at rest at both ends.
