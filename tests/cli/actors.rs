@@ -427,7 +427,7 @@ fn a_killed_render_with_walkers_resumes_to_the_same_bytes() {
 }
 
 /// A box (0.36 × 0.36 × 0.8 m, its origin on the floor at its centre) with coloured faces.
-const BOX_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 12\nproperty list uchar int vertex_indices\nend_header\n-0.18 -0.18 0 200 80 40\n0.18 -0.18 0 200 80 40\n0.18 0.18 0 200 80 40\n-0.18 0.18 0 200 80 40\n-0.18 -0.18 0.8 200 80 40\n0.18 -0.18 0.8 200 80 40\n0.18 0.18 0.8 200 80 40\n-0.18 0.18 0.8 200 80 40\n3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+pub const BOX_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 12\nproperty list uchar int vertex_indices\nend_header\n-0.18 -0.18 0 200 80 40\n0.18 -0.18 0 200 80 40\n0.18 0.18 0 200 80 40\n-0.18 0.18 0 200 80 40\n-0.18 -0.18 0.8 200 80 40\n0.18 -0.18 0.8 200 80 40\n0.18 0.18 0.8 200 80 40\n-0.18 0.18 0.8 200 80 40\n3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
 
 /// `--actor MESH PATH`: a user's box carried along a path over the free floor (a walker's, taken
 /// from another job's manifest) is drawn with its own mask id, hides the room only where its

@@ -1,5 +1,6 @@
 //! One file per subcommand: clap arguments turned into library option structs.
 
+mod actor_args;
 pub mod eval;
 mod eval_recon;
 pub mod list;

@@ -6,11 +6,10 @@ use rslam_core::dataset::ros2::{BagCompression, BagDepth, BagOptions};
 use rslam_core::dataset::{DatasetFormat, DepthPng, Layout};
 use rslam_core::Intrinsics;
 use rslam_perturb::PerturbSpec;
-use rslam_pipeline::{
-    agent_folders, agent_scene_job, ActorFiles, Job, RigPreset, SceneJob, Sensors, Source,
-};
+use rslam_pipeline::{agent_folders, agent_scene_job, Job, RigPreset, SceneJob, Sensors, Source};
 use rslam_render::splat::{CaptureOptions, SplatDepth, SplatSettings};
 
+use super::actor_args::ActorArgs;
 use super::make::make;
 
 #[derive(clap::Args)]
@@ -19,12 +18,8 @@ pub struct RenderArgs {
     /// .obj) or a Gaussian-splat capture (a 3DGS .ply).
     #[arg(long)]
     scene: String,
-    /// An actor of your own: MESH (PLY, OBJ or glTF; z up, its origin where it meets the floor)
-    /// moved along PATH (a trajectory file, each pose the mesh's frame in the world; linear
-    /// between poses, at rest outside them). Repeat for more; each gets the next instance-mask
-    /// id. Needs a built-in scene, and not with actors:S.
-    #[arg(long, num_args = 2, value_names = ["MESH", "PATH"], action = clap::ArgAction::Append)]
-    actor: Vec<PathBuf>,
+    #[command(flatten)]
+    actors: ActorArgs,
     /// A capture's metric scale: metres per unit of its coordinates (COLMAP and phone captures
     /// have none of their own). Without it, items in metres (depth items, `trans`, IMU and
     /// calibration items) are refused.
@@ -201,11 +196,6 @@ fn scene_job(args: &RenderArgs) -> anyhow::Result<SceneJob> {
             },
             dataparser_transforms: args.dataparser_transforms.clone(),
         },
-        actor_files: (args.actor.chunks_exact(2))
-            .map(|pair| ActorFiles {
-                mesh: pair[0].clone(),
-                path: pair[1].clone(),
-            })
-            .collect(),
+        actor_files: args.actors.files(),
     })
 }

@@ -8,6 +8,8 @@ use rslam_perturb::PerturbSpec;
 use rslam_pipeline::SceneJob;
 use rslam_viewer::{run_window, ViewOptions, ViewSource, WindowOptions};
 
+use super::actor_args::ActorArgs;
+
 #[derive(clap::Args)]
 pub struct ViewArgs {
     /// A dataset folder (Replica or TUM layout) to view; or give --scene.
@@ -34,6 +36,8 @@ pub struct ViewArgs {
     /// Perturbations to start with, e.g. `fog:3,depth_missing:5` (see `rslam list`).
     #[arg(long)]
     perturb: Option<String>,
+    #[command(flatten)]
+    actors: ActorArgs,
     /// Seed of every random draw.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -72,7 +76,7 @@ pub fn run(args: ViewArgs) -> anyhow::Result<ExitCode> {
             seed: args.seed,
             agent: None,
             capture: Default::default(),
-            actor_files: Vec::new(),
+            actor_files: args.actors.files(),
         })),
         _ => bail!("give a DATASET folder or --scene NAME|MESH"),
     };
