@@ -394,10 +394,11 @@ fn replica_masks_lie_beside_their_frames() {
     );
 }
 
-/// A run killed mid-way keeps its frames and masks; the resumed run reads the kept masks' dynamic
-/// fractions back and ends with the bytes of an uninterrupted run, in both layouts with masks.
+/// A run killed mid-way keeps its frames and masks; the resumed run (walkers and the swinging
+/// door planned again) reads the kept masks' dynamic fractions back and ends with the bytes of an
+/// uninterrupted run, in both layouts with masks.
 #[test]
-fn a_killed_render_with_walkers_resumes_to_the_same_bytes() {
+fn a_killed_render_with_walkers_and_a_door_resumes_to_the_same_bytes() {
     let tum = [
         "render",
         "--scene",
@@ -413,7 +414,14 @@ fn a_killed_render_with_walkers_resumes_to_the_same_bytes() {
     for (command, watch) in [(&tum[..], "mask"), (&euroc[..], "mav0/cam0/mask")] {
         let args = [
             command,
-            &["--frames", "300", "--seed", "3", "--perturb", "actors:4"],
+            &[
+                "--frames",
+                "300",
+                "--seed",
+                "3",
+                "--perturb",
+                "actors:4,objects:1",
+            ],
             &["--out", "ds"],
         ]
         .concat();

@@ -132,13 +132,13 @@ impl Actors {
         if let Some(walkers) = world.walkers {
             let freely = (walkers, Walking::Freely);
             actors.walkers =
-                plan::walkers(scene, &floor, freely, seed, camera, given_way).map_err(refused)?;
+                plan::walkers(&map, freely, seed, camera, given_way).map_err(refused)?;
         }
         if let Some(carriers) = world.objects.and_then(ObjectParams::box_carriers) {
             let carrying = (&carriers, Walking::Carrying);
             let given_way = (std::mem::take(&mut actors.walkers), &actors.rigid[..]);
             actors.walkers =
-                plan::walkers(scene, &floor, carrying, seed, camera, given_way).map_err(refused)?;
+                plan::walkers(&map, carrying, seed, camera, given_way).map_err(refused)?;
         }
         if let Some(objects) = world.objects {
             let around = (camera, &actors.walkers[..], &actors.rigid[..]);

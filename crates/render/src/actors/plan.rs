@@ -15,7 +15,6 @@ use super::walk_path::{Route, WalkPath};
 use super::walker::{WalkerBody, MAX_STRIDE};
 use super::{RigidActor, Walker};
 use crate::scene::builtin::rng::Rng;
-use crate::{FreeFloor, Scene};
 
 /// Metres kept between a walker's body and the camera centre.
 pub const CAMERA_CLEARANCE: f32 = 0.1;
@@ -127,11 +126,11 @@ pub(super) enum Walking {
     Carrying,
 }
 
-/// `params.count` more walkers after `walkers`, giving way to them and to the user's `rigid`
-/// actors (who keep their way), or why they do not fit.
+/// `params.count` more walkers over the floor `map` (of the walkers' height), after `walkers`,
+/// giving way to them and to the user's `rigid` actors (who keep their way), or why they do not
+/// fit.
 pub(super) fn walkers(
-    scene: &Scene,
-    floor: &FreeFloor,
+    map: &FloorMap,
     (params, walking): (&WalkerParams, Walking),
     seed: u64,
     camera: &CameraTrack,
@@ -140,7 +139,6 @@ pub(super) fn walkers(
     if camera.times.is_empty() {
         return Err("people need the camera's path to keep clear of, and it is empty".into());
     }
-    let map = FloorMap::new(&scene.mesh, floor, TALLEST);
     let (rng, who) = match walking {
         Walking::Freely => (Rng::new(seed).fork("actors"), "walker"),
         Walking::Carrying => (Rng::new(seed).fork("carriers"), "box carrier"),
@@ -154,7 +152,7 @@ pub(super) fn walkers(
         let colours = clothing(&mut rng);
         let stride = stride_of(params.speed_m_s, body.height());
         let footprint = Footprint::of(&body, stride);
-        let floor = WalkableFloor::of(&map, &footprint);
+        let floor = WalkableFloor::of(map, &footprint);
         let (path, closest_m) = (0..ATTEMPTS)
             .find_map(|_| {
                 let (route, meeting) = try_route(&mut rng, &floor, &footprint, params, camera)?;
