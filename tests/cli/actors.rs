@@ -266,16 +266,18 @@ fn masks_follow_each_row_under_a_rolling_shutter_and_the_lens() {
 }
 
 #[test]
-fn actors_are_refused_without_a_free_floor_a_scene_or_room_and_for_bad_values() {
+fn world_items_are_refused_without_a_free_floor_a_scene_or_room_and_for_bad_values() {
     let ws = Workspace::new();
     ws.write("mesh.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     ws.write("path.txt", "0 0 0 0.5 0 0 0 1\n0.1 0 0 0.5 0 0 0 1\n");
     let mesh = [
         "render", "--scene", "mesh.ply", "--traj", "path.txt", "--out", "out",
     ];
-    ws.rslam(&[&mesh[..], &["--perturb", "actors:2"]].concat())
-        .fails_with(2, &["actors:2", "free floor", "'mesh.ply' is a mesh file"]);
-    assert!(!ws.path("out").exists());
+    for item in ["actors:2", "objects:2"] {
+        ws.rslam(&[&mesh[..], &["--perturb", item]].concat())
+            .fails_with(2, &[item, "free floor", "'mesh.ply' is a mesh file"]);
+        assert!(!ws.path("out").exists());
+    }
     let args = ["--camera", SMALL_CAMERA, "--frames", "4"];
     ws.render_room0("data", &args, None);
     ws.rslam(&[
@@ -298,6 +300,15 @@ fn actors_are_refused_without_a_free_floor_a_scene_or_room_and_for_bad_values() 
         "actors:9/1/1",
     ])
     .fails_with(2, &["actors:9/1/1", "COUNT/SPEED/NEAR"]);
+    let room0 = [
+        "render", "--scene", "room0", "--out", "bad", "--frames", "40",
+    ];
+    ws.rslam(&[&room0[..], &["--perturb", "objects:7/1/1"]].concat())
+        .fails_with(
+            2,
+            &["objects:7/1/1", "COUNT/SPEED/NEAR", "1-6 things moved"],
+        );
+    assert!(!ws.path("bad").exists());
     let crowded = [
         "render", "--scene", "room1", "--out", "crowded", "--frames", "100",
     ];

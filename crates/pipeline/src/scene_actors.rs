@@ -1,10 +1,10 @@
 //! The world items on a scene job: a user's actors (a rigid mesh along a path file each, checked
 //! against the scene and the camera's path), and walkers and moved objects planned once per job
 //! from the spec, the seed and the camera's path (so every camera of a rig sees the same people
-//! and things at the same instant), giving way to the user's actors; refused for a scene without a free floor, and recorded in
-//! the manifest (`extra.actors`: each walker's build, and per frame its position, heading and
-//! gait phase; each object's kind and when it moves; each user's actor's files and their
-//! BLAKE3; per frame every rigid actor's pose).
+//! and things at the same instant), giving way to the user's actors; refused for a scene
+//! without a free floor, and recorded in the manifest (`extra.actors`: each walker's build, and
+//! per frame its position, heading and gait phase; each object's kind and when it moves; each
+//! user's actor's files and their BLAKE3; per frame every rigid actor's pose).
 
 use std::sync::Arc;
 

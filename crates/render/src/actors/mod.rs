@@ -26,7 +26,7 @@ pub use walker::{BodyMaterial, PosedMesh, WalkerBody, MAX_STRIDE};
 use glam::{Quat, Vec2, Vec3};
 
 use crate::scene::srgb::{linear_to_srgb, unit_srgb_to_linear};
-use crate::{FreeFloor, Mesh, RenderError, Scene, Texture, Vertex};
+use crate::{Door, FreeFloor, Mesh, RenderError, Scene, Texture, Vertex};
 use light_probe::{cube_light, AmbientCube, LightProbe, PROBE_HEIGHTS};
 use plan::Walking;
 
@@ -76,9 +76,8 @@ pub struct Actors {
     rigid: Vec<RigidActor>,
     /// Texture layer of each rigid actor's first texture (0 for one that uses the scene's).
     rigid_layers: Vec<u32>,
-    /// Triangles of the scene the actors take over (a door that swings): `(start, end)` in its
-    /// index buffer.
-    hides: Vec<(u32, u32)>,
+    /// The scene's door, when the actors swing it: its triangles are theirs, not the room's.
+    swung_door: Option<Door>,
     probe: LightProbe,
     /// Texture layer of the first clothing texture: the scene's own come first.
     first_cloth: u32,
@@ -145,9 +144,7 @@ impl Actors {
             let moved = objects::plan(scene, &map, objects, seed, around).map_err(refused)?;
             for object in moved {
                 if let RigidOrigin::Object(MovedObject { kind: "door", .. }) = object.origin {
-                    actors
-                        .hides
-                        .extend(floor.door.iter().flat_map(|d| d.indices));
+                    actors.swung_door = floor.door;
                 }
                 actors.rigid_layers.push(0);
                 actors.rigid.push(object);
@@ -168,7 +165,7 @@ impl Actors {
             walkers: Vec::new(),
             rigid: Vec::new(),
             rigid_layers: Vec::new(),
-            hides: Vec::new(),
+            swung_door: None,
             probe,
             first_cloth: scene.textures.len() as u32,
             textures: crate::scene::builtin::clothing_textures().to_vec(),
@@ -178,13 +175,11 @@ impl Actors {
 
     /// The scene's triangles less those the actors take over.
     pub fn scene_indices<'a>(&self, scene: &'a Scene) -> std::borrow::Cow<'a, [u32]> {
-        if self.hides.is_empty() {
+        let Some(door) = &self.swung_door else {
             return std::borrow::Cow::Borrowed(&scene.mesh.indices);
-        }
-        let hidden =
-            |i: usize| (self.hides.iter()).any(|&(a, b)| (a as usize..b as usize).contains(&i));
+        };
         let kept = (scene.mesh.indices.chunks_exact(3).enumerate())
-            .filter(|(t, _)| !hidden(3 * t))
+            .filter(|(t, _)| !door.owns(3 * t))
             .flat_map(|(_, corners)| corners.iter().copied());
         std::borrow::Cow::Owned(kept.collect())
     }

@@ -44,7 +44,7 @@ const TURN_MARGIN: f32 = 0.01;
 /// Metres kept between two walkers' bodies.
 const WALKER_GAP: f32 = 0.05;
 /// Seconds between the instants compared.
-const CHECK_STEP_S: f64 = 0.005;
+pub(super) const CHECK_STEP_S: f64 = 0.005;
 /// Paths tried per walker before the floor counts as too crowded.
 const ATTEMPTS: usize = 400;
 /// Waypoints of a route besides the one near the camera, at most (at least one: a walk there
@@ -99,6 +99,12 @@ impl CameraTrack {
     pub fn axis_at(&self, t: f64) -> Vec3 {
         let i = self.times.partition_point(|&x| x <= t).max(1) - 1;
         self.axes[i.min(self.axes.len() - 1)]
+    }
+
+    /// Every [`CHECK_STEP_S`] from 0 to the end of its time: the instants things are checked at.
+    pub(super) fn instants(&self) -> impl Iterator<Item = f64> {
+        let steps = (self.duration() / CHECK_STEP_S).ceil() as usize;
+        (0..=steps).map(|k| k as f64 * CHECK_STEP_S)
     }
 
     pub(super) fn duration(&self) -> f64 {

@@ -16,9 +16,6 @@ use super::plan::{CameraTrack, CAMERA_CLEARANCE};
 use super::FloorMap;
 use crate::{load_scene, Mesh, RenderError, Texture};
 
-/// Seconds between the path's checks against the floor and the camera.
-const CHECK_STEP_S: f64 = 0.005;
-
 /// A rigid mesh along its path.
 #[derive(Clone, Debug)]
 pub struct RigidActor {
@@ -179,12 +176,8 @@ impl RigidActor {
 
     /// The path file's lines of the poses `t` lies between ("lines 11-12"), or of the pose at
     /// it or that it rests at before the first and after the last ("line 11").
-    fn lines_at(&self, t: f64) -> String {
+    fn lines_at(&self, lines: &[usize], t: f64) -> String {
         let i = self.times.partition_point(|&x| x <= t);
-        let lines: &[usize] = match &self.origin {
-            RigidOrigin::Files { lines, .. } => lines,
-            RigidOrigin::Object(_) => &[],
-        };
         let line = |k: usize| lines.get(k).copied().unwrap_or(0);
         match i {
             0 => format!("line {}", line(0)),
@@ -193,14 +186,17 @@ impl RigidActor {
         }
     }
 
-    /// Whether its footprint keeps clear of walls and furniture (`map`) and of the camera
-    /// (`camera`) over the camera's time, checked every [`CHECK_STEP_S`]; the error names the
-    /// path file and line.
+    /// Whether a user's actor's footprint keeps clear of walls and furniture (`map`) and of the
+    /// camera (`camera`) over the camera's time, checked every 5 ms ([`CameraTrack::instants`]); the error names
+    /// the path file and line. A planned object is clear by its plan.
     pub fn check(&self, map: &FloorMap, camera: &CameraTrack) -> Result<(), RenderError> {
-        let end = camera.times.last().copied().unwrap_or(0.0);
-        let steps = (end / CHECK_STEP_S).ceil() as usize;
-        for k in 0..=steps {
-            let t = k as f64 * CHECK_STEP_S;
+        let RigidOrigin::Files {
+            path_file, lines, ..
+        } = &self.origin
+        else {
+            return Ok(());
+        };
+        for t in camera.instants() {
             let at = self.pose_at(t).1.truncate();
             let clearance = map.clearance(at);
             let to_camera = at.distance(camera.at(t).truncate());
@@ -219,13 +215,9 @@ impl RigidActor {
                 None
             };
             if let Some(message) = problem {
-                let path = match &self.origin {
-                    RigidOrigin::Files { path_file, .. } => path_file.clone(),
-                    RigidOrigin::Object(object) => PathBuf::from(object.kind),
-                };
                 return Err(RenderError::BadMesh {
-                    path,
-                    message: format!("{}: {message}", self.lines_at(t)),
+                    path: path_file.clone(),
+                    message: format!("{}: {message}", self.lines_at(lines, t)),
                 });
             }
         }
@@ -291,9 +283,12 @@ mod tests {
         assert!(rotation.angle_between(Quat::from_rotation_z(FRAC_PI_2 / 2.0)) < 1e-5);
         assert_eq!(actor.pose_at(0.0).1, Vec3::ZERO);
         assert!(actor.pose_at(9.0).1.distance(Vec3::new(2.0, 4.0, 0.0)) < 1e-5);
-        assert_eq!(actor.lines_at(0.5), "line 2");
-        assert_eq!(actor.lines_at(2.0), "lines 2-4");
-        assert_eq!(actor.lines_at(3.0), "line 4");
+        let super::RigidOrigin::Files { lines, .. } = &actor.origin else {
+            panic!("a user's actor comes from files");
+        };
+        assert_eq!(actor.lines_at(lines, 0.5), "line 2");
+        assert_eq!(actor.lines_at(lines, 2.0), "lines 2-4");
+        assert_eq!(actor.lines_at(lines, 3.0), "line 4");
         assert!(actor.normals[0].distance(Vec3::new(0.4, 0.3, 0.12).normalize()) < 1e-6);
     }
 }

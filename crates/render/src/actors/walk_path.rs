@@ -9,13 +9,14 @@ const SAMPLES_PER_SPAN: usize = 24;
 /// Seconds over which the walker's pace is averaged: it slows into a stop over about a step.
 const PACE_WINDOW_S: f64 = 0.5;
 
-/// The closed path through waypoints.
+/// A curved path through waypoints: closed (a walker's lap) or open (a pushed chair's way).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Route {
-    /// Dense samples, closed: the last point is the first.
+    /// Dense samples; closed, the last point is the first.
     points: Vec<Vec2>,
     /// Arc length at each point, metres; `lengths[0] = 0`.
     lengths: Vec<f32>,
+    closed: bool,
 }
 
 impl Route {
@@ -23,15 +24,34 @@ impl Route {
     pub fn new(waypoints: &[Vec2]) -> Self {
         let n = waypoints.len();
         let at = |i: usize| waypoints[i % n];
-        let mut points = Vec::with_capacity(n * SAMPLES_PER_SPAN + 1);
-        for i in 0..n {
-            let [p0, p1, p2, p3] = [at(i + n - 1), at(i), at(i + 1), at(i + 2)];
-            for s in 0..SAMPLES_PER_SPAN {
-                let t = s as f32 / SAMPLES_PER_SPAN as f32;
+        let spans = (0..n).map(|i| [at(i + n - 1), at(i), at(i + 1), at(i + 2)]);
+        Self::through(spans, SAMPLES_PER_SPAN, None)
+    }
+
+    /// The open path from the first of `waypoints` to the last (at least 2; the ends repeated
+    /// as their own neighbours), `samples_per_span` samples between two waypoints.
+    pub fn open(waypoints: &[Vec2], samples_per_span: usize) -> Self {
+        let last = waypoints.len() as isize - 1;
+        let at = |i: isize| waypoints[i.clamp(0, last) as usize];
+        let spans = (0..last).map(|i| [at(i - 1), at(i), at(i + 1), at(i + 2)]);
+        Self::through(spans, samples_per_span, waypoints.last().copied())
+    }
+
+    /// The Catmull–Rom spline over `spans` (each the four control points of one), ending at
+    /// `end` (open) or at its start (closed).
+    fn through(
+        spans: impl Iterator<Item = [Vec2; 4]>,
+        samples_per_span: usize,
+        end: Option<Vec2>,
+    ) -> Self {
+        let mut points = Vec::new();
+        for [p0, p1, p2, p3] in spans {
+            for s in 0..samples_per_span {
+                let t = s as f32 / samples_per_span as f32;
                 points.push(catmull_rom(p0, p1, p2, p3, t));
             }
         }
-        points.push(points[0]);
+        points.push(end.unwrap_or(points[0]));
         let mut lengths = Vec::with_capacity(points.len());
         let mut total = 0.0;
         for (i, p) in points.iter().enumerate() {
@@ -40,22 +60,31 @@ impl Route {
             }
             lengths.push(total);
         }
-        Self { points, lengths }
+        Self {
+            points,
+            lengths,
+            closed: end.is_none(),
+        }
     }
 
-    /// Length of one lap, metres.
+    /// Length of one lap (or of the way, open), metres.
     pub fn length(&self) -> f32 {
-        *self.lengths.last().expect("a closed route")
+        *self.lengths.last().expect("a route has points")
     }
 
-    /// The dense samples (closed).
+    /// The dense samples.
     pub fn points(&self) -> &[Vec2] {
         &self.points
     }
 
-    /// Position and direction of travel (radians from +x towards +y) `s` metres along.
+    /// Position and direction of travel (radians from +x towards +y) `s` metres along (round
+    /// and round a closed route; an open one ends at its ends).
     pub fn at(&self, s: f32) -> (Vec2, f32) {
-        let s = s.rem_euclid(self.length());
+        let s = if self.closed {
+            s.rem_euclid(self.length())
+        } else {
+            s.clamp(0.0, self.length())
+        };
         let i = (self.lengths.partition_point(|&l| l <= s)).clamp(1, self.points.len() - 1);
         let (a, b) = (self.points[i - 1], self.points[i]);
         let span = self.lengths[i] - self.lengths[i - 1];

@@ -110,6 +110,13 @@ pub struct Door {
     pub indices: [(u32, u32); 2],
 }
 
+impl Door {
+    /// Whether the scene's index buffer entry `index` is one of the leaf's or handle's.
+    pub fn owns(&self, index: usize) -> bool {
+        (self.indices.iter()).any(|&(start, end)| (start as usize..end as usize).contains(&index))
+    }
+}
+
 impl Mesh {
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3

@@ -11,7 +11,7 @@ use rslam_core::Pose;
 use super::{sampled, Obstacles, Placed, Shape, MOTION_MARGIN};
 use crate::actors::plan::{corners, CameraTrack, CAMERA_CLEARANCE};
 use crate::actors::walker::hexahedron;
-use crate::actors::{FloorMap, MovedObject, RigidActor, RigidLight, Walker};
+use crate::actors::{FloorMap, MovedObject, RigidActor, RigidLight, Route, Walker};
 use crate::scene::builtin::rng::Rng;
 use crate::{Mesh, Vertex};
 
@@ -124,12 +124,13 @@ pub(super) fn plan(
         through.extend(corners(map, &way, roomy).into_iter().skip(1));
         through.push(to);
     }
-    let (points, lengths) = open_spline(&through);
-    if points.iter().any(|&p| map.clearance(p) < roomy) {
+    let route = Route::open(&through, SAMPLES_PER_SPAN);
+    if route.points().iter().any(|&p| map.clearance(p) < roomy) {
         return None;
     }
-    let length = *lengths.last()?;
-    let passing_at = lengths[points.iter().position(|p| p.distance(passing) < 1e-4)?];
+    let length = route.length();
+    // `passing` is a waypoint, so a sample of the route.
+    let passing_at = route.arc_length_to(passing);
     let push_s = 1.5 * f64::from(length / speed);
     let from = (meet - push_s * unease(f64::from(passing_at / length))).max(FIRST_PUSH_S);
     if from + push_s > camera.duration() {
@@ -138,7 +139,7 @@ pub(super) fn plan(
     let (yaw, turn) = (rng.range(0.0, TAU), rng.range(-TURN, TURN));
     let moves = vec![[from, from + push_s]];
     let path = sampled(&moves, |_, eased| {
-        let at = along(&points, &lengths, eased as f32 * length);
+        let (at, _) = route.at(eased as f32 * length);
         Pose::new(
             DQuat::from_rotation_z(f64::from(yaw + turn * eased as f32)),
             DVec3::new(f64::from(at.x), f64::from(at.y), 0.0),
@@ -170,47 +171,6 @@ fn unease(share: f64) -> f64 {
         }
     }
     lo
-}
-
-/// An open Catmull–Rom spline through `points` (the ends repeated), densely sampled, and the
-/// arc length at each sample.
-fn open_spline(points: &[Vec2]) -> (Vec<Vec2>, Vec<f32>) {
-    let n = points.len();
-    let at = |i: isize| points[i.clamp(0, n as isize - 1) as usize];
-    let mut samples = Vec::new();
-    for i in 0..n.saturating_sub(1) as isize {
-        let [p0, p1, p2, p3] = [at(i - 1), at(i), at(i + 1), at(i + 2)];
-        for s in 0..SAMPLES_PER_SPAN {
-            let t = s as f32 / SAMPLES_PER_SPAN as f32;
-            let (t2, t3) = (t * t, t * t * t);
-            samples.push(
-                0.5 * ((2.0 * p1)
-                    + (p2 - p0) * t
-                    + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t2
-                    + (3.0 * p1 - p0 - 3.0 * p2 + p3) * t3),
-            );
-        }
-    }
-    samples.push(points[n - 1]);
-    let mut lengths = vec![0.0];
-    for w in samples.windows(2) {
-        lengths.push(lengths.last().copied().unwrap_or(0.0) + w[0].distance(w[1]));
-    }
-    (samples, lengths)
-}
-
-/// The point `s` metres along the samples.
-fn along(points: &[Vec2], lengths: &[f32], s: f32) -> Vec2 {
-    let i = lengths
-        .partition_point(|&l| l <= s)
-        .clamp(1, points.len() - 1);
-    let span = lengths[i] - lengths[i - 1];
-    let f = if span > 0.0 {
-        ((s - lengths[i - 1]) / span).min(1.0)
-    } else {
-        0.0
-    };
-    points[i - 1].lerp(points[i], f)
 }
 
 /// A four-legged chair with a backrest, its origin under the seat's centre, the back towards −x;

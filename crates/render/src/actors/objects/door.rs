@@ -91,47 +91,46 @@ pub(super) fn plan(
 /// of the scene that is not the door, its wall or lower than [`FLOOR_GAP`], radians.
 fn sweep_limit(scene: &Scene, door: &Door) -> f32 {
     let (hinge, along, into) = (
-        Vec3::from(door.hinge),
+        Vec3::from(door.hinge).truncate(),
         Vec2::from(door.along),
         Vec2::from(door.into_room),
     );
     let reach = door.width + SWEEP_GAP;
-    let own = |t: usize| (door.indices.iter()).any(|&(a, b)| (a as usize..b as usize).contains(&t));
+    let heights = FLOOR_GAP..=door.height + FLOOR_GAP;
     let vertices = &scene.mesh.vertices;
+    let near_the_door = (scene.mesh.indices.chunks_exact(3).enumerate())
+        .filter(|&(t, _)| !door.owns(3 * t))
+        .map(|(_, corners)| [0, 1, 2].map(|i| Vec3::from(vertices[corners[i] as usize].position)))
+        .filter(|&[a, b, c]| {
+            let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+            hi.z >= *heights.start()
+                && lo.z <= *heights.end()
+                && (lo.truncate() - hinge).max_element() <= reach
+                && (hinge - hi.truncate()).max_element() <= reach
+        });
     let mut widest = std::f32::consts::PI;
-    for (t, corners) in scene.mesh.indices.chunks_exact(3).enumerate() {
-        if own(3 * t) {
-            continue;
-        }
-        let [a, b, c] = [0, 1, 2].map(|i| Vec3::from(vertices[corners[i] as usize].position));
-        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-        if hi.z < FLOOR_GAP
-            || lo.z > door.height + FLOOR_GAP
-            || (lo.truncate() - hinge.truncate()).max_element() > reach
-            || (hinge.truncate() - hi.truncate()).max_element() > reach
-        {
-            continue;
-        }
-        let n = ((a.distance(b).max(b.distance(c)).max(c.distance(a))) / SAMPLE_SPACING).ceil()
-            as usize;
-        let n = n.max(1);
-        for i in 0..=n {
-            for j in 0..=n - i {
-                let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
-                let p = a + (b - a) * u + (c - a) * v;
-                let rel = p.truncate() - hinge.truncate();
-                let (x, y) = (rel.dot(along), rel.dot(into));
-                if y <= 0.001 || p.z < FLOOR_GAP || p.z > door.height + FLOOR_GAP {
-                    continue;
-                }
-                let r = x.hypot(y);
-                if r <= reach {
-                    widest = widest.min(y.atan2(x) - SWEEP_GAP.atan2(r));
-                }
-            }
+    for p in near_the_door.flat_map(surface_points) {
+        let rel = p.truncate() - hinge;
+        let (x, y) = (rel.dot(along), rel.dot(into));
+        let r = x.hypot(y);
+        if y > 0.001 && heights.contains(&p.z) && r <= reach {
+            widest = widest.min(y.atan2(x) - SWEEP_GAP.atan2(r));
         }
     }
     widest
+}
+
+/// Points over the triangle `[a, b, c]` no farther apart along its edges than
+/// [`SAMPLE_SPACING`].
+fn surface_points([a, b, c]: [Vec3; 3]) -> impl Iterator<Item = Vec3> {
+    let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
+    let n = ((longest / SAMPLE_SPACING).ceil() as usize).max(1);
+    (0..=n).flat_map(move |i| {
+        (0..=n - i).map(move |j| {
+            let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
+            a + (b - a) * u + (c - a) * v
+        })
+    })
 }
 
 /// The leaf and handle as the scene has them, in the door's frame (origin at the hinge, x along

@@ -1,7 +1,7 @@
 //! Things that move through a scene without walking (`objects`): the room's door swings open
 //! and shut while the camera can see it ([`door`]), and chairs are pushed across the free floor,
 //! one of them to NEAR metres of the camera ([`chair`]). Each is a [`RigidActor`] planned from the
-//! seed so that, compared every [`CHECK_STEP_S`] with [`MOTION_MARGIN`] to spare, it never
+//! seed so that, compared every 5 ms ([`CameraTrack::instants`]) with [`MOTION_MARGIN`] to spare, it never
 //! touches the scene, the camera, a walker or another object.
 
 mod chair;
@@ -17,8 +17,6 @@ use super::{FloorMap, RigidActor, Walker};
 use crate::scene::builtin::rng::Rng;
 use crate::Scene;
 
-/// Seconds between the instants compared.
-const CHECK_STEP_S: f64 = 0.005;
 /// Metres kept beyond touching at each check: more than anything here moves in a check step
 /// (a door's edge at 2 rad/s, a walker hurrying at 2.5 m/s).
 const MOTION_MARGIN: f32 = 0.02;
@@ -85,13 +83,14 @@ enum Shape {
     Leaf { width: f32, thickness: f32 },
 }
 
-impl Placed {
-    fn capsule_at(&self, t: f64) -> Capsule {
-        let (turn, at) = self.actor.pose_at(t);
-        match self.shape {
+impl Shape {
+    /// What `actor` of this shape covers of the floor `t` seconds from the start.
+    fn capsule_at(self, actor: &RigidActor, t: f64) -> Capsule {
+        let (turn, at) = actor.pose_at(t);
+        match self {
             Shape::Round => Capsule {
                 ends: [at.truncate(); 2],
-                radius: self.actor.radius,
+                radius: actor.radius,
             },
             Shape::Leaf { width, thickness } => Capsule {
                 ends: [at.truncate(), (at + turn * Vec3::X * width).truncate()],
@@ -112,16 +111,9 @@ impl Obstacles<'_> {
     /// Whether `shape` of `actor` keeps clear of everything at every instant, and the nearest
     /// its capsule comes to the camera centre.
     fn clear(&self, actor: &RigidActor, shape: Shape) -> Option<f32> {
-        let candidate = Placed {
-            actor: actor.clone(),
-            shape,
-        };
-        let end = self.camera.times.last().copied().unwrap_or(0.0);
         let mut closest = f32::INFINITY;
-        let steps = (end / CHECK_STEP_S).ceil() as usize;
-        for k in 0..=steps {
-            let t = k as f64 * CHECK_STEP_S;
-            let own = candidate.capsule_at(t);
+        for t in self.camera.instants() {
+            let own = shape.capsule_at(actor, t);
             let eye = Capsule {
                 ends: [self.camera.at(t).truncate(); 2],
                 radius: 0.0,
@@ -138,7 +130,7 @@ impl Obstacles<'_> {
                     radius: w.footprint.radius,
                 }
             });
-            let objects = self.placed.iter().map(|p| p.capsule_at(t));
+            let objects = self.placed.iter().map(|p| p.shape.capsule_at(&p.actor, t));
             if walkers
                 .chain(objects)
                 .any(|other| own.gap(&other) < OBJECT_GAP + MOTION_MARGIN)
