@@ -274,50 +274,45 @@ fn world_items_are_refused_without_a_free_floor_a_scene_or_room_and_for_bad_valu
         "render", "--scene", "mesh.ply", "--traj", "path.txt", "--out", "out",
     ];
     for item in ["actors:2", "objects:2"] {
-        ws.rslam(&[&mesh[..], &["--perturb", item]].concat())
-            .fails_with(2, &[item, "free floor", "'mesh.ply' is a mesh file"]);
-        assert!(!ws.path("out").exists());
+        refused(
+            &ws,
+            &mesh,
+            item,
+            &[item, "free floor", "'mesh.ply' is a mesh file"],
+        );
     }
     let args = ["--camera", SMALL_CAMERA, "--frames", "4"];
     ws.render_room0("data", &args, None);
-    ws.rslam(&[
-        "perturb",
-        "--input",
-        "data",
-        "--out",
-        "p",
-        "--perturb",
-        "actors:1",
-    ])
-    .fails_with(2, &["actors:1", "needs a scene"]);
-    ws.rslam(&[
-        "render",
-        "--scene",
-        "room0",
-        "--out",
-        "bad",
-        "--perturb",
-        "actors:9/1/1",
-    ])
-    .fails_with(2, &["actors:9/1/1", "COUNT/SPEED/NEAR"]);
+    let perturb = ["perturb", "--input", "data", "--out", "p"];
+    refused(&ws, &perturb, "actors:1", &["actors:1", "needs a scene"]);
     let room0 = [
         "render", "--scene", "room0", "--out", "bad", "--frames", "40",
     ];
-    ws.rslam(&[&room0[..], &["--perturb", "objects:7/1/1"]].concat())
-        .fails_with(
-            2,
-            &["objects:7/1/1", "COUNT/SPEED/NEAR", "1-6 things moved"],
-        );
-    assert!(!ws.path("bad").exists());
+    refused(
+        &ws,
+        &room0,
+        "actors:9/1/1",
+        &["actors:9/1/1", "COUNT/SPEED/NEAR"],
+    );
+    let objects = ["objects:7/1/1", "COUNT/SPEED/NEAR", "1-6 things moved"];
+    refused(&ws, &room0, "objects:7/1/1", &objects);
     let crowded = [
         "render", "--scene", "room1", "--out", "crowded", "--frames", "100",
     ];
-    ws.rslam(&[&crowded[..], &["--perturb", "actors:8/1.4/0.4"]].concat())
-        .fails_with(
-            2,
-            &["room1", "no path over the free floor", "fewer walkers"],
-        );
-    assert!(!ws.path("crowded").exists());
+    let words = ["room1", "no path over the free floor", "fewer walkers"];
+    refused(&ws, &crowded, "actors:8/1.4/0.4", &words);
+}
+
+/// `command --perturb item` fails naming each of `words` and leaves no output folder.
+fn refused(ws: &Workspace, command: &[&str], item: &str, words: &[&str]) {
+    ws.rslam(&[command, &["--perturb", item]].concat())
+        .fails_with(2, words);
+    let out = command[command
+        .iter()
+        .position(|&a| a == "--out")
+        .expect("an --out")
+        + 1];
+    assert!(!ws.path(out).exists(), "{item} left {out} behind");
 }
 
 #[test]

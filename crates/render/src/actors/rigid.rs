@@ -187,8 +187,8 @@ impl RigidActor {
     }
 
     /// Whether a user's actor's footprint keeps clear of walls and furniture (`map`) and of the
-    /// camera (`camera`) over the camera's time, checked every 5 ms ([`CameraTrack::instants`]); the error names
-    /// the path file and line. A planned object is clear by its plan.
+    /// camera (`camera`) over the camera's time, checked every 5 ms ([`CameraTrack::instants`]);
+    /// the error names the path file and line. A planned object is clear by its plan.
     pub fn check(&self, map: &FloorMap, camera: &CameraTrack) -> Result<(), RenderError> {
         let RigidOrigin::Files {
             path_file, lines, ..

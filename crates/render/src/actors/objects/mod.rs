@@ -1,8 +1,8 @@
 //! Things that move through a scene without walking (`objects`): the room's door swings open
 //! and shut while the camera can see it ([`door`]), and chairs are pushed across the free floor,
 //! one of them to NEAR metres of the camera ([`chair`]). Each is a [`RigidActor`] planned from the
-//! seed so that, compared every 5 ms ([`CameraTrack::instants`]) with [`MOTION_MARGIN`] to spare, it never
-//! touches the scene, the camera, a walker or another object.
+//! seed so that, compared every 5 ms ([`CameraTrack::instants`]) with [`MOTION_MARGIN`] to
+//! spare, it never touches the scene, the camera, a walker or another object.
 
 mod chair;
 mod door;
