@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The validity protocol of docs/src/validity.md, per scene: the paper's 16 corruptions at severity
+# 3 beside a clean row, ORB-SLAM3 RGB-D twice on each (../shared/validity/validity.sh), the clean
+# sequence up to CLEAN_RUNS times, then Spearman's rho against the paper (rank.py) and how many runs
+# ORB-SLAM3 aborted ("SO3::exp failed"). By hand only: it needs ../shared/validity and about 35
+# minutes a scene on 2 cores.
+#
+#   scripts/validity-ranking.sh WORK_DIR SCENE...     # e.g. scripts/validity-ranking.sh /tmp/v room0 office1
+#
+# env: CLEAN_RUNS=20, FRAMES=400, RSLAM=target/release/rslam (built if missing). Writes
+# WORK_DIR/SCENE/{table.md,rank.txt} and prints one line per scene.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+validity=$root/../shared/validity
+[ $# -ge 2 ] || { echo "usage: $0 WORK_DIR SCENE..." >&2; exit 2; }
+[ -x "$validity/validity.sh" ] || { echo "$validity/validity.sh: not found (the validity kit lives beside the repository)" >&2; exit 1; }
+work=$1; shift
+rslam=${RSLAM:-$root/target/release/rslam}
+[ -x "$rslam" ] || cargo build --release -q --bin rslam --manifest-path "$root/Cargo.toml"
+corruptions="motion_blur defocus_blur gaussian_blur glass_blur gaussian_noise shot_noise impulse_noise
+  speckle_noise fog frost snow spatter brightness contrast jpeg_compression pixelate"
+settings=clean
+for c in $corruptions; do settings="$settings $c:3"; done
+
+cd "$root"
+for scene in "$@"; do
+    w=$work/$scene
+    mkdir -p "$w"
+    common=(env RSLAM="$rslam" FRAMES="${FRAMES:-400}" SCENE="$scene" KEEP=0)
+    "${common[@]}" RUNS=2 SETTINGS="$settings" "$validity/validity.sh" "$w" > "$w/log" 2>&1
+    "${common[@]}" RUNS="${CLEAN_RUNS:-20}" SETTINGS=clean "$validity/validity.sh" "$w" > "$w/clean.log" 2>&1
+    "${PY:-$HOME/.cache/rslam-validity/venv/bin/python}" "$validity/summarize.py" "$w" $settings > "$w/table.md"
+    python3 "$validity/rank.py" "$w/table.md" 3 > "$w/rank.txt"
+    aborts=$({ grep -l "SO3::exp failed" "$w"/runs/*/*.log || true; } | wc -l)
+    runs=$(ls "$w"/runs/*/*.log | wc -l)
+    echo "$scene: $(head -1 "$w/rank.txt"); ORB-SLAM3 aborted in $aborts of $runs runs ($w/table.md)"
+done
