@@ -29,7 +29,7 @@ for scene in "$@"; do
     common=(env RSLAM="$rslam" FRAMES="${FRAMES:-400}" SCENE="$scene" KEEP=0)
     "${common[@]}" RUNS=2 SETTINGS="$settings" "$validity/validity.sh" "$w" > "$w/log" 2>&1
     "${common[@]}" RUNS="${CLEAN_RUNS:-20}" SETTINGS=clean "$validity/validity.sh" "$w" > "$w/clean.log" 2>&1
-    "${PY:-$HOME/.cache/rslam-validity/venv/bin/python}" "$validity/summarize.py" "$w" $settings > "$w/table.md"
+    "${PY:-${XDG_CACHE_HOME:-$HOME/.cache}/rslam-validity/venv/bin/python}" "$validity/summarize.py" "$w" $settings > "$w/table.md"
     python3 "$validity/rank.py" "$w/table.md" 3 > "$w/rank.txt"
     aborts=$({ grep -l "SO3::exp failed" "$w"/runs/*/*.log || true; } | wc -l)
     runs=$(ls "$w"/runs/*/*.log | wc -l)
