@@ -266,9 +266,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header, String> {
                 properties: Vec::new(),
             }),
             ["property", "list", count, item, name] => {
-                let element = elements
-                    .last_mut()
-                    .ok_or_else(|| bad("property before any element"))?;
+                let element = element_for_property(&mut elements, name).map_err(bad)?;
                 element.properties.push(Property::List {
                     name: name.to_string(),
                     count: Scalar::parse(count).ok_or_else(|| bad("unknown list count type"))?,
@@ -276,9 +274,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header, String> {
                 });
             }
             ["property", kind, name] => {
-                let element = elements
-                    .last_mut()
-                    .ok_or_else(|| bad("property before any element"))?;
+                let element = element_for_property(&mut elements, name).map_err(bad)?;
                 element.properties.push(Property::Scalar {
                     name: name.to_string(),
                     kind: Scalar::parse(kind).ok_or_else(|| bad("unknown property type"))?,
@@ -292,6 +288,22 @@ fn parse_header(bytes: &[u8]) -> Result<Header, String> {
         elements,
         body_start: body_start.min(bytes.len()),
     })
+}
+
+/// The element a `property` line declares `name` in: the last one, which must not have it yet
+/// (a second column of the same name would be read as twice the records).
+fn element_for_property<'a>(
+    elements: &'a mut [Element],
+    name: &str,
+) -> Result<&'a mut Element, &'static str> {
+    let element = elements.last_mut().ok_or("property before any element")?;
+    let declared = element.properties.iter().any(|p| match p {
+        Property::Scalar { name: n, .. } | Property::List { name: n, .. } => n == name,
+    });
+    if declared {
+        return Err("property declared twice in one element");
+    }
+    Ok(element)
 }
 
 /// Refuses an element whose count the rest of the file cannot hold, before anything is

@@ -109,6 +109,8 @@ fn bad_files_give_one_line_errors_naming_the_problem() {
         ),
         (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\nabc 0 0\n".to_vec(), "'abc' is not a number"),
         (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float z\nend_header\n0 0\n".to_vec(), "the 'vertex' element has no 'y' property"),
+        // Found by fuzzing: a second 'opacity' column in a splat capture read as two values a Gaussian.
+        (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float y\nproperty float z\nend_header\n0 0 0 0\n".to_vec(), "header line 6: property declared twice in one element: 'property float y'"),
         (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 nan 0\n".to_vec(), "vertex 0: coordinate y = NaN is not a finite 32-bit float"),
         (b"ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nproperty double y\nproperty double z\nend_header\n0 0 1e300\n".to_vec(), "vertex 0: coordinate z = 1e300 is not a finite 32-bit float"),
     ];
