@@ -10,6 +10,7 @@ use obvhs::triangle::Triangle;
 use rslam_core::{DepthImage, Intrinsics, Pose, SurfaceBvh};
 use rslam_render::actors::{
     Actors, CameraTrack, ObjectParams, RigidOrigin, WalkerParams, World, CAMERA_CLEARANCE,
+    SEEN_HALF_ANGLE,
 };
 use rslam_render::raster::{color_agreement, depth_agreement, edge_mask};
 use rslam_render::raycast::RayCaster;
@@ -117,7 +118,7 @@ fn frames_with_walkers_in_view(actors: &Actors, poses: &[Pose], count: usize) ->
 fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
     let (scene, poses, track) = along_path("room0");
     let actors =
-        std::sync::Arc::new(Actors::plan(&scene, walking(&PARAMS), 7, &track).expect("walkers"));
+        std::sync::Arc::new(Actors::plan(&scene, walking(&PARAMS), 8, &track).expect("walkers"));
     let frames = frames_with_walkers_in_view(&actors, &poses, 3);
     assert_eq!(frames.len(), 3, "walkers come into view: {frames:?}");
     matches_the_oracle(&scene, actors, &poses, &frames);
@@ -291,6 +292,43 @@ fn walkers_never_touch_the_scene_each_other_or_the_camera_and_pass_near_it() {
     }
 }
 
+/// Each walker passes within NEAR of the camera in its view (the issue's "passing close to the
+/// camera and occluding large parts of it"), not only beside or behind it: over a dozen seeds,
+/// while its centre lies within [`SEEN_HALF_ANGLE`] of the camera's axis over the floor, it comes
+/// within NEAR (and the tolerance giving way allows). Meetings drawn all round the camera fail
+/// this on 2 of these 12 seeds.
+#[test]
+fn walkers_pass_near_the_camera_in_its_view() {
+    // Room in front of the camera for one walker at every instant.
+    let (scene, _, track) = along_path("office2");
+    let params = WalkerParams {
+        count: 1,
+        speed_m_s: 1.2,
+        near_m: 0.5,
+    };
+    let duration = track.times.last().copied().unwrap();
+    for seed in 0..12 {
+        let actors = Actors::plan(&scene, walking(&params), seed, &track).expect("walker");
+        let walker = &actors.walkers()[0];
+        let closest_in_view = (0..=(duration / 0.01) as usize)
+            .filter_map(|step| {
+                let t = step as f64 * 0.01;
+                let eye = track.at(t).truncate();
+                let forward = track.axis_at(t).truncate().normalize_or_zero();
+                let pose = walker.path.at(t);
+                let body = segment_points(walker.footprint.segment(pose.position, pose.heading));
+                let ahead = (pose.position - eye).normalize_or_zero().dot(forward);
+                (ahead >= SEEN_HALF_ANGLE.cos())
+                    .then(|| nearest(&body, &[eye]) - walker.footprint.radius)
+            })
+            .fold(f32::INFINITY, f32::min);
+        assert!(
+            closest_in_view <= params.near_m + 0.15 + SAMPLING,
+            "seed {seed}: the walker comes no nearer than {closest_in_view} m in the camera's view"
+        );
+    }
+}
+
 /// Metres between the points a footprint's segment is checked at, halved: what sampling can
 /// miss of a distance.
 const SAMPLING: f32 = 0.005;
@@ -334,7 +372,7 @@ fn the_same_seed_gives_the_same_walkers_and_another_seed_others() {
     let (scene, _, track) = along_path("room0");
     let a = Actors::plan(&scene, walking(&PARAMS), 3, &track).unwrap();
     let b = Actors::plan(&scene, walking(&PARAMS), 3, &track).unwrap();
-    let c = Actors::plan(&scene, walking(&PARAMS), 4, &track).unwrap();
+    let c = Actors::plan(&scene, walking(&PARAMS), 5, &track).unwrap();
     for t in [0.0, 3.3, 17.9] {
         assert_eq!(a.poses_at(t), b.poses_at(t));
         assert_ne!(a.poses_at(t), c.poses_at(t));
@@ -351,7 +389,7 @@ fn a_stereo_pair_sees_each_walker_at_the_disparity_its_depth_gives() {
     const BASELINE_M: f64 = 0.11;
     let (scene, poses, track) = along_path("room0");
     let actors =
-        std::sync::Arc::new(Actors::plan(&scene, walking(&PARAMS), 7, &track).expect("walkers"));
+        std::sync::Arc::new(Actors::plan(&scene, walking(&PARAMS), 8, &track).expect("walkers"));
     let frames = frames_with_walkers_in_view(&actors, &poses, 2);
     let ctx = fixtures::gpu();
     let mut rasterizer =
@@ -459,7 +497,7 @@ fn kinds(actors: &Actors) -> Vec<&'static str> {
 fn a_swinging_door_a_pushed_chair_and_a_carried_box_match_the_oracle() {
     let (scene, poses, track) = along_path("office1");
     let actors =
-        std::sync::Arc::new(Actors::plan(&scene, moving(&OBJECTS), 5, &track).expect("objects"));
+        std::sync::Arc::new(Actors::plan(&scene, moving(&OBJECTS), 8, &track).expect("objects"));
     assert_eq!(kinds(&actors), ["door", "chair"]);
     assert!(actors.walkers().len() == 1 && actors.walkers()[0].body.carries());
     let mut frames = frames_with_objects_moving_in_view(&actors, &poses);

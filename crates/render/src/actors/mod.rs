@@ -18,7 +18,7 @@ mod walker;
 pub use floor_map::FloorMap;
 pub use footprint::Footprint;
 pub use objects::ObjectParams;
-pub use plan::{CameraTrack, WalkerParams, CAMERA_CLEARANCE};
+pub use plan::{CameraTrack, WalkerParams, CAMERA_CLEARANCE, SEEN_HALF_ANGLE};
 pub use rigid::{MovedObject, RigidActor, RigidLight, RigidOrigin};
 pub use walk_path::{Route, Stride, WalkPath};
 pub use walker::{BodyMaterial, PosedMesh, WalkerBody, MAX_STRIDE};

@@ -1,9 +1,9 @@
 //! Planning walkers: a body and a closed route each, drawn from the seed: through a point NEAR
-//! metres beside the camera at a random instant and two random free points, each leg the
-//! shortest way over the free floor (A* on the floor map), smoothed. The walker is timed to
-//! reach the camera then, and gives way like a person: at every instant it walks on, waits or
-//! steps back, whichever keeps it clear of the camera and the walkers planned before it. A
-//! route that does not fit is drawn again. "Every instant": positions are compared every
+//! metres in front of the camera at a random instant (beside it where the floor in front has no
+//! room) and two random free points, each leg the shortest way over the free floor (A* on the
+//! floor map), smoothed. The walker is timed to reach the camera then, and gives way like a
+//! person: at every instant it walks on, waits or steps back, whichever keeps it clear of the
+//! camera and the walkers planned before it. A route that does not fit is drawn again. "Every instant": positions are compared every
 //! [`CHECK_STEP_S`] seconds with a margin of the distance two things can close in half a step,
 //! so no contact can hide between two checks.
 
@@ -37,8 +37,15 @@ const VIEW_DISTANCE: (f32, f32) = (1.0, 4.0);
 const VIEW_HALF_ANGLE: f32 = 0.6;
 /// Metres at least between a route's stops.
 const STOP_SPACING: f32 = 1.0;
-/// The meeting point lies this many metres wide a band beyond NEAR from the camera.
-const MEETING_BAND: f32 = 0.25;
+/// The point passed near the camera lies within this angle of its axis over the floor, radians
+/// (inside TUM's and Replica's views, 31° and 45° either side) ...
+const PASSING_HALF_ANGLE: f32 = 0.5;
+/// ... in a band this many metres wide beyond NEAR (or the nearest the floor has room for).
+const PASSING_BAND: f32 = 0.25;
+/// A walker meeting the camera in its view must come within NEAR while its centre lies within
+/// this angle of the camera's axis over the floor, radians (giving way shifts the meeting a
+/// little).
+pub const SEEN_HALF_ANGLE: f32 = 0.7;
 /// Metres a footprint's ends can swing in half a check step as the walker turns.
 const TURN_MARGIN: f32 = 0.01;
 /// Metres kept between two walkers' bodies.
@@ -160,8 +167,10 @@ pub(super) fn walkers(
         let footprint = Footprint::of(&body, stride);
         let floor = WalkableFloor::of(map, &footprint);
         let (path, closest_m) = (0..ATTEMPTS)
-            .find_map(|_| {
-                let (route, meeting) = try_route(&mut rng, &floor, &footprint, params, camera)?;
+            .find_map(|attempt| {
+                let in_front = attempt < ATTEMPTS / 2;
+                let (route, meeting) =
+                    try_route(&mut rng, &floor, &footprint, (params, in_front), camera)?;
                 walk(route, meeting, (&footprint, params), camera, (&walkers, rigid))
             })
             .ok_or_else(|| {
@@ -191,6 +200,27 @@ pub(super) fn in_view(eye: Vec3, axis: Vec3, p: Vec2) -> bool {
     let distance = to.length();
     (VIEW_DISTANCE.0..VIEW_DISTANCE.1).contains(&distance)
         && to.dot(forward) >= distance * VIEW_HALF_ANGLE.cos()
+}
+
+/// A free cell of `free` at least `beside` metres from `eye`, drawn from the nearest
+/// [`PASSING_BAND`] of them; with a `forward` direction over the floor, only cells within
+/// [`PASSING_HALF_ANGLE`] of it count. `None` when no cell does.
+pub(super) fn passing_point(
+    rng: &mut Rng,
+    free: &[Vec2],
+    (eye, forward): (Vec2, Option<Vec2>),
+    beside: f32,
+) -> Option<Vec2> {
+    let ahead =
+        |d: f32, p: Vec2| forward.is_none_or(|f| (p - eye).dot(f) >= d * PASSING_HALF_ANGLE.cos());
+    let mut beyond: Vec<(f32, Vec2)> = (free.iter())
+        .map(|&p| (p.distance(eye), p))
+        .filter(|&(d, p)| d >= beside && ahead(d, p))
+        .collect();
+    beyond.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let nearest = beyond.first()?.0;
+    let band = beyond.partition_point(|(d, _)| *d < nearest + PASSING_BAND);
+    Some(beyond[rng.int(0, band as i64) as usize].1)
 }
 
 /// The points of `way` where it must turn: each kept point sees the next one over cells with
@@ -250,16 +280,19 @@ struct Meeting {
     /// How near the camera the walker's body comes there, metres: NEAR, or more where the
     /// floor has no room that near.
     near: f32,
+    /// Whether it meets the camera in its view (else anywhere round it).
+    in_view: bool,
 }
 
-/// A closed route through a point `near_m` beside the camera at a random instant and
-/// [`WAYPOINTS`] random free points, each leg the shortest way between them over the free floor,
-/// smoothed; `None` when no such route fits the body.
+/// A closed route through a point `near_m` from the camera at a random instant (in front of it
+/// when `in_front`, else anywhere round it) and [`WAYPOINTS`] random free points, each leg the
+/// shortest way between them over the free floor, smoothed; `None` when no such route fits the
+/// body.
 fn try_route(
     rng: &mut Rng,
     floor: &WalkableFloor,
     footprint: &Footprint,
-    params: &WalkerParams,
+    (params, in_front): (&WalkerParams, bool),
     camera: &CameraTrack,
 ) -> Option<(Route, Meeting)> {
     let WalkableFloor {
@@ -270,20 +303,11 @@ fn try_route(
     } = floor;
     let (reach, roomy) = (*reach, *roomy);
     let beside = params.near_m + footprint.radius;
-    // A free cell NEAR beside the camera at a random instant, or as near as the floor allows.
+    // A free cell NEAR from the camera at a random instant, or as near as the floor allows.
     let time = f64::from(rng.range(0.05, 0.95)) * camera.duration();
     let eye = camera.at(time).truncate();
-    let mut beyond: Vec<(f32, Vec2)> = (free.iter())
-        .map(|&p| (p.distance(eye), p))
-        .filter(|(d, _)| *d >= beside)
-        .collect();
-    beyond.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let nearest = beyond.first()?.0;
-    let band: Vec<Vec2> = (beyond.iter())
-        .take_while(|(d, _)| *d < nearest + MEETING_BAND)
-        .map(|(_, p)| *p)
-        .collect();
-    let meeting = band[rng.int(0, band.len() as i64) as usize];
+    let forward = in_front.then(|| camera.axis_at(time).truncate().normalize_or_zero());
+    let meeting = passing_point(rng, free, (eye, forward), beside)?;
     let near = params.near_m.max(meeting.distance(eye) - footprint.radius);
     // The other stops lie where the camera looks at random instants, so the walker crosses
     // the view, as people walk round in front of the camera in TUM's and Bonn's sequences.
@@ -314,14 +338,23 @@ fn try_route(
         return None;
     }
     let along = route.arc_length_to(meeting);
-    Some((route, Meeting { along, time, near }))
+    Some((
+        route,
+        Meeting {
+            along,
+            time,
+            near,
+            in_view: in_front,
+        },
+    ))
 }
 
 /// The walker's timing on `route`: timed to reach the meeting point at the meeting time, it
 /// walks on at its speed while that stays clear of the camera and of every walker in `others`
 /// for the next [`LOOK_AHEAD_S`]; otherwise it hurries, waits or steps back, whichever keeps
 /// the most room over that time (earlier walkers' timings are known). `None` when no move
-/// keeps it clear at the next instant, or when it never comes within `near_m` of the camera.
+/// keeps it clear at the next instant, or when it never comes within `near_m` of the camera
+/// (while in its view, for a meeting in view). With the timing, the closest it comes.
 fn walk(
     route: Route,
     meeting: Meeting,
@@ -372,7 +405,7 @@ fn walk(
         })
         .find(|&s| room(s, 0.0) >= 0.0)?;
     let mut along = Vec::with_capacity(steps);
-    let mut closest = f32::INFINITY;
+    let (mut closest, mut closest_met) = (f32::INFINITY, f32::INFINITY);
     for i in 0..steps {
         let t = i as f64 * CHECK_STEP_S;
         if i > 0 {
@@ -390,12 +423,17 @@ fn walk(
         }
         let (p, heading) = route.at(s);
         let [a, b] = footprint.segment(p, heading);
-        let body_to_camera =
-            point_segment_distance(camera.at(t).truncate(), a, b) - footprint.radius;
+        let eye = camera.at(t).truncate();
+        let body_to_camera = point_segment_distance(eye, a, b) - footprint.radius;
         closest = closest.min(body_to_camera);
+        let forward = camera.axis_at(t).truncate().normalize_or_zero();
+        let seen = (p - eye).normalize_or_zero().dot(forward) >= SEEN_HALF_ANGLE.cos();
+        if seen || !meeting.in_view {
+            closest_met = closest_met.min(body_to_camera);
+        }
         along.push(s);
     }
-    (closest <= meeting.near + NEAR_TOLERANCE)
+    (closest_met <= meeting.near + NEAR_TOLERANCE)
         .then(|| (WalkPath::new(route, speed, CHECK_STEP_S, along), closest))
 }
 

@@ -9,7 +9,7 @@ use glam::{DQuat, DVec3, Vec2, Vec3};
 use rslam_core::Pose;
 
 use super::{sampled, Obstacles, Placed, Shape, MOTION_MARGIN};
-use crate::actors::plan::{corners, CameraTrack, CAMERA_CLEARANCE};
+use crate::actors::plan::{corners, passing_point, CameraTrack, CAMERA_CLEARANCE};
 use crate::actors::walker::hexahedron;
 use crate::actors::{FloorMap, MovedObject, RigidActor, RigidLight, Route, Walker};
 use crate::scene::builtin::rng::Rng;
@@ -29,10 +29,6 @@ const DISTANCE: (f32, f32) = (1.0, 3.5);
 /// Half the seat's width and depth, and the legs' thickness, metres.
 const HALF_SEAT: (f32, f32) = (0.21, 0.2);
 const LEG: f32 = 0.035;
-/// The point passed near the camera lies within this angle of its axis, radians ...
-const VIEW_HALF_ANGLE: f32 = 0.5;
-/// ... in a band this many metres wide beyond NEAR (or the nearest the floor has room for).
-const PASSING_BAND: f32 = 0.25;
 /// Metres more than the camera clearance a standing chair keeps from every place the camera
 /// passes.
 const PARKING_GAP: f32 = 0.1;
@@ -102,14 +98,7 @@ pub(super) fn plan(
     let meet = f64::from(rng.range(0.15, 0.85)) * camera.duration();
     let eye = camera.at(meet).truncate();
     let forward = camera.axis_at(meet).truncate().normalize_or_zero();
-    let mut ahead: Vec<(f32, Vec2)> = (floor.free.iter())
-        .map(|&p| (p.distance(eye), p))
-        .filter(|&(d, p)| d >= near + radius && (p - eye).dot(forward) >= d * VIEW_HALF_ANGLE.cos())
-        .collect();
-    ahead.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let nearest = ahead.first()?.0;
-    let band = ahead.partition_point(|(d, _)| *d < nearest + PASSING_BAND);
-    let passing = ahead[rng.int(0, band as i64) as usize].1;
+    let passing = passing_point(rng, &floor.free, (eye, Some(forward)), near + radius)?;
     let mut stands = || {
         let far: Vec<Vec2> = (parking.iter())
             .filter(|p| (DISTANCE.0..DISTANCE.1).contains(&p.distance(passing)))
