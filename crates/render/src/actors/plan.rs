@@ -52,8 +52,10 @@ const TURN_MARGIN: f32 = 0.01;
 const WALKER_GAP: f32 = 0.05;
 /// Seconds between the instants compared.
 pub(super) const CHECK_STEP_S: f64 = 0.005;
-/// Paths tried per walker before the floor counts as too crowded.
+/// Paths tried per walker before the floor counts as too crowded ...
 const ATTEMPTS: usize = 400;
+/// ... in each of this many draws of all the walkers.
+const REDRAWS: usize = 8;
 /// Waypoints of a route besides the one near the camera, at most (at least one: a walk there
 /// and back).
 const WAYPOINTS: usize = 2;
@@ -141,21 +143,55 @@ pub(super) enum Walking {
 
 /// `params.count` more walkers over the floor `map` (of the walkers' height), after `walkers`,
 /// giving way to them and to the user's `rigid` actors (who keep their way), or why they do not
-/// fit.
+/// fit. Where one does not fit, all of them are drawn again from a stream of their own, up to
+/// [`REDRAWS`] times: an earlier walker's route can leave a later one no way.
 pub(super) fn walkers(
     map: &FloorMap,
     (params, walking): (&WalkerParams, Walking),
     seed: u64,
     camera: &CameraTrack,
-    (mut walkers, rigid): (Vec<Walker>, &[RigidActor]),
+    (walkers, rigid): (Vec<Walker>, &[RigidActor]),
 ) -> Result<Vec<Walker>, String> {
     if camera.times.is_empty() {
         return Err("people need the camera's path to keep clear of, and it is empty".into());
     }
-    let (rng, who) = match walking {
+    let (first, who) = match walking {
         Walking::Freely => (Rng::new(seed).fork("actors"), "walker"),
         Walking::Carrying => (Rng::new(seed).fork("carriers"), "box carrier"),
     };
+    let mut unplaced = 0;
+    for redraw in 0..REDRAWS {
+        let rng = match redraw {
+            0 => first.clone(),
+            _ => first.fork(&format!("redraw {redraw}")),
+        };
+        match draw(
+            map,
+            (params, walking),
+            &rng,
+            camera,
+            (walkers.clone(), rigid),
+        ) {
+            Ok(placed) => return Ok(placed),
+            Err(k) => unplaced = unplaced.max(k),
+        }
+    }
+    Err(format!(
+        "{who} {} of {}: no path over the free floor keeps clear of the furniture, the camera and the other walkers in {ATTEMPTS} tries, with all of them drawn {REDRAWS} times; ask for fewer walkers",
+        unplaced + 1,
+        params.count,
+    ))
+}
+
+/// One draw of `params.count` walkers from `rng` after `walkers`, or the index of the first
+/// that does not fit.
+fn draw(
+    map: &FloorMap,
+    (params, walking): (&WalkerParams, Walking),
+    rng: &Rng,
+    camera: &CameraTrack,
+    (mut walkers, rigid): (Vec<Walker>, &[RigidActor]),
+) -> Result<Vec<Walker>, usize> {
     for k in 0..params.count as usize {
         let mut rng = rng.fork(&format!("walker {k}"));
         let body = match walking {
@@ -171,15 +207,15 @@ pub(super) fn walkers(
                 let in_front = attempt < ATTEMPTS / 2;
                 let (route, meeting) =
                     try_route(&mut rng, &floor, &footprint, (params, in_front), camera)?;
-                walk(route, meeting, (&footprint, params), camera, (&walkers, rigid))
-            })
-            .ok_or_else(|| {
-                format!(
-                    "{who} {} of {}: no path over the free floor keeps clear of the furniture, the camera and the other walkers in {ATTEMPTS} tries; ask for fewer walkers",
-                    k + 1,
-                    params.count,
+                walk(
+                    route,
+                    meeting,
+                    (&footprint, params),
+                    camera,
+                    (&walkers, rigid),
                 )
-            })?;
+            })
+            .ok_or(k)?;
         walkers.push(Walker {
             body,
             footprint,
