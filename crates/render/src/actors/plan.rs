@@ -3,9 +3,9 @@
 //! room) and two random free points, each leg the shortest way over the free floor (A* on the
 //! floor map), smoothed. The walker is timed to reach the camera then, and gives way like a
 //! person: at every instant it walks on, waits or steps back, whichever keeps it clear of the
-//! camera and the walkers planned before it. A route that does not fit is drawn again. "Every instant": positions are compared every
-//! [`CHECK_STEP_S`] seconds with a margin of the distance two things can close in half a step,
-//! so no contact can hide between two checks.
+//! camera and the walkers planned before it. A route that does not fit is drawn again. "Every
+//! instant": positions are compared every [`CHECK_STEP_S`] seconds with a margin of the
+//! distance two things can close in half a step, so no contact can hide between two checks.
 
 use glam::{Vec2, Vec3};
 
@@ -231,11 +231,16 @@ fn draw(
 /// Whether the floor point `p` lies in front of a camera at `eye` looking along `axis`, between
 /// [`VIEW_DISTANCE`] metres and within [`VIEW_HALF_ANGLE`] of the axis over the floor.
 pub(super) fn in_view(eye: Vec3, axis: Vec3, p: Vec2) -> bool {
-    let to = p - eye.truncate();
-    let forward = axis.truncate().normalize_or_zero();
-    let distance = to.length();
-    (VIEW_DISTANCE.0..VIEW_DISTANCE.1).contains(&distance)
-        && to.dot(forward) >= distance * VIEW_HALF_ANGLE.cos()
+    let (eye, forward) = (eye.truncate(), axis.truncate().normalize_or_zero());
+    (VIEW_DISTANCE.0..VIEW_DISTANCE.1).contains(&p.distance(eye))
+        && within_angle((eye, forward), p, VIEW_HALF_ANGLE)
+}
+
+/// Whether the floor point `p` lies within `half_angle` radians of the unit direction
+/// `forward` seen from `eye`.
+fn within_angle((eye, forward): (Vec2, Vec2), p: Vec2, half_angle: f32) -> bool {
+    let to = p - eye;
+    to.dot(forward) >= to.length() * half_angle.cos()
 }
 
 /// A free cell of `free` at least `beside` metres from `eye`, drawn from the nearest
@@ -247,11 +252,10 @@ pub(super) fn passing_point(
     (eye, forward): (Vec2, Option<Vec2>),
     beside: f32,
 ) -> Option<Vec2> {
-    let ahead =
-        |d: f32, p: Vec2| forward.is_none_or(|f| (p - eye).dot(f) >= d * PASSING_HALF_ANGLE.cos());
+    let ahead = |p: Vec2| forward.is_none_or(|f| within_angle((eye, f), p, PASSING_HALF_ANGLE));
     let mut beyond: Vec<(f32, Vec2)> = (free.iter())
         .map(|&p| (p.distance(eye), p))
-        .filter(|&(d, p)| d >= beside && ahead(d, p))
+        .filter(|&(d, p)| d >= beside && ahead(p))
         .collect();
     beyond.sort_by(|a, b| a.0.total_cmp(&b.0));
     let nearest = beyond.first()?.0;
@@ -463,8 +467,7 @@ fn walk(
         let body_to_camera = point_segment_distance(eye, a, b) - footprint.radius;
         closest = closest.min(body_to_camera);
         let forward = camera.axis_at(t).truncate().normalize_or_zero();
-        let seen = (p - eye).normalize_or_zero().dot(forward) >= SEEN_HALF_ANGLE.cos();
-        if seen || !meeting.in_view {
+        if !meeting.in_view || within_angle((eye, forward), p, SEEN_HALF_ANGLE) {
             closest_met = closest_met.min(body_to_camera);
         }
         along.push(s);
