@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# Do people (`actors`, or `objects`) cost a real SLAM more as their severity grows, over several
+# draws? Each seed draws other walkers, and one draw's walkers can cost more at a low severity
+# than another's at a high one, so one draw says little. Per scene: ../shared/validity/validity.sh
+# (ORB-SLAM3 RGB-D) on the clean sequence once and on ITEM:1..5 for every seed, rendered through
+# TUM's camera (TUM's walking sequences are filmed through it); then per severity each draw's
+# median ATE, the median of the draws, that over the clean ATE, the runs that lost tracking, and
+# the mean share of a frame people cover (the manifests' dynamic fractions).
+# By hand only: it needs ../shared/validity and about 5 minutes a scene and seed on 2 cores.
+#
+#   scripts/validity-actors.sh WORK_DIR SCENE...      # e.g. scripts/validity-actors.sh /tmp/a office2
+#
+# env: SEEDS="0 1 2", CAMERA=tum, RUNS=3, FRAMES=400, ITEM=actors, RSLAM=target/release/rslam
+# (built if missing), TRAJ=a camera path for every render (`rslam render --traj`; a held camera
+# as in TUM's walking_xyz: scripts/held-camera-path.py). Writes validity.sh's folders as
+# WORK_DIR/SCENE/seed0, seed1, ... and the table as WORK_DIR/SCENE/table.md, and prints it.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+validity=$root/../shared/validity
+[ $# -ge 2 ] || { echo "usage: $0 WORK_DIR SCENE..." >&2; exit 2; }
+[ -x "$validity/validity.sh" ] || { echo "$validity/validity.sh: not found (the validity kit lives beside the repository)" >&2; exit 1; }
+work=$(mkdir -p "$1" && cd "$1" && pwd); shift
+rslam=${RSLAM:-$root/target/release/rslam}
+[ -x "$rslam" ] || cargo build --release -q --bin rslam --manifest-path "$root/Cargo.toml"
+item=${ITEM:-actors}
+severities="$item:1 $item:2 $item:3 $item:4 $item:5"
+
+# validity.sh renders with --seed 0, a scene's own camera and its default path: this rslam swaps
+# in the draw's seed, the camera and TRAJ.
+traj=${TRAJ:+$(realpath "$TRAJ")}
+wrapper=$work/rslam
+cat > "$wrapper" <<EOF
+#!/usr/bin/env bash
+if [ "\$1" = render ]; then
+  args=(); previous=
+  for a in "\$@"; do [ "\$previous" = --seed ] && a=\$SEED; args+=("\$a"); previous=\$a; done
+  exec "$rslam" "\${args[@]}" --camera "${CAMERA:-tum}" ${traj:+--traj \"$traj\"}
+fi
+exec "$rslam" "\$@"
+EOF
+chmod +x "$wrapper"
+
+for scene in "$@"; do
+    w=$work/$scene
+    settings="clean $severities"
+    for seed in ${SEEDS:-0 1 2}; do
+        mkdir -p "$w/seed$seed"
+        env RSLAM="$wrapper" SEED="$seed" FRAMES="${FRAMES:-400}" RUNS="${RUNS:-3}" SCENE="$scene" \
+            SETTINGS="$settings" "$validity/validity.sh" "$w/seed$seed" > "$w/seed$seed/log" 2>&1
+        settings=$severities # the clean sequence has nothing to draw
+    done
+    python3 - "$w" "$item" ${SEEDS:-0 1 2} <<'EOF' | tee "$w/table.md"
+import json, os, statistics, sys
+
+w, item, seeds = sys.argv[1], sys.argv[2], sys.argv[3:]
+
+
+def runs(seed, setting):
+    """(ATE in cm or None, whether tracking was lost) of each run; a run that died counts lost."""
+    d = os.path.join(w, f"seed{seed}", "runs", setting.replace(":", "-"))
+    found, r = [], 1
+    while os.path.exists(os.path.join(d, f"run{r}.log")):
+        o = os.path.join(d, f"run{r}")
+        try:
+            lost = json.load(open(o + ".json"))["lost"]
+        except (OSError, ValueError, KeyError):
+            lost = True
+        try:
+            ate = 100 * json.load(open(o + ".eval.json"))["ate"]["rmse"]
+        except (OSError, ValueError, KeyError):
+            ate = None
+        found.append((ate, lost))
+        r += 1
+    return found
+
+
+def cover(seed, setting):
+    """The mean dynamic fraction of the draw's dataset, if it is kept."""
+    manifest = os.path.join(w, f"seed{seed}", "data", setting.replace(":", "-"), "rslam.json")
+    try:
+        fractions = json.load(open(manifest))["extra"]["masks"]["dynamic_fraction"]
+    except (OSError, ValueError, KeyError):
+        return None
+    return sum(fractions) / len(fractions)
+
+
+def median(values):
+    return statistics.median(values) if values else float("nan")
+
+
+clean = median([a for a, _ in runs(seeds[0], "clean") if a is not None])
+print(f"{os.path.basename(w)}: clean {clean:.2f} cm; seeds {', '.join(seeds)}\n")
+print("| setting | median ATE per draw (cm) | median of the draws (cm) | × clean | runs that lost tracking | cover, mean per draw |")
+print("|---|---|---|---|---|---|")
+medians = []
+for s in range(1, 6):
+    setting = f"{item}:{s}"
+    per_draw = [runs(seed, setting) for seed in seeds]
+    draws = [median([a for a, _ in d if a is not None]) for d in per_draw]
+    medians.append(median([x for x in draws if x == x]))
+    lost = sum(l for d in per_draw for _, l in d)
+    total = sum(len(d) for d in per_draw)
+    covers = [cover(seed, setting) for seed in seeds]
+    print(f"| {setting} | {' / '.join('%.2f' % x for x in draws)} | {medians[-1]:.2f} | "
+          f"{medians[-1] / clean:.1f} | {lost} of {total} | "
+          f"{' / '.join('-' if c is None else '%.1f %%' % (100 * c) for c in covers)} |")
+grows = all(a < b for a, b in zip(medians, medians[1:]))
+print(f"\nThe median of the draws grows with every severity: {'yes' if grows else 'no'}.")
+EOF
+done
