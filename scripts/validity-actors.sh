@@ -23,6 +23,7 @@ work=$(mkdir -p "$1" && cd "$1" && pwd); shift
 rslam=${RSLAM:-$root/target/release/rslam}
 [ -x "$rslam" ] || cargo build --release -q --bin rslam --manifest-path "$root/Cargo.toml"
 item=${ITEM:-actors}
+seeds=${SEEDS:-0 1 2}
 severities="$item:1 $item:2 $item:3 $item:4 $item:5"
 
 # validity.sh renders with --seed 0, a scene's own camera and its default path: this rslam swaps
@@ -43,21 +44,26 @@ chmod +x "$wrapper"
 for scene in "$@"; do
     w=$work/$scene
     settings="clean $severities"
-    for seed in ${SEEDS:-0 1 2}; do
+    for seed in $seeds; do
         mkdir -p "$w/seed$seed"
         env RSLAM="$wrapper" SEED="$seed" FRAMES="${FRAMES:-400}" RUNS="${RUNS:-3}" SCENE="$scene" \
             SETTINGS="$settings" "$validity/validity.sh" "$w/seed$seed" > "$w/seed$seed/log" 2>&1
         settings=$severities # the clean sequence has nothing to draw
     done
-    python3 - "$w" "$item" ${SEEDS:-0 1 2} <<'EOF' | tee "$w/table.md"
+    python3 - "$w" "$item" $seeds <<'EOF' | tee "$w/table.md"
 import json, os, statistics, sys
 
 w, item, seeds = sys.argv[1], sys.argv[2], sys.argv[3:]
 
 
+def folder(seed, kind, setting):
+    """Where validity.sh keeps a setting's runs or data (it names them as `tr ':/' '-_'` does)."""
+    return os.path.join(w, f"seed{seed}", kind, setting.replace(":", "-").replace("/", "_"))
+
+
 def runs(seed, setting):
     """(ATE in cm or None, whether tracking was lost) of each run; a run that died counts lost."""
-    d = os.path.join(w, f"seed{seed}", "runs", setting.replace(":", "-"))
+    d = folder(seed, "runs", setting)
     found, r = [], 1
     while os.path.exists(os.path.join(d, f"run{r}.log")):
         o = os.path.join(d, f"run{r}")
@@ -76,7 +82,7 @@ def runs(seed, setting):
 
 def cover(seed, setting):
     """The mean dynamic fraction of the draw's dataset, if it is kept."""
-    manifest = os.path.join(w, f"seed{seed}", "data", setting.replace(":", "-"), "rslam.json")
+    manifest = os.path.join(folder(seed, "data", setting), "rslam.json")
     try:
         fractions = json.load(open(manifest))["extra"]["masks"]["dynamic_fraction"]
     except (OSError, ValueError, KeyError):
