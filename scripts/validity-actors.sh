@@ -174,7 +174,8 @@ rho = spearman(*zip(*pairs))
 shuffled = random.Random(0)
 ates = [x for _, x in pairs]
 as_high = sum(spearman([s for s, _ in pairs], shuffled.sample(ates, len(ates))) >= rho for _ in range(SHUFFLES))
+p = (as_high + 1) / (SHUFFLES + 1)
 print(f"Severity against each draw's median ATE: Spearman's rho {rho:.2f} over {len(pairs)} draws, "
-      f"one-sided p {(as_high + 1) / (SHUFFLES + 1):.3f} (the ATEs shuffled over the severities {SHUFFLES} times).")
+      f"one-sided p {'< 0.001' if p < 0.001 else '%.3f' % p} (the ATEs shuffled over the severities {SHUFFLES} times).")
 EOF
 done

@@ -15,7 +15,7 @@ pub static WORLD_ITEMS: &[ItemEntry] = &[
     ItemEntry {
         name: WalkerKind::NAME,
         syntax: "actors:1-5 | actors:COUNT/SPEED/NEAR",
-        description: "people walking through the scene: COUNT articulated walkers at SPEED m/s on curved paths over the free floor that keep clear of the furniture, each other and the camera, entering and leaving the view and passing within NEAR m of the camera (or as near as the floor has room for; the manifest has each walker's closest approach); severities 1-5 = 1/0.6/2, 1/1/1.2, 2/1.1/0.8, 2/1.2/0.5, 3/1.4/0.4 (like TUM fr3 sitting, walking_static, walking_xyz, Bonn person_tracking, crowd)",
+        description: "people walking through the scene: COUNT articulated walkers at SPEED m/s on curved paths over the free floor that keep clear of the furniture, each other and the camera, entering and leaving the view and passing within NEAR m of the camera (or as near as the floor has room for; the manifest has each walker's closest approach); severities 1-5 = 1/1/3, 1/1/1.2, 2/1.1/0.8, 2/1.2/0.5, 3/1.4/0.4 (like TUM fr3 sitting, walking_static, walking_xyz, Bonn person_tracking, crowd)",
         needs: &[Need::Scene, Need::FreeFloor],
     },
     ItemEntry {
