@@ -167,9 +167,11 @@ for s in range(1, 6):
     print(f"| {setting} | {' / '.join('%.2f' % x for x in draws)} | {medians[-1]:.2f} | "
           f"{medians[-1] / clean:.1f} | {lost} of {total} | "
           f"{' / '.join('-' if c is None else '%.1f %%' % (100 * c) for c in covers)} |")
+pairs = [(s, x) for s, d in severity_draws for x in d if x == x]
+if len({s for s, _ in pairs}) < 2:
+    sys.exit("Too few severities with an ATE for a trend.")
 grows = all(a < b for a, b in zip(medians, medians[1:]))
 print(f"\nThe median of the draws grows with every severity: {'yes' if grows else 'no'}.")
-pairs = [(s, x) for s, d in severity_draws for x in d if x == x]
 rho = spearman(*zip(*pairs))
 shuffled = random.Random(0)
 ates = [x for _, x in pairs]
