@@ -7,7 +7,7 @@
 # median ATE, the median of the draws, that over the clean ATE, the runs that lost tracking, and
 # the mean share of a frame people cover (the manifests' dynamic fractions); and whether the ATE
 # grows with the severity beyond what the draws' spread explains (Spearman's rho over every draw,
-# with a shuffle test).
+# with a shuffle test; SciPy from validity.sh's venv).
 # By hand only: it needs ../shared/validity and about 5 minutes a scene and seed on 2 cores.
 #
 #   scripts/validity-actors.sh WORK_DIR SCENE...      # e.g. scripts/validity-actors.sh /tmp/a office2
@@ -27,6 +27,8 @@ rslam=${RSLAM:-$root/target/release/rslam}
 item=${ITEM:-actors}
 seeds=${SEEDS:-0 1 2}
 severities="$item:1 $item:2 $item:3 $item:4 $item:5"
+# validity.sh's Python (its venv holds evo, and so scipy), as validity.sh finds it.
+py=${PY:-${XDG_CACHE_HOME:-$HOME/.cache}/rslam-validity/venv/bin/python}
 
 # validity.sh renders with --seed 0, a scene's own camera and its default path: this rslam swaps
 # in the draw's seed, the camera and TRAJ.
@@ -58,8 +60,10 @@ for scene in "$@"; do
         done
         settings=$severities # the clean sequence has nothing to draw
     done
-    python3 - "$w" "$item" $seeds <<'EOF' | tee "$w/table.md"
-import json, os, random, statistics, sys
+    "$py" - "$w" "$item" $seeds <<'EOF' | tee "$w/table.md"
+import json, os, statistics, sys
+
+from scipy.stats import permutation_test, spearmanr
 
 w, item, seeds = sys.argv[1], sys.argv[2], sys.argv[3:]
 
@@ -117,35 +121,6 @@ def median(values):
     return statistics.median(values) if values else float("nan")
 
 
-def ranks(values):
-    """Each value's rank from 1, ties sharing the mean of their ranks (as Spearman's rho wants)."""
-    order = sorted(range(len(values)), key=lambda i: values[i])
-    r = [0.0] * len(values)
-    i = 0
-    while i < len(order):
-        j = i
-        while j + 1 < len(order) and values[order[j + 1]] == values[order[i]]:
-            j += 1
-        for k in order[i : j + 1]:
-            r[k] = (i + j) / 2 + 1
-        i = j + 1
-    return r
-
-
-def spearman(xs, ys):
-    """Spearman's rank correlation: Pearson's over the ranks."""
-    rx, ry = ranks(list(xs)), ranks(list(ys))
-    mx, my = statistics.fmean(rx), statistics.fmean(ry)
-    cov = sum((a - mx) * (b - my) for a, b in zip(rx, ry))
-    spread = (sum((a - mx) ** 2 for a in rx) * sum((b - my) ** 2 for b in ry)) ** 0.5
-    return cov / spread if spread else float("nan")
-
-
-# How often shuffled draws correlate with the severity as strongly: whether the growth could be
-# chance, with draws this spread.
-SHUFFLES = 10000
-
-
 clean = median([a for a, _ in runs(seeds[0], "clean") if a is not None])
 print(f"{os.path.basename(w)}: clean {clean:.2f} cm; seeds {', '.join(seeds)}\n")
 print("| setting | median ATE per draw (cm) | median of the draws (cm) | × clean | runs that lost tracking | cover, mean per draw |")
@@ -172,12 +147,13 @@ if len({s for s, _ in pairs}) < 2:
     sys.exit("Too few severities with an ATE for a trend.")
 grows = all(a < b for a, b in zip(medians, medians[1:]))
 print(f"\nThe median of the draws grows with every severity: {'yes' if grows else 'no'}.")
-rho = spearman(*zip(*pairs))
-shuffled = random.Random(0)
-ates = [x for _, x in pairs]
-as_high = sum(spearman([s for s, _ in pairs], shuffled.sample(ates, len(ates))) >= rho for _ in range(SHUFFLES))
-p = (as_high + 1) / (SHUFFLES + 1)
-print(f"Severity against each draw's median ATE: Spearman's rho {rho:.2f} over {len(pairs)} draws, "
-      f"one-sided p {'< 0.001' if p < 0.001 else '%.3f' % p} (the ATEs shuffled over the severities {SHUFFLES} times).")
+severity, ates = zip(*pairs)
+# How often the ATEs shuffled over the severities correlate with them as strongly: whether the
+# growth could be chance, with draws this spread.
+trend = permutation_test(
+    (severity, ates), lambda x, y: spearmanr(x, y).statistic, permutation_type="pairings",
+    alternative="greater", n_resamples=10000, rng=0)
+print(f"Severity against each draw's median ATE: Spearman's rho {trend.statistic:.2f} over {len(pairs)} draws, "
+      f"one-sided p {'< 0.001' if trend.pvalue < 0.001 else '%.3f' % trend.pvalue} (the ATEs shuffled over the severities 10000 times).")
 EOF
 done
