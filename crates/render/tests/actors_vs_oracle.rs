@@ -1,7 +1,8 @@
 //! People walking through a built-in scene (`actors`) and things moved through it (`objects`)
 //! against the CPU ray-cast oracle: colour, depth and the instance mask where they are in view,
 //! the static scene untouched elsewhere, and none of them ever touching the scene, another or
-//! the camera at any instant (checked every 10 ms).
+//! the camera at any instant (checked every 10 ms; a walker's footprint against the scene
+//! every 50 ms).
 
 mod fixtures;
 
@@ -241,7 +242,7 @@ fn walkers_never_touch_the_scene_each_other_or_the_camera_and_pass_near_it() {
         let segments: Vec<Vec<Vec2>> = (actors.walkers().iter().zip(&poses))
             .map(|(w, p)| segment_points(w.footprint.segment(p.position, p.heading)))
             .collect();
-        for (k, (walker, pose)) in actors.walkers().iter().zip(&poses).enumerate() {
+        for (k, walker) in actors.walkers().iter().enumerate() {
             let to_eye = nearest(&segments[k], &[eye]);
             closest[k] = closest[k].min(to_eye - walker.footprint.radius);
             assert!(
@@ -253,18 +254,20 @@ fn walkers_never_touch_the_scene_each_other_or_the_camera_and_pass_near_it() {
                 let touching = walker.footprint.radius + other.footprint.radius - SAMPLING;
                 assert!(gap >= touching, "walkers {k} and {j} touch at {t} s");
             }
-            // The scene keeps out of the circle the footprint turns in.
-            let reach = walker.footprint.radius + walker.footprint.half_length;
+            // Every fifth instant: the scene keeps out of the footprint, at every height.
+            if step % 5 != 0 {
+                continue;
+            }
             let mut z = 0.05;
             while z < walker.body.height() {
-                let axis = pose.position.extend(z);
-                let gap = obstacles
-                    .nearest(axis)
-                    .map_or(f32::INFINITY, |n| n.distance);
-                assert!(
-                    gap > reach,
-                    "a walker meets the scene {gap} m from its axis at {axis} at {t} s"
-                );
+                for p in &segments[k] {
+                    let gap =
+                        (obstacles.nearest(p.extend(z))).map_or(f32::INFINITY, |n| n.distance);
+                    assert!(
+                        gap > walker.footprint.radius - SAMPLING,
+                        "walker {k} meets the scene {gap} m from its footprint's axis at {p}, {z} m up, at {t} s"
+                    );
+                }
                 z += 0.05;
             }
         }
@@ -329,10 +332,52 @@ fn walkers_pass_near_the_camera_in_its_view() {
     }
 }
 
+/// Every walker walks through the room: at severity 5's setting (three walkers at 1.4 m/s
+/// passing 0.4 m from the camera) on office2, each moves at walking pace for at least 60 % of
+/// 20 s and ranges over more than 1.5 m. Taking the first walk that fit, 6 of these 15 walkers
+/// walked under 60 % of the time, four under half, giving way (the least now walks 72 %).
+#[test]
+fn walkers_keep_walking_and_range_over_the_room() {
+    let (scene, _, track) = along_path("office2");
+    let params = WalkerParams {
+        count: 3,
+        speed_m_s: 1.4,
+        near_m: 0.4,
+    };
+    let duration = track.times.last().copied().unwrap();
+    let steps = (duration / 0.05) as usize;
+    for seed in 0..5 {
+        let actors = Actors::plan(&scene, walking(&params), seed, &track).expect("walkers");
+        for (k, walker) in actors.walkers().iter().enumerate() {
+            let at: Vec<Vec2> = (0..=steps)
+                .map(|i| walker.path.at(i as f64 * 0.05).position)
+                .collect();
+            let walking = (at.windows(2))
+                .filter(|p| p[0].distance(p[1]) >= 0.5 * params.speed_m_s * 0.05)
+                .count();
+            assert!(
+                walking as f64 >= 0.6 * steps as f64,
+                "seed {seed}: walker {k} walks {walking} of {steps} steps of 50 ms"
+            );
+            let (low, high) = (at.iter())
+                .fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(l, h), &p| {
+                    (l.min(p), h.max(p))
+                });
+            let range = (high - low).max_element();
+            assert!(
+                range > 1.5,
+                "seed {seed}: walker {k} stays within {range} m"
+            );
+        }
+    }
+}
+
 /// room1, the most furnished room, with two walkers passing 0.5 m from the camera over 20 s:
 /// where an earlier walker's route leaves a later one no way, all of them are drawn again, so
-/// every seed plans (without the redraws 12 of the first 20 seeds refused, among them 0, 1
-/// and 2).
+/// seeds 0 and 2–4 plan (without the redraws 12 of the first 20 seeds refused, among them 0,
+/// 1 and 2). Seed 1 refuses, naming the walker: in none of the draws could its second walker
+/// walk a quarter of the time (the planner before walkers had to walk placed it standing for
+/// all 20 s).
 #[test]
 fn a_crowded_room_draws_its_walkers_again_until_they_fit() {
     let (scene, _, track) = along_path("room1");
@@ -341,10 +386,18 @@ fn a_crowded_room_draws_its_walkers_again_until_they_fit() {
         speed_m_s: 1.2,
         near_m: 0.5,
     };
-    for seed in 0..5 {
+    for seed in [0, 2, 3, 4] {
         let planned = Actors::plan(&scene, walking(&params), seed, &track);
         assert!(planned.is_ok(), "seed {seed}: {:?}", planned.err());
     }
+    let refused = format!(
+        "{:?}",
+        Actors::plan(&scene, walking(&params), 1, &track).err()
+    );
+    assert!(
+        refused.contains("walker 2 of 2") && refused.contains("walking a quarter of the time"),
+        "seed 1: {refused}"
+    );
 }
 
 /// Metres between the points a footprint's segment is checked at, halved: what sampling can

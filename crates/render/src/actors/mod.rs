@@ -46,6 +46,8 @@ pub struct Walker {
     pub colours: [[f32; 3]; 6],
     /// The nearest its body comes to the camera centre, metres.
     pub closest_m: f32,
+    /// The share of the sequence it walks on, rather than waiting or stepping back to give way.
+    pub walking_share: f32,
 }
 
 /// Where a walker is at an instant, for the manifest.
