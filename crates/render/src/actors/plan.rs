@@ -21,8 +21,9 @@ use crate::scene::builtin::rng::Rng;
 
 /// Metres kept between a walker's body and the camera centre.
 pub const CAMERA_CLEARANCE: f32 = 0.1;
-/// Metres between the points of a straight line checked for clearance.
-const LINE_OF_SIGHT_STEP: f32 = 0.025;
+/// Metres at most between the points of a line checked for clearance: a line of sight, a
+/// route's poses along a straight piece, the points of a footprint's axis.
+const CLEARANCE_STEP: f32 = 0.025;
 /// What a walker may do in a check step, as multiples of its speed: walk on, hurry, wait, step
 /// back, step back quickly.
 const MOVES: [f32; 5] = [1.0, 1.5, 0.0, -1.0, -1.5];
@@ -80,9 +81,6 @@ const LEAST_WALKING_SHARE_PLANNED: f32 = 0.25;
 const PROGRESS_WINDOW_S: f64 = 0.25;
 /// Metres of clearance the shortest ways keep beyond the body's radius.
 const ROUTE_MARGIN: f32 = 0.05;
-/// Metres between the poses, and between the points of a footprint, checked against the scene
-/// along a route.
-const SWEEP_STEP: f32 = 0.025;
 /// How much farther than NEAR a walker's closest approach may stay, metres (giving way moves
 /// the meeting).
 const NEAR_TOLERANCE: f32 = 0.15;
@@ -318,11 +316,17 @@ fn span(points: &[Vec2]) -> f32 {
         .fold(0.0, f32::max)
 }
 
+/// Pieces a line `length` metres long is cut into to check its clearance every
+/// [`CLEARANCE_STEP`] at most.
+fn clearance_checks(length: f32) -> usize {
+    (length / CLEARANCE_STEP).ceil().max(1.0) as usize
+}
+
 /// The points of `way` where it must turn: each kept point sees the next one over cells with
 /// `clearance` all along the straight line between them.
 pub(super) fn corners(map: &FloorMap, way: &[Vec2], clearance: f32) -> Vec<Vec2> {
     let sees = |a: Vec2, b: Vec2| {
-        let pieces = (a.distance(b) / LINE_OF_SIGHT_STEP).ceil().max(1.0) as usize;
+        let pieces = clearance_checks(a.distance(b));
         (0..=pieces).all(|i| map.clearance(a.lerp(b, i as f32 / pieces as f32)) >= clearance)
     };
     let mut kept = vec![way[0]];
@@ -374,17 +378,17 @@ impl<'a> WalkableFloor<'a> {
 
 /// Whether the scene keeps out of `footprint` all along `route`, facing the way it goes: the
 /// route is straight between its dense samples, so its poses are checked every
-/// [`SWEEP_STEP`] metres along each straight piece, on points of the footprint's segment as far
-/// apart, with the margin both steps leave (the floor map's clearance of a point bounds every
-/// point of its cell).
+/// [`CLEARANCE_STEP`] metres along each straight piece, on points of the footprint's segment as
+/// far apart, with the margin both steps leave (the floor map's clearance of a point bounds
+/// every point of its cell).
 fn clears_the_scene(map: &FloorMap, route: &Route, footprint: &Footprint) -> bool {
     let points = route.points();
-    let need = footprint.radius + SWEEP_STEP;
-    let axis = (2.0 * footprint.half_length / SWEEP_STEP).ceil().max(1.0) as usize;
+    let need = footprint.radius + CLEARANCE_STEP;
+    let axis = clearance_checks(2.0 * footprint.half_length);
     points.windows(2).all(|piece| {
         let (a, b) = (piece[0], piece[1]);
         let heading = (b - a).to_angle();
-        let poses = (a.distance(b) / SWEEP_STEP).ceil().max(1.0) as usize;
+        let poses = clearance_checks(a.distance(b));
         (0..=poses).all(|i| {
             let [tail, head] = footprint.segment(a.lerp(b, i as f32 / poses as f32), heading);
             (0..=axis).all(|j| map.clearance(tail.lerp(head, j as f32 / axis as f32)) >= need)
