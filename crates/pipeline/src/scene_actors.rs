@@ -85,6 +85,7 @@ pub fn record(extra: &mut serde_json::Value, actors: Option<&Actors>, plan: &Fra
                 "speed_m_s": round(w.path.speed()),
                 "step_m": round(w.stride),
                 "closest_to_camera_m": round(w.closest_m),
+                "closest_in_view_m": w.closest_in_view_m.map(round),
                 "walking_share": round(w.walking_share),
                 "carries_box": w.body.carries(),
             })

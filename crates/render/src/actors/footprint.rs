@@ -42,7 +42,12 @@ impl Footprint {
 
     /// The segment's ends for a body at `at` facing `heading`.
     pub fn segment(&self, at: Vec2, heading: f32) -> [Vec2; 2] {
-        let along = Vec2::from_angle(heading) * self.half_length;
+        self.segment_facing(at, Vec2::from_angle(heading))
+    }
+
+    /// The segment's ends for a body at `at` facing the unit vector `facing`.
+    pub fn segment_facing(&self, at: Vec2, facing: Vec2) -> [Vec2; 2] {
+        let along = facing * self.half_length;
         [at - along, at + along]
     }
 

@@ -46,6 +46,10 @@ pub struct Walker {
     pub colours: [[f32; 3]; 6],
     /// The nearest its body comes to the camera centre, metres.
     pub closest_m: f32,
+    /// The nearest it comes while in front of the camera (its centre within 40° of the camera's
+    /// axis over the floor), metres; `None` when it never is. More than the severity's closest
+    /// approach where the floor the camera looks over has no room that near.
+    pub closest_in_view_m: Option<f32>,
     /// The share of the sequence it walks on, rather than waiting or stepping back to give way.
     pub walking_share: f32,
 }

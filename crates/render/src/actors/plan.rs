@@ -68,9 +68,11 @@ const WAYPOINTS: usize = 2;
 const LEAST_ROUTE_SPAN: f32 = 2.0;
 /// ... and the walker walks on this share of the time at least ([`walking_share`]). The first
 /// such walk drawn is kept; where none is, the one nearest it of the first [`WALKS_COMPARED`]
-/// that fit. Taking the first walk that fit, 30 of 105 walkers at severity 5 (five draws on
-/// seven scenes) walked less than half the time, a standing person being part of the static
-/// scene, and others paced a metre back and forth.
+/// that fit: one that walks enough to be planned ([`LEAST_WALKING_SHARE_PLANNED`]) before one
+/// that does not, then one that spans the room, then the one that walks most. Taking the first
+/// walk that fit, 30 of 105 walkers at severity 5 (five draws on seven scenes) walked less than
+/// half the time, a standing person being part of the static scene, and others paced a metre
+/// back and forth.
 const LEAST_WALKING_SHARE: f32 = 0.8;
 const WALKS_COMPARED: usize = 24;
 /// A walker that would walk less than this share of the time does not fit (it would stand in
@@ -222,7 +224,7 @@ fn draw(
         let stride = stride_of(params.speed_m_s, body.height());
         let footprint = Footprint::of(&body, stride);
         let floor = WalkableFloor::of(map, &footprint);
-        let mut nearest: Option<((bool, f32), Walk)> = None;
+        let mut nearest: Option<((bool, bool, f32), Walk)> = None;
         let mut fitted = 0;
         for attempt in 0..ATTEMPTS {
             let in_front = attempt < ATTEMPTS / 2;
@@ -242,7 +244,11 @@ fn draw(
                 continue;
             };
             fitted += 1;
-            let merit = (spans, walked.walking_share);
+            let merit = (
+                walked.walking_share >= LEAST_WALKING_SHARE_PLANNED,
+                spans,
+                walked.walking_share,
+            );
             let through_the_room = spans && walked.walking_share >= LEAST_WALKING_SHARE;
             if nearest.as_ref().is_none_or(|(best, _)| merit > *best) {
                 nearest = Some((merit, walked));
@@ -256,6 +262,7 @@ fn draw(
             Walk {
                 path,
                 closest_m,
+                closest_in_view_m,
                 walking_share,
             },
         ) = nearest
@@ -268,6 +275,7 @@ fn draw(
             stride,
             colours,
             closest_m,
+            closest_in_view_m,
             walking_share,
         });
     }
@@ -471,11 +479,14 @@ fn try_route(
     ))
 }
 
-/// A walker's timing on its route, the closest it comes to the camera (metres), and the share of
-/// the time it walks on ([`walking_share`]).
+/// A walker's timing on its route, the closest it comes to the camera (metres; anywhere, and in
+/// front of it), and the share of the time it walks on ([`walking_share`]).
 struct Walk {
     path: WalkPath,
     closest_m: f32,
+    /// The closest it comes while in front of the camera ([`SEEN_HALF_ANGLE`]); `None` when it
+    /// never is.
+    closest_in_view_m: Option<f32>,
     walking_share: f32,
 }
 
@@ -500,15 +511,13 @@ fn walk(
     let camera_gap = footprint.radius + CAMERA_CLEARANCE + closing(camera.top_speed());
     // Metres to spare at `s` along the route at time `t` (negative: too close).
     let room = |s: f32, t: f64| {
-        let (p, heading) = route.at(s);
-        let [a, b] = footprint.segment(p, heading);
+        let (p, facing) = route.facing_at(s);
+        let [a, b] = footprint.segment_facing(p, facing);
         let to_camera = point_segment_distance(camera.at(t).truncate(), a, b) - camera_gap;
         let walkers = others.iter().fold(to_camera, |least, o| {
             let gap = footprint.radius + o.footprint.radius + WALKER_GAP + closing(o.path.speed());
-            let there = o.path.at(t);
-            least.min(
-                segment_distance([a, b], o.footprint.segment(there.position, there.heading)) - gap,
-            )
+            let (there, facing) = o.path.facing_at(t);
+            least.min(segment_distance([a, b], o.footprint.segment_facing(there, facing)) - gap)
         });
         (rigid.iter().zip(&rigid_speeds)).fold(walkers, |least, (r, &r_speed)| {
             let gap = footprint.radius + r.radius + WALKER_GAP + closing(r_speed);
@@ -535,7 +544,7 @@ fn walk(
         })
         .find(|&s| room(s, 0.0) >= 0.0)?;
     let mut along = Vec::with_capacity(steps);
-    let (mut closest, mut closest_met) = (f32::INFINITY, f32::INFINITY);
+    let (mut closest, mut closest_seen) = (f32::INFINITY, f32::INFINITY);
     for i in 0..steps {
         let t = i as f64 * CHECK_STEP_S;
         if i > 0 {
@@ -551,19 +560,25 @@ fn walk(
             };
             s += pace * step;
         }
-        let (p, heading) = route.at(s);
-        let [a, b] = footprint.segment(p, heading);
+        let (p, facing) = route.facing_at(s);
+        let [a, b] = footprint.segment_facing(p, facing);
         let eye = camera.at(t).truncate();
         let body_to_camera = point_segment_distance(eye, a, b) - footprint.radius;
         closest = closest.min(body_to_camera);
         let forward = camera.axis_at(t).truncate().normalize_or_zero();
-        if !meeting.in_view || within_angle((eye, forward), p, SEEN_HALF_ANGLE) {
-            closest_met = closest_met.min(body_to_camera);
+        if within_angle((eye, forward), p, SEEN_HALF_ANGLE) {
+            closest_seen = closest_seen.min(body_to_camera);
         }
         along.push(s);
     }
+    let closest_met = if meeting.in_view {
+        closest_seen
+    } else {
+        closest
+    };
     (closest_met <= meeting.near + NEAR_TOLERANCE).then(|| Walk {
         closest_m: closest,
+        closest_in_view_m: closest_seen.is_finite().then_some(closest_seen),
         walking_share: walking_share(&along, speed),
         path: WalkPath::new(route, speed, CHECK_STEP_S, along),
     })

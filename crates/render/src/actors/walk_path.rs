@@ -16,6 +16,9 @@ pub struct Route {
     points: Vec<Vec2>,
     /// Arc length at each point, metres; `lengths[0] = 0`.
     lengths: Vec<f32>,
+    /// Each piece's direction of travel: radians from +x towards +y, and the unit vector (worked
+    /// out once: walks are planned by asking millions of poses).
+    facings: Vec<(f32, Vec2)>,
     closed: bool,
 }
 
@@ -60,9 +63,17 @@ impl Route {
             }
             lengths.push(total);
         }
+        let facings = (points.windows(2))
+            .map(|piece| {
+                let d = piece[1] - piece[0];
+                let heading = d.y.atan2(d.x);
+                (heading, Vec2::from_angle(heading))
+            })
+            .collect();
         Self {
             points,
             lengths,
+            facings,
             closed: end.is_none(),
         }
     }
@@ -80,6 +91,19 @@ impl Route {
     /// Position and direction of travel (radians from +x towards +y) `s` metres along (round
     /// and round a closed route; an open one ends at its ends).
     pub fn at(&self, s: f32) -> (Vec2, f32) {
+        let (position, i) = self.locate(s);
+        (position, self.facings[i - 1].0)
+    }
+
+    /// Position and direction of travel as a unit vector (`Vec2::from_angle` of [`Self::at`]'s)
+    /// `s` metres along.
+    pub fn facing_at(&self, s: f32) -> (Vec2, Vec2) {
+        let (position, i) = self.locate(s);
+        (position, self.facings[i - 1].1)
+    }
+
+    /// Position `s` metres along, and the index of the sample that ends its piece.
+    fn locate(&self, s: f32) -> (Vec2, usize) {
         let s = if self.closed {
             s.rem_euclid(self.length())
         } else {
@@ -93,8 +117,7 @@ impl Route {
         } else {
             0.0
         };
-        let d = b - a;
-        (a + d * f, d.y.atan2(d.x))
+        (a + (b - a) * f, i)
     }
 
     /// Metres along to the sample nearest `point`.
@@ -175,6 +198,12 @@ impl WalkPath {
         }
     }
 
+    /// Where the walker is `t` seconds from the start and the unit vector it faces: [`Self::at`]'s
+    /// position, and `Vec2::from_angle` of its heading.
+    pub fn facing_at(&self, t: f64) -> (Vec2, Vec2) {
+        self.route.facing_at(self.sample(&self.along, t))
+    }
+
     fn sample(&self, values: &[f32], t: f64) -> f32 {
         let x = (t / self.step_s).max(0.0);
         let i = x.floor() as usize;
@@ -228,6 +257,7 @@ mod tests {
                 (b - a).normalize().dot(Vec2::from_angle(heading)) > 0.99,
                 "{s}"
             );
+            assert_eq!(route.facing_at(s), (a, Vec2::from_angle(heading)));
         }
         let quarter = route.arc_length_to(Vec2::new(0.0, 1.0));
         assert!(route.at(quarter).0.distance(Vec2::new(0.0, 1.0)) < 1e-4);
