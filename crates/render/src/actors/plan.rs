@@ -6,9 +6,9 @@
 //! camera and the walkers planned before it. A route that does not fit is drawn again, and so
 //! is one that would leave the walker pacing a corner or standing to give way most of the time
 //! (the nearest to walking through the room is kept when none does, unless it would stand three
-//! quarters of the time). "Every
-//! instant": positions are compared every [`CHECK_STEP_S`] seconds with a margin of the
-//! distance two things can close in half a step, so no contact can hide between two checks.
+//! quarters of the time). "Every instant": positions are compared every [`CHECK_STEP_S`] seconds
+//! with a margin of the distance two things can close in half a step, so no contact can hide
+//! between two checks.
 
 use glam::{Vec2, Vec3};
 
@@ -390,15 +390,12 @@ impl<'a> WalkableFloor<'a> {
 /// far apart, with the margin both steps leave (the floor map's clearance of a point bounds
 /// every point of its cell).
 fn clears_the_scene(map: &FloorMap, route: &Route, footprint: &Footprint) -> bool {
-    let points = route.points();
     let need = footprint.radius + CLEARANCE_STEP;
     let axis = clearance_checks(2.0 * footprint.half_length);
-    points.windows(2).all(|piece| {
-        let (a, b) = (piece[0], piece[1]);
-        let heading = (b - a).to_angle();
+    route.pieces().all(|(a, b, facing)| {
         let poses = clearance_checks(a.distance(b));
         (0..=poses).all(|i| {
-            let [tail, head] = footprint.segment(a.lerp(b, i as f32 / poses as f32), heading);
+            let [tail, head] = footprint.segment_facing(a.lerp(b, i as f32 / poses as f32), facing);
             (0..=axis).all(|j| map.clearance(tail.lerp(head, j as f32 / axis as f32)) >= need)
         })
     })

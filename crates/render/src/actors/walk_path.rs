@@ -120,6 +120,13 @@ impl Route {
         (a + (b - a) * f, i)
     }
 
+    /// The straight pieces between the dense samples: start, end and the unit vector of the
+    /// direction of travel along each.
+    pub fn pieces(&self) -> impl Iterator<Item = (Vec2, Vec2, Vec2)> + '_ {
+        (self.points.windows(2).zip(&self.facings))
+            .map(|(ends, &(_, facing))| (ends[0], ends[1], facing))
+    }
+
     /// Metres along to the sample nearest `point`.
     pub fn arc_length_to(&self, point: Vec2) -> f32 {
         let nearest = (0..self.points.len())
