@@ -53,6 +53,7 @@ pub fn plan(
         count: w.count,
         speed_m_s: w.speed_m_s as f32,
         near_m: w.near_m as f32,
+        ahead_m: w.ahead_m.map(|a| a as f32),
     });
     let objects = spec.world.objects.map(|o| ObjectParams {
         count: o.count,
@@ -87,6 +88,8 @@ pub fn record(extra: &mut serde_json::Value, actors: Option<&Actors>, plan: &Fra
                 "closest_to_camera_m": round(w.closest_m),
                 "closest_in_view_m": w.closest_in_view_m.map(round),
                 "walking_share": round(w.walking_share),
+                "in_view_share": round(w.in_view_share),
+                "ahead_m": w.ahead_m.map(round),
                 "carries_box": w.body.carries(),
             })
         })

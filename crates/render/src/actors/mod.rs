@@ -6,6 +6,7 @@
 //! by the scene's light layers ([`light_probe`]), for the rasterizer and the ray-cast oracle
 //! alike.
 
+mod ahead;
 mod floor_map;
 mod footprint;
 mod light_probe;
@@ -18,7 +19,7 @@ mod walker;
 pub use floor_map::FloorMap;
 pub use footprint::Footprint;
 pub use objects::ObjectParams;
-pub use plan::{CameraTrack, WalkerParams, CAMERA_CLEARANCE, SEEN_HALF_ANGLE};
+pub use plan::{CameraTrack, WalkerParams, CAMERA_CLEARANCE, SEEN_DISTANCE, SEEN_HALF_ANGLE};
 pub use rigid::{MovedObject, RigidActor, RigidLight, RigidOrigin};
 pub use walk_path::{Route, Stride, WalkPath};
 pub use walker::{BodyMaterial, PosedMesh, WalkerBody, MAX_STRIDE};
@@ -52,6 +53,11 @@ pub struct Walker {
     pub closest_in_view_m: Option<f32>,
     /// The share of the sequence it walks on, rather than waiting or stepping back to give way.
     pub walking_share: f32,
+    /// The share of the sequence its centre is in front of the camera (within 40° of its axis
+    /// over the floor, under 4 m away).
+    pub in_view_share: f32,
+    /// How far in front of the camera it keeps, metres, if it is the walker ahead of it.
+    pub ahead_m: Option<f32>,
 }
 
 /// Where a walker is at an instant, for the manifest.

@@ -50,10 +50,12 @@ const PASSING_BAND: f32 = 0.25;
 /// this angle of the camera's axis over the floor, radians (giving way shifts the meeting a
 /// little).
 pub const SEEN_HALF_ANGLE: f32 = 0.7;
+/// ... and nearer than this many metres (a body farther away covers little of the frame).
+pub const SEEN_DISTANCE: f32 = 4.0;
 /// Metres a footprint's ends can swing in half a check step as the walker turns.
 const TURN_MARGIN: f32 = 0.01;
 /// Metres kept between two walkers' bodies.
-const WALKER_GAP: f32 = 0.05;
+pub(super) const WALKER_GAP: f32 = 0.05;
 /// Seconds between the instants compared.
 pub(super) const CHECK_STEP_S: f64 = 0.005;
 /// Paths tried per walker before the floor counts as too crowded ...
@@ -82,7 +84,7 @@ const LEAST_WALKING_SHARE_PLANNED: f32 = 0.25;
 /// waiting, stepping back or edging forward by turns.
 const PROGRESS_WINDOW_S: f64 = 0.25;
 /// Metres of clearance the shortest ways keep beyond the body's radius.
-const ROUTE_MARGIN: f32 = 0.05;
+pub(super) const ROUTE_MARGIN: f32 = 0.05;
 /// How much farther than NEAR a walker's closest approach may stay, metres (giving way moves
 /// the meeting).
 const NEAR_TOLERANCE: f32 = 0.15;
@@ -97,6 +99,9 @@ pub struct WalkerParams {
     /// Closest approach of each walker's body (its footprint's edge) to the camera centre,
     /// metres.
     pub near_m: f32,
+    /// How far in front of the camera one of them keeps all along instead ([`super::ahead`]):
+    /// metres from the camera centre to its axis, or as near that as the floor in view allows.
+    pub ahead_m: Option<f32>,
 }
 
 /// The camera's centre over the sequence: positions at increasing times (seconds), linear
@@ -143,7 +148,7 @@ impl CameraTrack {
     }
 
     /// The fastest the camera moves over the floor, metres per second.
-    fn top_speed(&self) -> f32 {
+    pub(super) fn top_speed(&self) -> f32 {
         (1..self.times.len())
             .map(|i| {
                 let d = (self.positions[i] - self.positions[i - 1])
@@ -198,6 +203,11 @@ pub(super) fn walkers(
             Err(k) => unplaced = unplaced.max(k),
         }
     }
+    if params.ahead_m.is_some() && unplaced == 0 {
+        return Err(format!(
+            "the {who} ahead of the camera: the floor the camera looks over leaves it no way clear of the furniture and the camera (all the {who}s drawn {REDRAWS} times); ask for none ahead, or for it farther ahead"
+        ));
+    }
     Err(format!(
         "{who} {} of {}: no path over the free floor keeps clear of the furniture, the camera and the other walkers (walking a quarter of the time or more) in {ATTEMPTS} tries, with all of them drawn {REDRAWS} times; ask for fewer walkers",
         unplaced + 1,
@@ -205,8 +215,8 @@ pub(super) fn walkers(
     ))
 }
 
-/// One draw of `params.count` walkers from `rng` after `walkers`, or the index of the first
-/// that does not fit.
+/// One draw of `params.count` walkers from `rng` after `walkers` (first the one ahead of the
+/// camera, if asked), or the index of the first that does not fit.
 fn draw(
     map: &FloorMap,
     (params, walking): (&WalkerParams, Walking),
@@ -214,15 +224,21 @@ fn draw(
     camera: &CameraTrack,
     (mut walkers, rigid): (Vec<Walker>, &[RigidActor]),
 ) -> Result<Vec<Walker>, usize> {
-    for k in 0..params.count as usize {
+    let mut passing = params.count as usize;
+    if let Some(ahead) = params.ahead_m {
+        let dressed = Dressed::drawn(&mut rng.fork("walker ahead"), (params, walking));
+        let speed_ahead = (params.speed_m_s, ahead);
+        let walked =
+            super::ahead::walker_ahead(map, &dressed.footprint, speed_ahead, camera, rigid)
+                .ok_or(0_usize)?;
+        walkers.push(dressed.walking(walked, Some(ahead)));
+        passing -= 1;
+    }
+    let first = params.count as usize - passing;
+    for k in 0..passing {
         let mut rng = rng.fork(&format!("walker {k}"));
-        let body = match walking {
-            Walking::Freely => WalkerBody::new(&mut rng),
-            Walking::Carrying => WalkerBody::new(&mut rng).carrying(&mut rng),
-        };
-        let colours = clothing(&mut rng);
-        let stride = stride_of(params.speed_m_s, body.height());
-        let footprint = Footprint::of(&body, stride);
+        let dressed = Dressed::drawn(&mut rng, (params, walking));
+        let footprint = dressed.footprint;
         let floor = WalkableFloor::of(map, &footprint);
         let mut nearest: Option<((bool, bool, f32), Walk)> = None;
         let mut fitted = 0;
@@ -257,29 +273,61 @@ fn draw(
                 break;
             }
         }
-        let (
-            _,
-            Walk {
-                path,
-                closest_m,
-                closest_in_view_m,
-                walking_share,
-            },
-        ) = nearest
+        let (_, walked) = nearest
             .filter(|(_, walked)| walked.walking_share >= LEAST_WALKING_SHARE_PLANNED)
-            .ok_or(k)?;
-        walkers.push(Walker {
-            body,
-            footprint,
-            path,
-            stride,
-            colours,
-            closest_m,
-            closest_in_view_m,
-            walking_share,
-        });
+            .ok_or(first + k)?;
+        walkers.push(dressed.walking(walked, None));
     }
     Ok(walkers)
+}
+
+/// Metres two things moving at `speed` and `other_speed` m/s at most can close in half a check
+/// step, with what a footprint's ends swing as it turns.
+pub(super) fn closing(speed: f32, other_speed: f32) -> f32 {
+    (speed + other_speed) * CHECK_STEP_S as f32 / 2.0 + TURN_MARGIN
+}
+
+/// A walker's body, what it wears and what it covers of the floor, before it walks.
+struct Dressed {
+    body: WalkerBody,
+    colours: [[f32; 3]; 6],
+    stride: f32,
+    footprint: Footprint,
+}
+
+impl Dressed {
+    /// A body and its clothes drawn from `rng`, stepping at the stride of `params`' speed.
+    fn drawn(rng: &mut Rng, (params, walking): (&WalkerParams, Walking)) -> Self {
+        let body = match walking {
+            Walking::Freely => WalkerBody::new(rng),
+            Walking::Carrying => WalkerBody::new(rng).carrying(rng),
+        };
+        let colours = clothing(rng);
+        let stride = stride_of(params.speed_m_s, body.height());
+        let footprint = Footprint::of(&body, stride);
+        Self {
+            body,
+            colours,
+            stride,
+            footprint,
+        }
+    }
+
+    /// The walker walking `walked`, keeping `ahead` metres in front of the camera if it does.
+    fn walking(self, walked: Walk, ahead: Option<f32>) -> Walker {
+        Walker {
+            body: self.body,
+            footprint: self.footprint,
+            path: walked.path,
+            stride: self.stride,
+            colours: self.colours,
+            closest_m: walked.closest_m,
+            closest_in_view_m: walked.closest_in_view_m,
+            walking_share: walked.walking_share,
+            in_view_share: walked.in_view_share,
+            ahead_m: ahead,
+        }
+    }
 }
 
 /// Whether the floor point `p` lies in front of a camera at `eye` looking along `axis`, between
@@ -292,7 +340,7 @@ pub(super) fn in_view(eye: Vec3, axis: Vec3, p: Vec2) -> bool {
 
 /// Whether the floor point `p` lies within `half_angle` radians of the unit direction
 /// `forward` seen from `eye`.
-fn within_angle((eye, forward): (Vec2, Vec2), p: Vec2, half_angle: f32) -> bool {
+pub(super) fn within_angle((eye, forward): (Vec2, Vec2), p: Vec2, half_angle: f32) -> bool {
     let to = p - eye;
     to.dot(forward) >= to.length() * half_angle.cos()
 }
@@ -389,7 +437,7 @@ impl<'a> WalkableFloor<'a> {
 /// [`CLEARANCE_STEP`] metres along each straight piece, on points of the footprint's segment as
 /// far apart, with the margin both steps leave (the floor map's clearance of a point bounds
 /// every point of its cell).
-fn clears_the_scene(map: &FloorMap, route: &Route, footprint: &Footprint) -> bool {
+pub(super) fn clears_the_scene(map: &FloorMap, route: &Route, footprint: &Footprint) -> bool {
     let need = footprint.radius + CLEARANCE_STEP;
     let axis = clearance_checks(2.0 * footprint.half_length);
     route.pieces().all(|(a, b, facing)| {
@@ -477,14 +525,47 @@ fn try_route(
 }
 
 /// A walker's timing on its route, the closest it comes to the camera (metres; anywhere, and in
-/// front of it), and the share of the time it walks on ([`walking_share`]).
-struct Walk {
-    path: WalkPath,
+/// front of it), the share of the time it walks on ([`walking_share`]) and the share it is in
+/// front of the camera.
+pub(super) struct Walk {
+    pub(super) path: WalkPath,
     closest_m: f32,
     /// The closest it comes while in front of the camera ([`SEEN_HALF_ANGLE`]); `None` when it
     /// never is.
     closest_in_view_m: Option<f32>,
     walking_share: f32,
+    /// The share of the instants its centre is in front of the camera ([`SEEN_HALF_ANGLE`]),
+    /// under [`SEEN_DISTANCE`] away.
+    in_view_share: f32,
+}
+
+impl Walk {
+    /// `path` walked by a body of `footprint` as the camera on `camera` sees it, at every
+    /// [`CHECK_STEP_S`].
+    pub(super) fn timed(path: WalkPath, footprint: &Footprint, camera: &CameraTrack) -> Self {
+        let (mut closest, mut closest_seen, mut seen, mut instants) =
+            (f32::INFINITY, f32::INFINITY, 0, 0);
+        for t in camera.instants() {
+            let (p, facing) = path.facing_at(t);
+            let [a, b] = footprint.segment_facing(p, facing);
+            let eye = camera.at(t).truncate();
+            let body_to_camera = point_segment_distance(eye, a, b) - footprint.radius;
+            closest = closest.min(body_to_camera);
+            let forward = camera.axis_at(t).truncate().normalize_or_zero();
+            if within_angle((eye, forward), p, SEEN_HALF_ANGLE) {
+                closest_seen = closest_seen.min(body_to_camera);
+                seen += usize::from(p.distance(eye) <= SEEN_DISTANCE);
+            }
+            instants += 1;
+        }
+        Self {
+            closest_m: closest,
+            closest_in_view_m: closest_seen.is_finite().then_some(closest_seen),
+            walking_share: walking_share(path.along(), path.speed()),
+            in_view_share: seen as f32 / instants as f32,
+            path,
+        }
+    }
 }
 
 /// The walker's timing on `route`: timed to reach the meeting point at the meeting time, it
@@ -502,9 +583,7 @@ fn walk(
 ) -> Option<Walk> {
     let speed = params.speed_m_s;
     let rigid_speeds: Vec<f32> = rigid.iter().map(RigidActor::top_speed).collect();
-    let closing = |other_speed: f32| {
-        (speed * MOVES[1] + other_speed) * CHECK_STEP_S as f32 / 2.0 + TURN_MARGIN
-    };
+    let closing = |other_speed: f32| closing(speed * MOVES[1], other_speed);
     let camera_gap = footprint.radius + CAMERA_CLEARANCE + closing(camera.top_speed());
     // Metres to spare at `s` along the route at time `t` (negative: too close).
     let room = |s: f32, t: f64| {
@@ -541,7 +620,6 @@ fn walk(
         })
         .find(|&s| room(s, 0.0) >= 0.0)?;
     let mut along = Vec::with_capacity(steps);
-    let (mut closest, mut closest_seen) = (f32::INFINITY, f32::INFINITY);
     for i in 0..steps {
         let t = i as f64 * CHECK_STEP_S;
         if i > 0 {
@@ -557,28 +635,19 @@ fn walk(
             };
             s += pace * step;
         }
-        let (p, facing) = route.facing_at(s);
-        let [a, b] = footprint.segment_facing(p, facing);
-        let eye = camera.at(t).truncate();
-        let body_to_camera = point_segment_distance(eye, a, b) - footprint.radius;
-        closest = closest.min(body_to_camera);
-        let forward = camera.axis_at(t).truncate().normalize_or_zero();
-        if within_angle((eye, forward), p, SEEN_HALF_ANGLE) {
-            closest_seen = closest_seen.min(body_to_camera);
-        }
         along.push(s);
     }
+    let walked = Walk::timed(
+        WalkPath::new(route, speed, CHECK_STEP_S, along),
+        footprint,
+        camera,
+    );
     let closest_met = if meeting.in_view {
-        closest_seen
+        walked.closest_in_view_m.unwrap_or(f32::INFINITY)
     } else {
-        closest
+        walked.closest_m
     };
-    (closest_met <= meeting.near + NEAR_TOLERANCE).then(|| Walk {
-        closest_m: closest,
-        closest_in_view_m: closest_seen.is_finite().then_some(closest_seen),
-        walking_share: walking_share(&along, speed),
-        path: WalkPath::new(route, speed, CHECK_STEP_S, along),
-    })
+    (closest_met <= meeting.near + NEAR_TOLERANCE).then_some(walked)
 }
 
 /// The share of the instants `along` (metres along the route every [`CHECK_STEP_S`]) from

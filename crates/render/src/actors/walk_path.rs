@@ -190,6 +190,11 @@ impl WalkPath {
         self.speed
     }
 
+    /// Metres along the route at each step.
+    pub fn along(&self) -> &[f32] {
+        &self.along
+    }
+
     /// Where the walker is `t` seconds from the start (it stays where it is after the last
     /// step).
     pub fn at(&self, t: f64) -> Stride {

@@ -51,6 +51,7 @@ impl ObjectParams {
             count: 1,
             speed_m_s: CARRYING_SPEED,
             near_m: self.near_m.max(MIN_WALKER_NEAR),
+            ahead_m: None,
         })
     }
 }
