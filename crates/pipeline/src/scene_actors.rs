@@ -90,6 +90,7 @@ pub fn record(extra: &mut serde_json::Value, actors: Option<&Actors>, plan: &Fra
                 "walking_share": round(w.walking_share),
                 "in_view_share": round(w.in_view_share),
                 "ahead_m": w.ahead_m.map(round),
+                "top": w.top,
                 "carries_box": w.body.carries(),
             })
         })

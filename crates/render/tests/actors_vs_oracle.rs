@@ -121,6 +121,11 @@ fn walkers_in_view_match_the_oracle_and_leave_the_rest_of_the_frame_alone() {
     let (scene, poses, track) = along_path("room0");
     let actors =
         std::sync::Arc::new(Actors::plan(&scene, walking(&PARAMS), 8, &track).expect("walkers"));
+    let tops: Vec<usize> = actors.walkers().iter().map(|w| w.top).collect();
+    assert!(
+        tops.contains(&0) && tops.iter().any(|&t| t != 0),
+        "a plain top and a patterned one against the oracle: {tops:?}"
+    );
     let frames = frames_with_walkers_in_view(&actors, &poses, 3);
     assert_eq!(frames.len(), 3, "walkers come into view: {frames:?}");
     matches_the_oracle(&scene, actors, &poses, &frames);

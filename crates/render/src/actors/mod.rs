@@ -43,8 +43,12 @@ pub struct Walker {
     pub path: WalkPath,
     /// Step length, metres.
     pub stride: f32,
-    /// Colour of each [`BodyMaterial`], sRGB in [0, 1].
+    /// Colour of each [`BodyMaterial`], sRGB in [0, 1] (white on a patterned top: its texture
+    /// has the colours).
     pub colours: [[f32; 3]; 6],
+    /// What its top is made of: 0 plain cloth (its colour), else a patterned top, the texture
+    /// of that index among the clothes' (`scene::builtin::clothing_textures`).
+    pub top: usize,
     /// The nearest its body comes to the camera centre, metres.
     pub closest_m: f32,
     /// The nearest it comes while in front of the camera (its centre within 40° of the camera's
@@ -180,7 +184,7 @@ impl Actors {
             swung_door: None,
             probe,
             first_cloth: scene.textures.len() as u32,
-            textures: crate::scene::builtin::clothing_textures().to_vec(),
+            textures: crate::scene::builtin::clothing_textures(),
         };
         Ok((actors, floor))
     }
@@ -255,7 +259,7 @@ impl Actors {
                     position: position.into(),
                     uv: (posed.uvs[i] / CLOTH_REPEAT_M).into(),
                     color,
-                    layer: self.texture_of(material),
+                    layer: self.texture_of(walker, material),
                 });
             }
             out.mesh
@@ -317,9 +321,9 @@ impl Actors {
         [r, g, b, 255]
     }
 
-    fn texture_of(&self, material: BodyMaterial) -> u32 {
+    fn texture_of(&self, walker: &Walker, material: BodyMaterial) -> u32 {
         match material {
-            BodyMaterial::Top => self.first_cloth,
+            BodyMaterial::Top => self.first_cloth + walker.top as u32,
             BodyMaterial::Trousers => self.first_cloth + 1,
             BodyMaterial::Shoes => self.first_cloth + 2,
             BodyMaterial::Skin | BodyMaterial::Hair | BodyMaterial::Carton => 0,

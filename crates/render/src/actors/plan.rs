@@ -291,6 +291,7 @@ pub(super) fn closing(speed: f32, other_speed: f32) -> f32 {
 struct Dressed {
     body: WalkerBody,
     colours: [[f32; 3]; 6],
+    top: usize,
     stride: f32,
     footprint: Footprint,
 }
@@ -302,12 +303,18 @@ impl Dressed {
             Walking::Freely => WalkerBody::new(rng),
             Walking::Carrying => WalkerBody::new(rng).carrying(rng),
         };
-        let colours = clothing(rng);
+        let mut colours = clothing(rng);
+        // From a stream of its own: the walks drawn after it stay as they were.
+        let top = top(&mut rng.fork("top"));
+        if top != 0 {
+            colours[0] = [1.0; 3];
+        }
         let stride = stride_of(params.speed_m_s, body.height());
         let footprint = Footprint::of(&body, stride);
         Self {
             body,
             colours,
+            top,
             stride,
             footprint,
         }
@@ -321,6 +328,7 @@ impl Dressed {
             path: walked.path,
             stride: self.stride,
             colours: self.colours,
+            top: self.top,
             closest_m: walked.closest_m,
             closest_in_view_m: walked.closest_in_view_m,
             walking_share: walked.walking_share,
@@ -662,6 +670,18 @@ fn walking_share(along: &[f32], speed: f32) -> f32 {
     walking as f32 / starts as f32
 }
 
+/// A walker's top ([`Walker::top`]): plain cloth for 40 %, else one of the patterned tops
+/// (stripes, checks, a print); the share is chosen, not measured.
+fn top(rng: &mut Rng) -> usize {
+    const PLAIN_SHARE: f32 = 0.4;
+    let patterned = crate::scene::builtin::PATTERNED_TOPS;
+    if rng.f32() < PLAIN_SHARE {
+        0
+    } else {
+        rng.int(patterned.start as i64, patterned.end as i64) as usize
+    }
+}
+
 /// Colours of a walker's top, trousers, skin, hair and shoes (the order of
 /// [`super::BodyMaterial`]), sRGB: muted everyday clothes.
 fn clothing(rng: &mut Rng) -> [[f32; 3]; 6] {
@@ -707,4 +727,25 @@ fn clothing(rng: &mut Rng) -> [[f32; 3]; 6] {
         pick(&SHOES),
         CARTON,
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Four in ten tops plain, the rest spread over every patterned top.
+    #[test]
+    fn tops_are_plain_or_any_of_the_patterned_ones() {
+        let draws = 3000;
+        let mut counts = [0usize; crate::scene::builtin::PATTERNED_TOPS.end];
+        for seed in 0..draws {
+            counts[top(&mut Rng::new(seed))] += 1;
+        }
+        let plain = counts[0] as f32 / draws as f32;
+        // Three standard errors of a share of 0.4 over 3000 draws: 0.027.
+        assert!((plain - 0.4).abs() < 0.027, "{plain} plain");
+        let patterned = &counts[crate::scene::builtin::PATTERNED_TOPS];
+        assert!(patterned.iter().all(|&n| n > 60), "{patterned:?}");
+        assert_eq!(counts[1..3], [0, 0], "trousers and shoes are no top");
+    }
 }

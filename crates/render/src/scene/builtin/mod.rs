@@ -73,16 +73,28 @@ fn track(plan: &layouts::Blueprint) -> Track {
     }
 }
 
-/// What people walking through a scene wear: two fabrics (tops, trousers) and a leather (shoes)
-/// of the upholstery family, painted or read from the texture cache like a scene's textures.
-pub(crate) fn clothing_textures() -> [crate::Texture; 3] {
+/// Patterned tops among what people walking through a scene wear: this many of each of
+/// stripes, checks and printed T-shirts ...
+const PATTERNED_TOPS_EACH: usize = 4;
+/// ... at these indices of [`clothing_textures`].
+pub(crate) const PATTERNED_TOPS: std::ops::Range<usize> = 3..3 + 3 * PATTERNED_TOPS_EACH;
+
+/// What people walking through a scene wear, painted or read from the texture cache like a
+/// scene's textures: a plain top and trousers (the upholstery family's fabrics) and shoes (its
+/// leather), then the patterned tops ([`PATTERNED_TOPS`]).
+pub(crate) fn clothing_textures() -> Vec<crate::Texture> {
     use textures::{Pattern, TextureSpec};
-    [
+    let plain = [
         (Pattern::Fabric, 0x70),
         (Pattern::Fabric, 0x7a),
         (Pattern::Leather, 0x5e),
-    ]
-    .map(|(pattern, seed)| textures::cache::texture(&TextureSpec { pattern, seed }))
+    ];
+    let patterned = (0..PATTERNED_TOPS_EACH as u64).flat_map(|k| {
+        [Pattern::Stripes, Pattern::Checks, Pattern::GarmentPrint].map(|p| (p, 0x90 + k))
+    });
+    (plain.into_iter().chain(patterned))
+        .map(|(pattern, seed)| textures::cache::texture(&TextureSpec { pattern, seed }))
+        .collect()
 }
 
 /// The built-in scene of that name, or `None`.

@@ -6,7 +6,10 @@
 //! ceilings 0.7–0.9, walls 0.5–0.7, floors 0.2–0.4, furniture 0.25–0.45), and paint makers'
 //! light-reflectance values (LRV: whites and off-whites 0.7–0.9). The contrast ranges say how
 //! much a surface varies across itself: painted walls and ceilings are nearly uniform (a per cent
-//! or two), wood and textiles show their grain or weave, prints are anything.
+//! or two), wood and textiles show their grain or weave, prints are anything. Patterned clothes
+//! (the tops walkers wear, `actors`) are two colours of everyday clothes, navy and white to tan
+//! and brown: their luma varies as much as a print's, and black cloth reflects a per cent or
+//! two.
 
 use super::Pattern::{self, *};
 
@@ -19,7 +22,7 @@ pub struct Family {
     pub contrast: (f32, f32),
 }
 
-pub const FAMILIES: [Family; 9] = [
+pub const FAMILIES: [Family; 10] = [
     Family {
         name: "painted walls and ceilings",
         patterns: &[Plaster, Wallpaper],
@@ -49,6 +52,12 @@ pub const FAMILIES: [Family; 9] = [
         patterns: &[Fabric, Leather, Curtain],
         albedo: (0.03, 0.5),
         contrast: (0.01, 0.15),
+    },
+    Family {
+        name: "patterned clothes",
+        patterns: &[Stripes, Checks, GarmentPrint],
+        albedo: (0.01, 0.75),
+        contrast: (0.05, 0.45),
     },
     Family {
         name: "tiles and stone",

@@ -5,6 +5,7 @@
 pub mod cache;
 #[cfg(test)]
 mod families;
+mod garments;
 mod noise;
 mod prints;
 mod surfaces;
@@ -28,6 +29,9 @@ pub enum Pattern {
     Fabric,
     Leather,
     OfficeCarpet,
+    Stripes,
+    Checks,
+    GarmentPrint,
     FloorTiles,
     Wallpaper,
     Plaster,
@@ -60,6 +64,9 @@ impl Pattern {
             Door => wood::door(seed, u, v),
             Fabric => textiles::fabric(seed, u, v),
             Leather => textiles::leather(seed, u, v),
+            Stripes => garments::stripes(seed, u, v),
+            Checks => garments::checks(seed, u, v),
+            GarmentPrint => garments::print(seed, u, v),
             OfficeCarpet => textiles::office_carpet(seed, u, v),
             Curtain => textiles::curtain(seed, u, v),
             Rug => textiles::rug(seed, u, v),

@@ -1,6 +1,6 @@
 use super::*;
 
-const ALL: [Pattern; 25] = [
+const ALL: [Pattern; 28] = [
     Pattern::FloorPlanks,
     Pattern::WoodGrain,
     Pattern::Fabric,
@@ -15,6 +15,9 @@ const ALL: [Pattern; 25] = [
     Pattern::BrushedMetal,
     Pattern::Leaves,
     Pattern::Curtain,
+    Pattern::Stripes,
+    Pattern::Checks,
+    Pattern::GarmentPrint,
     Pattern::Pages,
     Pattern::Rug,
     Pattern::Poster,
@@ -29,7 +32,7 @@ const ALL: [Pattern; 25] = [
 ];
 
 /// Patterns mapped in metres, which must repeat without a seam.
-const TILING: usize = 15;
+const TILING: usize = 18;
 
 fn luma(t: &Texture, x: u32, y: u32) -> f32 {
     let i = 4 * (y * t.width + x) as usize;
