@@ -60,8 +60,9 @@ pub fn checks(seed: u64, u: f32, v: f32) -> Rgb {
     woven(seed, u, v, mix(colour, ground, line))
 }
 
-/// A printed T-shirt: plain ground with a print front and back (half a metre round the body
-/// apart): a block of lettering over a round emblem, in the figure colour.
+/// A printed T-shirt: plain ground with a print, a block of lettering over a round emblem in the
+/// figure colour, repeating every half metre round the body (and on the sleeves): the body's
+/// girth decides whether it falls on the chest, the back or the sides.
 pub fn print(seed: u64, u: f32, v: f32) -> Rgb {
     let (ground, figure) = pair(seed);
     // The print fills u 0.1–0.4 and v 0.2–0.45 of the half metre: 15 × 12 cm.
