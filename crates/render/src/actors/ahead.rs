@@ -9,10 +9,9 @@
 use glam::Vec2;
 
 use super::floor_map::FloorMap;
-use super::footprint::point_segment_distance;
 use super::plan::{
-    clears_the_scene, closing, corners, within_angle, CameraTrack, Walk, CAMERA_CLEARANCE,
-    CHECK_STEP_S, ROUTE_MARGIN, WALKER_GAP,
+    clears_the_scene, corners, within_angle, CameraTrack, Surroundings, Walk, CHECK_STEP_S,
+    ROUTE_MARGIN,
 };
 use super::walk_path::{Route, WalkPath};
 use super::{Footprint, RigidActor};
@@ -49,9 +48,9 @@ pub(super) fn walker_ahead(
     camera: &CameraTrack,
     rigid: &[RigidActor],
 ) -> Option<Walk> {
-    let camera_gap = footprint.radius + CAMERA_CLEARANCE + closing(speed, camera.top_speed());
+    let around = Surroundings::new((footprint, speed), camera, (&[], rigid));
     // It heads for no point where its body, turned any way, could reach the camera.
-    let least = (camera_gap + footprint.half_length).max(NEAREST_AHEAD * ahead);
+    let least = (around.camera_gap() + footprint.half_length).max(NEAREST_AHEAD * ahead);
     let passage = footprint.radius + WAY_HALF_LENGTHS * footprint.half_length + ROUTE_MARGIN;
     let region = map.largest_region(passage);
     let goal_at = |t: f64| {
@@ -101,16 +100,10 @@ pub(super) fn walker_ahead(
     if !clears_the_scene(map, path.route(), footprint) {
         return None;
     }
-    let rigid_speeds: Vec<f32> = rigid.iter().map(RigidActor::top_speed).collect();
     let walk = Walk::timed(path, footprint, camera);
     let clear = camera.instants().all(|t| {
         let (p, facing) = walk.path.facing_at(t);
-        let [a, b] = footprint.segment_facing(p, facing);
-        point_segment_distance(camera.at(t).truncate(), a, b) >= camera_gap
-            && (rigid.iter().zip(&rigid_speeds)).all(|(r, &r_speed)| {
-                let gap = footprint.radius + r.radius + WALKER_GAP + closing(speed, r_speed);
-                point_segment_distance(r.pose_at(t).1.truncate(), a, b) >= gap
-            })
+        around.room(footprint.segment_facing(p, facing), t) >= 0.0
     });
     clear.then_some(walk)
 }
@@ -120,18 +113,18 @@ pub(super) fn walker_ahead(
 /// when it never moves.
 fn path_through(positions: &[Vec2], speed: f32) -> Option<WalkPath> {
     let mut points = vec![positions[0]];
-    let mut lengths = vec![0.0f32];
+    // Metres along the route to its last point.
+    let mut length = 0.0;
     let mut along = Vec::with_capacity(positions.len());
     for &p in positions {
-        let (last, length) = (points[points.len() - 1], lengths[lengths.len() - 1]);
-        let d = p.distance(last);
-        if d >= ROUTE_SPACING {
-            points.push(p);
-            lengths.push(length + d);
-        }
+        let d = p.distance(points[points.len() - 1]);
         // Between two of the route's points the walker is within millimetres of the straight
         // piece joining them.
         along.push(length + d);
+        if d >= ROUTE_SPACING {
+            points.push(p);
+            length += d;
+        }
     }
     (points.len() >= 2).then(|| WalkPath::new(Route::open(&points, 1), speed, CHECK_STEP_S, along))
 }

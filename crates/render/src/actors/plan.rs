@@ -55,7 +55,7 @@ pub const SEEN_DISTANCE: f32 = 4.0;
 /// Metres a footprint's ends can swing in half a check step as the walker turns.
 const TURN_MARGIN: f32 = 0.01;
 /// Metres kept between two walkers' bodies.
-pub(super) const WALKER_GAP: f32 = 0.05;
+const WALKER_GAP: f32 = 0.05;
 /// Seconds between the instants compared.
 pub(super) const CHECK_STEP_S: f64 = 0.005;
 /// Paths tried per walker before the floor counts as too crowded ...
@@ -285,6 +285,61 @@ fn draw(
 /// step, with what a footprint's ends swing as it turns.
 pub(super) fn closing(speed: f32, other_speed: f32) -> f32 {
     (speed + other_speed) * CHECK_STEP_S as f32 / 2.0 + TURN_MARGIN
+}
+
+/// What a walker with `footprint`, at most `top_speed` m/s, keeps clear of: the camera, the
+/// walkers planned before it and the user's rigid actors, each with the margin the two can close
+/// in half a check step.
+pub(super) struct Surroundings<'a> {
+    footprint: &'a Footprint,
+    top_speed: f32,
+    camera: &'a CameraTrack,
+    camera_gap: f32,
+    others: &'a [Walker],
+    rigid: &'a [RigidActor],
+    rigid_speeds: Vec<f32>,
+}
+
+impl<'a> Surroundings<'a> {
+    pub(super) fn new(
+        (footprint, top_speed): (&'a Footprint, f32),
+        camera: &'a CameraTrack,
+        (others, rigid): (&'a [Walker], &'a [RigidActor]),
+    ) -> Self {
+        Self {
+            footprint,
+            top_speed,
+            camera,
+            camera_gap: footprint.radius
+                + CAMERA_CLEARANCE
+                + closing(top_speed, camera.top_speed()),
+            others,
+            rigid,
+            rigid_speeds: rigid.iter().map(RigidActor::top_speed).collect(),
+        }
+    }
+
+    /// Metres the body keeps between itself and the camera's centre, at least.
+    pub(super) fn camera_gap(&self) -> f32 {
+        self.camera_gap
+    }
+
+    /// Metres to spare for the footprint's segment `[a, b]` at time `t` (negative: too close).
+    pub(super) fn room(&self, [a, b]: [Vec2; 2], t: f64) -> f32 {
+        let radius = self.footprint.radius;
+        let to_camera =
+            point_segment_distance(self.camera.at(t).truncate(), a, b) - self.camera_gap;
+        let walkers = self.others.iter().fold(to_camera, |least, o| {
+            let gap =
+                radius + o.footprint.radius + WALKER_GAP + closing(self.top_speed, o.path.speed());
+            let (there, facing) = o.path.facing_at(t);
+            least.min(segment_distance([a, b], o.footprint.segment_facing(there, facing)) - gap)
+        });
+        (self.rigid.iter().zip(&self.rigid_speeds)).fold(walkers, |least, (r, &r_speed)| {
+            let gap = radius + r.radius + WALKER_GAP + closing(self.top_speed, r_speed);
+            least.min(point_segment_distance(r.pose_at(t).1.truncate(), a, b) - gap)
+        })
+    }
 }
 
 /// A walker's body, what it wears and what it covers of the floor, before it walks.
@@ -590,23 +645,11 @@ fn walk(
     (others, rigid): (&[Walker], &[RigidActor]),
 ) -> Option<Walk> {
     let speed = params.speed_m_s;
-    let rigid_speeds: Vec<f32> = rigid.iter().map(RigidActor::top_speed).collect();
-    let closing = |other_speed: f32| closing(speed * MOVES[1], other_speed);
-    let camera_gap = footprint.radius + CAMERA_CLEARANCE + closing(camera.top_speed());
+    let around = Surroundings::new((footprint, speed * MOVES[1]), camera, (others, rigid));
     // Metres to spare at `s` along the route at time `t` (negative: too close).
     let room = |s: f32, t: f64| {
         let (p, facing) = route.facing_at(s);
-        let [a, b] = footprint.segment_facing(p, facing);
-        let to_camera = point_segment_distance(camera.at(t).truncate(), a, b) - camera_gap;
-        let walkers = others.iter().fold(to_camera, |least, o| {
-            let gap = footprint.radius + o.footprint.radius + WALKER_GAP + closing(o.path.speed());
-            let (there, facing) = o.path.facing_at(t);
-            least.min(segment_distance([a, b], o.footprint.segment_facing(there, facing)) - gap)
-        });
-        (rigid.iter().zip(&rigid_speeds)).fold(walkers, |least, (r, &r_speed)| {
-            let gap = footprint.radius + r.radius + WALKER_GAP + closing(r_speed);
-            least.min(point_segment_distance(r.pose_at(t).1.truncate(), a, b) - gap)
-        })
+        around.room(footprint.segment_facing(p, facing), t)
     };
     // The least room over the look-ahead, moving on at `pace` times the speed from `s`.
     let foresight = |s: f32, t: f64, pace: f32| {
