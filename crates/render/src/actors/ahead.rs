@@ -40,7 +40,8 @@ const ROUTE_SPACING: f32 = 0.05;
 /// The walk of a walker with `footprint` at `speed` m/s keeping `ahead` metres in front of the
 /// camera over the floor `map`, clear of the camera and of the user's `rigid` actors at every
 /// instant; `None` where the floor in view never has room for it, or where its footprint would
-/// meet the scene or come too near the camera or a rigid actor.
+/// meet the scene (stopping where it can turn round as well as anywhere its width passes) or
+/// come too near the camera or a rigid actor.
 pub(super) fn walker_ahead(
     map: &FloorMap,
     footprint: &Footprint,
@@ -53,59 +54,69 @@ pub(super) fn walker_ahead(
     let least = (around.camera_gap() + footprint.half_length).max(NEAREST_AHEAD * ahead);
     let passage = footprint.radius + WAY_HALF_LENGTHS * footprint.half_length + ROUTE_MARGIN;
     let region = map.largest_region(passage);
-    let goal_at = |t: f64| {
-        let eye = camera.at(t).truncate();
-        let forward = camera.axis_at(t).truncate().normalize_or_zero();
-        let wanted = eye + forward * ahead.max(least);
-        (region.iter().copied())
-            .filter(|&p| {
-                p.distance(eye) >= least && within_angle((eye, forward), p, GOAL_HALF_ANGLE)
-            })
-            .min_by(|a, b| a.distance(wanted).total_cmp(&b.distance(wanted)))
+    let turning = footprint.radius + footprint.half_length + ROUTE_MARGIN;
+    let roomy: Vec<Vec2> = (region.iter().copied())
+        .filter(|&p| map.clearance(p) >= turning)
+        .collect();
+    let walk_stopping_at = |stops: &[Vec2]| -> Option<Walk> {
+        let goal_at = |t: f64| {
+            let eye = camera.at(t).truncate();
+            let forward = camera.axis_at(t).truncate().normalize_or_zero();
+            let wanted = eye + forward * ahead.max(least);
+            (stops.iter().copied())
+                .filter(|&p| {
+                    p.distance(eye) >= least && within_angle((eye, forward), p, GOAL_HALF_ANGLE)
+                })
+                .min_by(|a, b| a.distance(wanted).total_cmp(&b.distance(wanted)))
+        };
+        let steps = (camera.duration() / CHECK_STEP_S).ceil() as usize + 1;
+        let replan = (REPLAN_S / CHECK_STEP_S).round() as usize;
+        // Where it stands at the start: where it first heads for.
+        let mut at = (0..steps)
+            .step_by(replan)
+            .find_map(|i| goal_at(i as f64 * CHECK_STEP_S + ANTICIPATION_S))?;
+        let mut goal = at;
+        let mut way: Vec<Vec2> = Vec::new();
+        let mut positions = Vec::with_capacity(steps);
+        for i in 0..steps {
+            let t = i as f64 * CHECK_STEP_S;
+            if i % replan == 0 {
+                let next = goal_at(t + ANTICIPATION_S).filter(|g| g.distance(goal) >= GOAL_MOVED);
+                if let Some(found) = next.and_then(|g| map.way(at, g, passage)) {
+                    goal = *found.last().expect("a way has its goal");
+                    way = corners(map, &found, passage);
+                    way.push(goal);
+                    way.remove(0);
+                }
+            }
+            let mut left = speed * CHECK_STEP_S as f32;
+            while left > 0.0 && !way.is_empty() {
+                let d = at.distance(way[0]);
+                if d <= left {
+                    at = way.remove(0);
+                    left -= d;
+                } else {
+                    at += (way[0] - at) * (left / d);
+                    left = 0.0;
+                }
+            }
+            positions.push(at);
+        }
+        let path = path_through(&positions, speed)?;
+        if !clears_the_scene(map, path.route(), footprint) {
+            return None;
+        }
+        let walk = Walk::timed(path, footprint, camera);
+        let clear = camera.instants().all(|t| {
+            let (p, facing) = walk.path.facing_at(t);
+            around.room(footprint.segment_facing(p, facing), t) >= 0.0
+        });
+        clear.then_some(walk)
     };
-    let steps = (camera.duration() / CHECK_STEP_S).ceil() as usize + 1;
-    let replan = (REPLAN_S / CHECK_STEP_S).round() as usize;
-    // Where it stands at the start: where it first heads for.
-    let mut at = (0..steps)
-        .step_by(replan)
-        .find_map(|i| goal_at(i as f64 * CHECK_STEP_S + ANTICIPATION_S))?;
-    let mut goal = at;
-    let mut way: Vec<Vec2> = Vec::new();
-    let mut positions = Vec::with_capacity(steps);
-    for i in 0..steps {
-        let t = i as f64 * CHECK_STEP_S;
-        if i % replan == 0 {
-            let next = goal_at(t + ANTICIPATION_S).filter(|g| g.distance(goal) >= GOAL_MOVED);
-            if let Some(found) = next.and_then(|g| map.way(at, g, passage)) {
-                goal = *found.last().expect("a way has its goal");
-                way = corners(map, &found, passage);
-                way.push(goal);
-                way.remove(0);
-            }
-        }
-        let mut left = speed * CHECK_STEP_S as f32;
-        while left > 0.0 && !way.is_empty() {
-            let d = at.distance(way[0]);
-            if d <= left {
-                at = way.remove(0);
-                left -= d;
-            } else {
-                at += (way[0] - at) * (left / d);
-                left = 0.0;
-            }
-        }
-        positions.push(at);
-    }
-    let path = path_through(&positions, speed)?;
-    if !clears_the_scene(map, path.route(), footprint) {
-        return None;
-    }
-    let walk = Walk::timed(path, footprint, camera);
-    let clear = camera.instants().all(|t| {
-        let (p, facing) = walk.path.facing_at(t);
-        around.room(footprint.segment_facing(p, facing), t) >= 0.0
-    });
-    clear.then_some(walk)
+    // Stopping anywhere its width passes keeps it in view longest (on office1's narrow ring);
+    // where its footprint then meets the scene (coming to a stop face to a wall), it stops only
+    // where it can turn round.
+    walk_stopping_at(&region).or_else(|| walk_stopping_at(&roomy))
 }
 
 /// The walk through `positions` (one every [`CHECK_STEP_S`]) at `speed`: its route the
