@@ -22,7 +22,7 @@ fn turned(first: &[f64], now: &[f64]) -> f64 {
     2.0 * dot.abs().min(1.0).acos()
 }
 
-/// office2 with `actors:2` and `objects:4` (one walker; the door, a box carried and a chair):
+/// office2 with `actors:1/1/1.2` and `objects:4` (one walker; the door, a box carried and a chair):
 /// id 1 the walker, 2 the box's carrier, 3 the door (its leaf and the opening it leaves), 4 the
 /// chair; outside the masks depth
 /// is the static render's, bit for bit, except farther where the open door no longer stands
@@ -32,7 +32,7 @@ fn turned(first: &[f64], now: &[f64]) -> f64 {
 fn a_door_and_chairs_move_beside_walkers_with_masks_that_say_where() {
     let ws = Workspace::new();
     render_office2(&ws, "clean", None);
-    render_office2(&ws, "moved", Some("actors:2,objects:4"));
+    render_office2(&ws, "moved", Some("actors:1/1/1.2,objects:4"));
     let text = std::fs::read_to_string(ws.path("moved/rslam.json")).unwrap();
     let manifest: serde_json::Value = serde_json::from_str(&text).unwrap();
     let actors = &manifest["extra"]["actors"];

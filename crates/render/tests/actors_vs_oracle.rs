@@ -386,6 +386,64 @@ fn a_walker_ahead_fits_a_small_room() {
     }
 }
 
+/// On room2 no way 2 m ahead keeps clear of the furniture and the camera: the walker ahead keeps
+/// nearer, 0.25 m at a time, walks as if asked for that distance, says so in `ahead_m`, and
+/// touches nothing.
+#[test]
+fn a_walker_ahead_keeps_nearer_where_the_floor_has_no_room_that_far() {
+    let (scene, _, track) = along_path("room2");
+    let asking = |ahead_m| WalkerParams {
+        count: 1,
+        speed_m_s: 1.2,
+        near_m: 0.8,
+        ahead_m: Some(ahead_m),
+    };
+    let actors = Actors::plan(&scene, walking(&asking(2.0)), 0, &track).expect("a walker ahead");
+    let [ahead] = actors.walkers() else {
+        panic!("one walker");
+    };
+    let kept = ahead.ahead_m.expect("the walker ahead");
+    assert!((0.9..2.0).contains(&kept), "kept {kept} m ahead");
+    let nearer = Actors::plan(&scene, walking(&asking(kept)), 0, &track).expect("a walker ahead");
+    let duration = track.times.last().copied().unwrap();
+    for step in 0..=(duration / 0.05) as usize {
+        let t = step as f64 * 0.05;
+        assert_eq!(actors.poses_at(t), nearer.poses_at(t), "at {t} s");
+    }
+    never_touch(&scene, &actors, &track);
+}
+
+/// A severity's walkers are those of the one below and one more (`actors:1` to `actors:3`, and
+/// `actors:4` to `actors:5` with the first walker ahead): planned with the same seed, the first
+/// COUNT walkers of COUNT + 1 walk exactly as the COUNT walkers do, since each walker gives way
+/// to those planned before it and draws from a stream of its own.
+#[test]
+fn one_more_walker_leaves_the_others_walks_as_they_were() {
+    let (scene, _, track) = along_path("office2");
+    let duration = track.times.last().copied().unwrap();
+    for (count, ahead_m) in [(1, None), (2, None), (2, Some(1.5))] {
+        let params = |count| WalkerParams {
+            count,
+            speed_m_s: 1.2,
+            near_m: 1.0,
+            ahead_m,
+        };
+        let fewer = Actors::plan(&scene, walking(&params(count)), 5, &track).expect("walkers");
+        let more = Actors::plan(&scene, walking(&params(count + 1)), 5, &track).expect("walkers");
+        assert_eq!(more.walkers().len(), fewer.walkers().len() + 1);
+        for step in 0..=(duration / 0.05) as usize {
+            let t = step as f64 * 0.05;
+            let (a, b) = (fewer.poses_at(t), more.poses_at(t));
+            for (k, (a, b)) in a.iter().zip(&b).enumerate() {
+                assert_eq!(
+                    a, b,
+                    "{count} walkers, ahead {ahead_m:?}: walker {k} at {t} s"
+                );
+            }
+        }
+    }
+}
+
 /// Each walker passes within NEAR of the camera in its view (the issue's "passing close to the
 /// camera and occluding large parts of it"), not only beside or behind it: over a dozen seeds,
 /// while its centre lies within [`SEEN_HALF_ANGLE`] of the camera's axis over the floor, it comes

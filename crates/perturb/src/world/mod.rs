@@ -15,7 +15,7 @@ pub static WORLD_ITEMS: &[ItemEntry] = &[
     ItemEntry {
         name: WalkerKind::NAME,
         syntax: "actors:1-5 | actors:COUNT/SPEED/NEAR[/AHEAD]",
-        description: "people walking through the scene: COUNT articulated walkers at SPEED m/s on curved paths over the free floor that keep clear of the furniture, each other and the camera, entering and leaving the view and passing within NEAR m of the camera (or as near as the floor has room for; the manifest has each walker's closest approach); with AHEAD, one of them instead walks in front of the camera all along, heading for the floor AHEAD m in front of where it looks (as the person a camera follows in Bonn person_tracking); severities 1-5 = 1/1/3, 1/1/1.2, 2/1.1/0.8, 2/1.2/0.5, 3/1.4/0.4 (like TUM fr3 sitting, walking_static, walking_xyz, Bonn person_tracking, crowd)",
+        description: "people walking through the scene: COUNT articulated walkers at SPEED m/s on curved paths over the free floor that keep clear of the furniture, each other and the camera, entering and leaving the view and passing within NEAR m of the camera (or as near as the floor has room for; the manifest has each walker's closest approach); with AHEAD, one of them instead walks in front of the camera all along, heading for the floor AHEAD m in front of where it looks, or as near as the floor has room for (as the person a camera follows in Bonn person_tracking); severities 1-5 = 1/1.2/1, 2/1.2/1, 3/1.2/1, 2/1.2/0.8/2, 3/1.2/0.8/2 (each severity's walkers those below and one more, in the same draw, like TUM fr2 desk_with_person, fr3 walking_*, Bonn crowd; then one of them kept in view, like Bonn person_tracking)",
         needs: &[Need::Scene, Need::FreeFloor],
     },
     ItemEntry {

@@ -60,7 +60,8 @@ pub struct Walker {
     /// The share of the sequence its centre is in front of the camera (within 40° of its axis
     /// over the floor, under 4 m away).
     pub in_view_share: f32,
-    /// How far in front of the camera it keeps, metres, if it is the walker ahead of it.
+    /// How far in front of the camera it keeps, metres, if it is the walker ahead of it: AHEAD,
+    /// or nearer where the floor had no way for it that far.
     pub ahead_m: Option<f32>,
 }
 

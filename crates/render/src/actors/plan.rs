@@ -62,6 +62,10 @@ pub(super) const CHECK_STEP_S: f64 = 0.005;
 const ATTEMPTS: usize = 400;
 /// ... in each of this many draws of all the walkers.
 const REDRAWS: usize = 8;
+/// Metres nearer the walker ahead is tried each time its AHEAD leaves it no way.
+const AHEAD_STEP_M: f32 = 0.25;
+/// The nearest the walker ahead is tried: an arm's length past its body (the least AHEAD asked).
+const NEAREST_AHEAD_M: f32 = 0.9;
 /// Waypoints of a route besides the one near the camera, at most (at least one: a walk there
 /// and back).
 const WAYPOINTS: usize = 2;
@@ -187,25 +191,32 @@ pub(super) fn walkers(
         Walking::Carrying => (Rng::new(seed).fork("carriers"), "box carrier"),
     };
     let mut unplaced = 0;
-    for redraw in 0..REDRAWS {
-        let rng = match redraw {
-            0 => first.clone(),
-            _ => first.fork(&format!("redraw {redraw}")),
-        };
-        match draw(
-            map,
-            (params, walking),
-            &rng,
-            camera,
-            (walkers.clone(), rigid),
-        ) {
-            Ok(placed) => return Ok(placed),
-            Err(k) => unplaced = unplaced.max(k),
+    for ahead_m in aheads(params.ahead_m) {
+        let params = &WalkerParams { ahead_m, ..*params };
+        for redraw in 0..REDRAWS {
+            let rng = match redraw {
+                0 => first.clone(),
+                _ => first.fork(&format!("redraw {redraw}")),
+            };
+            match draw(
+                map,
+                (params, walking),
+                &rng,
+                camera,
+                (walkers.clone(), rigid),
+            ) {
+                Ok(placed) => return Ok(placed),
+                Err(k) => unplaced = unplaced.max(k),
+            }
+        }
+        if unplaced > 0 {
+            break;
         }
     }
     if params.ahead_m.is_some() && unplaced == 0 {
         return Err(format!(
-            "the {who} ahead of the camera: the floor the camera looks over leaves it no way clear of the furniture and the camera (all the {who}s drawn {REDRAWS} times); ask for none ahead, or for it farther ahead"
+            "the {who} ahead of the camera: the floor the camera looks over leaves it no way clear of the furniture and the camera, {} m ahead or nearer down to {NEAREST_AHEAD_M} m (all the {who}s drawn {REDRAWS} times at each); ask for none ahead",
+            params.ahead_m.unwrap_or_default()
         ));
     }
     Err(format!(
@@ -213,6 +224,20 @@ pub(super) fn walkers(
         unplaced + 1,
         params.count,
     ))
+}
+
+/// How far ahead of the camera the walker ahead is tried, if there is one: AHEAD, then nearer
+/// by [`AHEAD_STEP_M`] down to [`NEAREST_AHEAD_M`], as a walker passes as near as the floor has
+/// room for (on room2 no way 2 m ahead keeps clear of the furniture and the camera, 1.5 m does).
+fn aheads(ahead_m: Option<f32>) -> Vec<Option<f32>> {
+    match ahead_m {
+        None => vec![None],
+        Some(a) => (0..)
+            .map(|k| a - k as f32 * AHEAD_STEP_M)
+            .take_while(|&d| d >= NEAREST_AHEAD_M - 1e-3)
+            .map(Some)
+            .collect(),
+    }
 }
 
 /// One draw of `params.count` walkers from `rng` after `walkers` (first the one ahead of the
