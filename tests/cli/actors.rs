@@ -384,7 +384,7 @@ fn replica_masks_lie_beside_their_frames() {
         ws.rslam(&[&scene[..], &args, spec].concat()).success();
     };
     render("clean", &[]);
-    render("walkers", &["--perturb", "actors:3"]);
+    render("walkers", &["--perturb", "actors:2/1.1/0.8"]);
     let frames: Vec<(String, String)> = (0..100)
         .map(|j| {
             let mask = format!("results/mask{j:06}.png");
@@ -451,7 +451,7 @@ pub const BOX_PLY: &str = "ply\nformat ascii 1.0\nelement vertex 8\nproperty flo
 #[test]
 fn a_users_actor_follows_its_path_and_bad_paths_are_refused_by_line() {
     let ws = Workspace::new();
-    render_office1(&ws, "walkers", Some("actors:2"));
+    render_office1(&ws, "walkers", Some("actors:1/1/1.2"));
     let frames = manifest(&ws, "walkers")["extra"]["actors"]["frames"].clone();
     let mut path = String::from("# t x y z qx qy qz qw\n");
     for (j, frame) in frames.as_array().unwrap().iter().enumerate() {
@@ -513,7 +513,7 @@ fn a_users_actor_follows_its_path_and_bad_paths_are_refused_by_line() {
     args.extend(["--camera", SMALL_CAMERA, "--frames", "160", "--seed", "3"]);
     args.extend([
         "--perturb",
-        "actors:2,objects:1",
+        "actors:1/1/1.2,objects:1",
         "--actor",
         "box.ply",
         "path.txt",

@@ -142,7 +142,7 @@ def test_a_users_actor_is_drawn_where_its_mask_says_and_a_bad_path_is_refused(rs
     from conftest import run_cli
 
     run_cli(rslam_bin, "render", "--scene", "office1", "--camera", CAMERA, "--frames", "120",
-            "--seed", "3", "--perturb", "actors:2", "--format", "tum", "--out", tmp_path / "walkers")
+            "--seed", "3", "--perturb", "actors:1/1/1.2", "--format", "tum", "--out", tmp_path / "walkers")
     walker = [frame[0] for frame in json.loads((tmp_path / "walkers/rslam.json").read_text())["extra"]["actors"]["frames"]]
     path = tmp_path / "path.txt"
     path.write_text("".join(f"{j * 0.05:.6f} {x} {y} 0 0 0 0 1\n" for j, (x, y, *_) in enumerate(walker)))
