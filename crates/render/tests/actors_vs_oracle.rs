@@ -359,20 +359,24 @@ fn a_walker_ahead_keeps_in_front_of_the_camera() {
     }
 }
 
+/// One walker at 1.2 m/s kept `ahead_m` in front of the camera.
+fn one_walker_ahead(ahead_m: f32) -> WalkerParams {
+    WalkerParams {
+        count: 1,
+        speed_m_s: 1.2,
+        near_m: 0.8,
+        ahead_m: Some(ahead_m),
+    }
+}
+
 /// On room1, whose floor in view is narrow, a walker ahead that stopped anywhere its width
 /// passes came to a stop face to the furniture on these seeds, and the plan was refused: it then
 /// stops only where it can turn round, and still never touches the scene or the camera.
 #[test]
 fn a_walker_ahead_fits_a_small_room() {
     let (scene, _, track) = along_path("room1");
-    let params = WalkerParams {
-        count: 1,
-        speed_m_s: 1.2,
-        near_m: 0.8,
-        ahead_m: Some(1.5),
-    };
     for seed in [0, 3] {
-        let actors = Actors::plan(&scene, walking(&params), seed, &track)
+        let actors = Actors::plan(&scene, walking(&one_walker_ahead(1.5)), seed, &track)
             .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
         let [ahead] = actors.walkers() else {
             panic!("one walker");
@@ -392,19 +396,15 @@ fn a_walker_ahead_fits_a_small_room() {
 #[test]
 fn a_walker_ahead_keeps_nearer_where_the_floor_has_no_room_that_far() {
     let (scene, _, track) = along_path("room2");
-    let asking = |ahead_m| WalkerParams {
-        count: 1,
-        speed_m_s: 1.2,
-        near_m: 0.8,
-        ahead_m: Some(ahead_m),
-    };
-    let actors = Actors::plan(&scene, walking(&asking(2.0)), 0, &track).expect("a walker ahead");
+    let actors =
+        Actors::plan(&scene, walking(&one_walker_ahead(2.0)), 0, &track).expect("a walker ahead");
     let [ahead] = actors.walkers() else {
         panic!("one walker");
     };
     let kept = ahead.ahead_m.expect("the walker ahead");
     assert!((0.9..2.0).contains(&kept), "kept {kept} m ahead");
-    let nearer = Actors::plan(&scene, walking(&asking(kept)), 0, &track).expect("a walker ahead");
+    let nearer =
+        Actors::plan(&scene, walking(&one_walker_ahead(kept)), 0, &track).expect("a walker ahead");
     let duration = track.times.last().copied().unwrap();
     for step in 0..=(duration / 0.05) as usize {
         let t = step as f64 * 0.05;
