@@ -65,7 +65,7 @@ const REDRAWS: usize = 8;
 /// Metres nearer the walker ahead is tried each time its AHEAD leaves it no way.
 const AHEAD_STEP_M: f32 = 0.25;
 /// The nearest the walker ahead is tried: an arm's length past its body (the least AHEAD asked).
-const NEAREST_AHEAD_M: f32 = 0.9;
+const LEAST_AHEAD_M: f32 = 0.9;
 /// Waypoints of a route besides the one near the camera, at most (at least one: a walk there
 /// and back).
 const WAYPOINTS: usize = 2;
@@ -215,7 +215,7 @@ pub(super) fn walkers(
     }
     if params.ahead_m.is_some() && unplaced == 0 {
         return Err(format!(
-            "the {who} ahead of the camera: the floor the camera looks over leaves it no way clear of the furniture and the camera, {} m ahead or nearer down to {NEAREST_AHEAD_M} m (all the {who}s drawn {REDRAWS} times at each); ask for none ahead",
+            "the {who} ahead of the camera: the floor the camera looks over leaves it no way clear of the furniture and the camera, {} m ahead or nearer down to {LEAST_AHEAD_M} m (all the {who}s drawn {REDRAWS} times at each); ask for none ahead",
             params.ahead_m.unwrap_or_default()
         ));
     }
@@ -227,14 +227,14 @@ pub(super) fn walkers(
 }
 
 /// How far ahead of the camera the walker ahead is tried, if there is one: AHEAD, then nearer
-/// by [`AHEAD_STEP_M`] down to [`NEAREST_AHEAD_M`], as a walker passes as near as the floor has
+/// by [`AHEAD_STEP_M`] down to [`LEAST_AHEAD_M`], as a walker passes as near as the floor has
 /// room for (on room2 no way 2 m ahead keeps clear of the furniture and the camera, 1.5 m does).
 fn aheads(ahead_m: Option<f32>) -> Vec<Option<f32>> {
     match ahead_m {
         None => vec![None],
         Some(a) => (0..)
             .map(|k| a - k as f32 * AHEAD_STEP_M)
-            .take_while(|&d| d >= NEAREST_AHEAD_M - 1e-3)
+            .take_while(|&d| d >= LEAST_AHEAD_M - 1e-3)
             .map(Some)
             .collect(),
     }
