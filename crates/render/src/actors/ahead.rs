@@ -10,8 +10,8 @@ use glam::Vec2;
 
 use super::floor_map::FloorMap;
 use super::plan::{
-    clears_the_scene, corners, within_angle, CameraTrack, Surroundings, Walk, CHECK_STEP_S,
-    ROUTE_MARGIN,
+    clears_the_scene, corners, room_to_turn, within_angle, CameraTrack, Surroundings, Walk,
+    CHECK_STEP_S, ROUTE_MARGIN,
 };
 use super::walk_path::{Route, WalkPath};
 use super::{Footprint, RigidActor};
@@ -54,10 +54,7 @@ pub(super) fn walker_ahead(
     let least = (around.camera_gap() + footprint.half_length).max(NEAREST_AHEAD * ahead);
     let passage = footprint.radius + WAY_HALF_LENGTHS * footprint.half_length + ROUTE_MARGIN;
     let region = map.largest_region(passage);
-    let turning = footprint.radius + footprint.half_length + ROUTE_MARGIN;
-    let roomy: Vec<Vec2> = (region.iter().copied())
-        .filter(|&p| map.clearance(p) >= turning)
-        .collect();
+    let roomy = room_to_turn(map, &region, footprint);
     let walk_stopping_at = |stops: &[Vec2]| -> Option<Walk> {
         let goal_at = |t: f64| {
             let eye = camera.at(t).truncate();

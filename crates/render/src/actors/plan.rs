@@ -213,10 +213,9 @@ pub(super) fn walkers(
             break;
         }
     }
-    if params.ahead_m.is_some() && unplaced == 0 {
+    if let (Some(ahead), 0) = (params.ahead_m, unplaced) {
         return Err(format!(
-            "the {who} ahead of the camera: the floor the camera looks over leaves it no way clear of the furniture and the camera, {} m ahead or nearer down to {LEAST_AHEAD_M} m (all the {who}s drawn {REDRAWS} times at each); ask for none ahead",
-            params.ahead_m.unwrap_or_default()
+            "the {who} ahead of the camera: the floor the camera looks over leaves it no way clear of the furniture and the camera, {ahead} m ahead or nearer down to {LEAST_AHEAD_M} m (all the {who}s drawn {REDRAWS} times at each); ask for none ahead"
         ));
     }
     Err(format!(
@@ -508,16 +507,21 @@ struct WalkableFloor<'a> {
 impl<'a> WalkableFloor<'a> {
     fn of(map: &'a FloorMap, footprint: &Footprint) -> Self {
         let passage = footprint.radius + ROUTE_MARGIN;
-        let turn = footprint.radius + footprint.half_length + ROUTE_MARGIN;
-        let turning = (map.largest_region(passage).into_iter())
-            .filter(|&p| map.clearance(p) >= turn)
-            .collect();
+        let turning = room_to_turn(map, &map.largest_region(passage), footprint);
         Self {
             map,
             passage,
             turning,
         }
     }
+}
+
+/// The points of `region` where the scene keeps out of the whole circle `footprint` turns in.
+pub(super) fn room_to_turn(map: &FloorMap, region: &[Vec2], footprint: &Footprint) -> Vec<Vec2> {
+    let turn = footprint.radius + footprint.half_length + ROUTE_MARGIN;
+    (region.iter().copied())
+        .filter(|&p| map.clearance(p) >= turn)
+        .collect()
 }
 
 /// Whether the scene keeps out of `footprint` all along `route`, facing the way it goes: the
