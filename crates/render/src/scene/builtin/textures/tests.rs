@@ -170,3 +170,41 @@ fn the_view_through_a_window_is_exposed_for_the_room_clipped_sky_and_bright_text
         );
     }
 }
+
+/// Standard deviation of luma about each `block`-texel square's own mean: the texture's detail
+/// finer than the block, which a camera a few metres away averages into a pixel or two.
+fn fine_contrast(t: &Texture, block: u32) -> f32 {
+    let mut deviations = Vec::with_capacity((t.width * t.height) as usize);
+    for by in (0..t.height / block).map(|k| k * block) {
+        for bx in (0..t.width / block).map(|k| k * block) {
+            let cell: Vec<f32> = (0..block * block)
+                .map(|i| luma(t, bx + i % block, by + i / block))
+                .collect();
+            let mean = cell.iter().sum::<f32>() / cell.len() as f32;
+            deviations.extend(cell.iter().map(|l| l - mean));
+        }
+    }
+    luma_spread(&deviations)
+}
+
+/// Leather's pebble grain is a millimetre or so across and its relief shows faintly: within a
+/// centimetre it moves luma by a few grey levels (2.5–4.9 on seeds 1–4), not the 7.9–15.6 of the
+/// pitted, crinkled leather that once covered office1's chairs and office3's sofa with strong
+/// corners.
+#[test]
+fn leather_grain_is_faint_within_a_centimetre() {
+    let texels_per_cm = TEXTURE_SIZE / 50;
+    for seed in [1, 2, 3, 4] {
+        let t = TextureSpec {
+            pattern: Pattern::Leather,
+            seed,
+        }
+        .generate();
+        let fine = fine_contrast(&t, texels_per_cm);
+        assert!(
+            fine < 0.025,
+            "seed {seed}: leather varies by {:.1} grey levels within a centimetre",
+            fine * 255.0
+        );
+    }
+}
