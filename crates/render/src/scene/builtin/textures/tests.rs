@@ -187,12 +187,13 @@ fn fine_contrast(t: &Texture, block: u32) -> f32 {
     luma_spread(&deviations)
 }
 
-/// Leather's pebble grain is a millimetre or so across and its relief shows faintly: within a
-/// centimetre it moves luma by a few grey levels (2.5–4.9 on seeds 1–4), not the 7.9–15.6 of the
-/// pitted, crinkled leather that once covered office1's chairs and office3's sofa with strong
-/// corners.
+/// Real leather's grain is a millimetre or so across and its relief shows faintly, so within a
+/// centimetre the texture moves luma by a few grey levels (2.5–4.9 on seeds 1–4), not the 7.9–15.6
+/// of the pitted, crinkled leather that once covered office1's chairs and office3's sofa with
+/// strong corners.
 #[test]
 fn leather_grain_is_faint_within_a_centimetre() {
+    // Leather repeats every half metre (`Style::leather`).
     let texels_per_cm = TEXTURE_SIZE / 50;
     for seed in [1, 2, 3, 4] {
         let t = TextureSpec {
