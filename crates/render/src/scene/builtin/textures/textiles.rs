@@ -52,7 +52,7 @@ pub fn fabric(seed: u64, u: f32, v: f32) -> Rgb {
 
 /// Dyed leather: an even colour with a faint pebble grain (±7 % of the albedo from one 5 mm cell to
 /// the next), a soft patina and the odd crease. A grain of ±37 % covered office1's chairs and
-/// office3's sofa with strong corners no real leather has, and those scenes shrugged off fog and
+/// office3's sofa with strong corners no real leather has, and office1 shrugged off fog and
 /// contrast (validity.md, "Leather that looks like leather").
 pub fn leather(seed: u64, u: f32, v: f32) -> Rgb {
     let base = [[0.42, 0.25, 0.16], [0.24, 0.22, 0.21], [0.62, 0.41, 0.23]]
