@@ -37,7 +37,7 @@ const MAX_FEW_CORNER_VIEWS: f64 = 0.02;
 const MIN_TRIANGLES: usize = 10_000;
 /// Hand-held limits: m/s and deg/s between consecutive frames.
 const MAX_SPEED: f64 = 1.0;
-const MAX_TURN_RATE: f64 = 50.0;
+const MAX_TURN_RATE: f64 = 90.0;
 
 /// The Replica camera at 1/8 scale (pixel centres stay at integer coordinates).
 pub fn eighth_scale() -> Intrinsics {

@@ -22,11 +22,6 @@ pub const RATE_HZ: f64 = rslam_core::REPLICA_RATE_HZ;
 /// 20°/s, as in hand-held TUM sequences (fr1: 0.2–0.4 m/s, 9–30°/s), with the second lap on
 /// waypoints of its own.
 const LAPS: usize = 2;
-/// The fastest the aim turns, before the hand's wobble (which adds up to about 17°/s). Where two
-/// waypoints' views differ by most of a turn and the view's own clock runs fast, the aim would
-/// otherwise sweep 140° in two and a half seconds at 60°/s, twice the fastest of the fr1 means
-/// above; there the camera keeps turning at this rate until it looks where it should.
-const MAX_TURN_DEG_PER_S: f32 = 30.0;
 const WAYPOINTS_PER_LAP: usize = 10;
 const WAYPOINTS: usize = LAPS * WAYPOINTS_PER_LAP;
 /// Dense spline samples per waypoint for the arc-length table.
@@ -89,16 +84,12 @@ pub fn default_trajectory(track: &Track, seed: u64, start_offset: f32) -> Trajec
     let walk = Progress::new(&mut rng, 0.8);
     let turn = Progress::new(&mut rng, 0.45);
     let wobble = Wobble::new(&mut rng);
-    let aims = turned_no_faster_than(
-        (0..FRAMES).map(|i| aim.at(turn.at(i as f32 / FRAMES as f32) * WAYPOINTS as f32)),
-        MAX_TURN_DEG_PER_S,
-    );
     let poses = (0..FRAMES)
         .map(|i| {
             let tau = i as f32 / FRAMES as f32;
             let s = spline_parameter(&lengths, walk.at(tau) * total);
             let t = i as f32 / RATE_HZ as f32;
-            let angles = aims[i];
+            let angles = aim.at(turn.at(tau) * WAYPOINTS as f32);
             let [yaw, pitch, roll] = wobble.angles(t);
             look_pose(
                 path.at(s) + wobble.offset(t),
@@ -109,30 +100,6 @@ pub fn default_trajectory(track: &Track, seed: u64, start_offset: f32) -> Trajec
         })
         .collect();
     Trajectory::from_poses_at_rate(poses, RATE_HZ)
-}
-
-/// The aim's (yaw, pitch, unused) per frame: it follows `aims`, but where they swing faster than
-/// `deg_per_s` it turns at that rate until it has caught up, as a person turning round does.
-fn turned_no_faster_than(aims: impl Iterator<Item = Vec3>, deg_per_s: f32) -> Vec<Vec3> {
-    let most = (deg_per_s / RATE_HZ as f32).to_radians();
-    let mut turned: Vec<Vec3> = Vec::with_capacity(FRAMES);
-    for aim in aims {
-        let next = match turned.last() {
-            None => aim,
-            Some(&last) => {
-                let d = aim - last;
-                // The view's sweep: a yaw step turns the view less the further it looks up or down.
-                let sweep = Vec2::new(d.x * last.y.cos(), d.y).length();
-                if sweep > most {
-                    last + d * (most / sweep)
-                } else {
-                    aim
-                }
-            }
-        };
-        turned.push(next);
-    }
-    turned
 }
 
 /// What the camera looks at from a waypoint.
@@ -402,31 +369,6 @@ mod tests {
             fastest > 5.0 * slowest,
             "speed varies: {slowest} .. {fastest}"
         );
-    }
-
-    #[test]
-    fn the_aim_follows_slow_turns_and_sweeps_at_the_cap_until_it_catches_up() {
-        let most = (30.0 / RATE_HZ as f32).to_radians();
-        let pitch = 0.1;
-        let pan: Vec<Vec3> = (0..20)
-            .map(|i| Vec3::new(i as f32 * 0.5 * most, pitch, 0.0))
-            .collect();
-        let round = pan[19] + Vec3::new(std::f32::consts::FRAC_PI_2, 0.0, 0.0);
-        let aims: Vec<Vec3> = pan.iter().copied().chain([round; 80]).collect();
-        let turned = turned_no_faster_than(aims.iter().copied(), 30.0);
-        assert_eq!(
-            turned[..20],
-            aims[..20],
-            "a pan at half the cap is followed as it is"
-        );
-        for (k, pair) in turned.windows(2).enumerate() {
-            let d = pair[1] - pair[0];
-            let sweep = Vec2::new(d.x * pair[0].y.cos(), d.y).length();
-            assert!(sweep <= most * 1.0001, "frame {k}: {sweep} rad");
-        }
-        // 90° of yaw at a pitch of 0.1 rad sweeps the view by 90° × cos 0.1, 59.7 frames at the cap.
-        assert_ne!(turned[78], round, "still turning");
-        assert_eq!(turned[79..], [round; 21], "caught up");
     }
 
     #[test]
