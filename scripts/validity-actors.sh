@@ -7,7 +7,7 @@
 # median ATE, the median of the draws, that over the clean ATE, the runs that lost tracking, and
 # the mean share of a frame people cover (the manifests' dynamic fractions); and whether the ATE
 # grows with the severity beyond what the draws' spread explains (Spearman's rho over every draw,
-# with a shuffle test; SciPy from validity.sh's venv).
+# and the mean of each seed's own rho, each with a shuffle test; SciPy from validity.sh's venv).
 # By hand only: it needs ../shared/validity and about 5 minutes a scene and seed on 2 cores.
 #
 #   scripts/validity-actors.sh WORK_DIR SCENE...      # e.g. scripts/validity-actors.sh /tmp/a office2
