@@ -7,8 +7,9 @@
 #
 #   scripts/validity-ranking.sh WORK_DIR SCENE...     # e.g. scripts/validity-ranking.sh /tmp/v room0 office1
 #
-# env: CLEAN_RUNS=20, FRAMES=400, RSLAM=target/release/rslam (built if missing). Writes
-# WORK_DIR/SCENE/{table.md,rank.txt} and prints one line per scene.
+# env: CLEAN_RUNS=20, FRAMES=400, FULL=1 (the whole default path instead of FRAMES; about five times
+# as long), RSLAM=target/release/rslam (built if missing). Writes WORK_DIR/SCENE/{table.md,rank.txt}
+# and prints one line per scene.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 validity=$root/../shared/validity
@@ -19,8 +20,10 @@ rslam=${RSLAM:-$root/target/release/rslam}
 [ -x "$rslam" ] || cargo build --release -q --bin rslam --manifest-path "$root/Cargo.toml"
 corruptions="motion_blur defocus_blur gaussian_blur glass_blur gaussian_noise shot_noise impulse_noise
   speckle_noise fog frost snow spatter brightness contrast jpeg_compression pixelate"
-settings=clean
-for c in $corruptions; do settings="$settings $c:3"; done
+# validity.sh renders the whole default path for a setting named with a /full suffix.
+whole=$([ "${FULL:-0}" = 1 ] && echo /full || true)
+settings=clean$whole
+for c in $corruptions; do settings="$settings $c:3$whole"; done
 
 cd "$root"
 for scene in "$@"; do
@@ -28,8 +31,9 @@ for scene in "$@"; do
     mkdir -p "$w"
     common=(env RSLAM="$rslam" FRAMES="${FRAMES:-400}" SCENE="$scene" KEEP=0)
     "${common[@]}" RUNS=2 SETTINGS="$settings" "$validity/validity.sh" "$w" > "$w/log" 2>&1
-    "${common[@]}" RUNS="${CLEAN_RUNS:-20}" SETTINGS=clean "$validity/validity.sh" "$w" > "$w/clean.log" 2>&1
-    "${PY:-${XDG_CACHE_HOME:-$HOME/.cache}/rslam-validity/venv/bin/python}" "$validity/summarize.py" "$w" $settings > "$w/table.md"
+    "${common[@]}" RUNS="${CLEAN_RUNS:-20}" SETTINGS="clean$whole" "$validity/validity.sh" "$w" > "$w/clean.log" 2>&1
+    "${PY:-${XDG_CACHE_HOME:-$HOME/.cache}/rslam-validity/venv/bin/python}" "$validity/summarize.py" "$w" $settings |
+        sed "s#^| \([a-z_:0-9]*\)$whole |#| \1 |#" > "$w/table.md"
     python3 "$validity/rank.py" "$w/table.md" 3 > "$w/rank.txt"
     aborts=$({ grep -l "SO3::exp failed" "$w"/runs/*/*.log || true; } | wc -l)
     runs=$(ls "$w"/runs/*/*.log | wc -l)
