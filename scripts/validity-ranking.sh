@@ -21,7 +21,8 @@ rslam=${RSLAM:-$root/target/release/rslam}
 corruptions="motion_blur defocus_blur gaussian_blur glass_blur gaussian_noise shot_noise impulse_noise
   speckle_noise fog frost snow spatter brightness contrast jpeg_compression pixelate"
 # validity.sh renders the whole default path for a setting named with a /full suffix.
-whole=$([ "${FULL:-0}" = 1 ] && echo /full || true)
+whole=
+if [ "${FULL:-0}" = 1 ]; then whole=/full; fi
 settings=clean$whole
 for c in $corruptions; do settings="$settings $c:3$whole"; done
 
