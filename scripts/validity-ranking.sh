@@ -31,12 +31,13 @@ for c in $corruptions; do settings="$settings $c:3$whole"; done
 # validity.sh sets no time limit, so a watchdog kills every run of this job older than RUN_LIMIT and
 # says so in the run's log. The limit counts wall time: a job paused with SIGSTOP loses its run.
 limit=${RUN_LIMIT:-600}
+killed_note="killed by validity-ranking.sh"
 kill_overdue_runs() {
     while sleep 15; do
         ps -eo pid=,etimes=,args= | awk -v lim="$limit" -v work="$work" '
             $2 > lim && index($0, work) { for (i = 3; i < NF; i++) if ($i ~ /run_orbslam3\.py$/) print $1, $(i + 2) }' |
             while read -r pid out; do
-                kill -KILL "$pid" 2>/dev/null && echo "killed by validity-ranking.sh after ${limit} s (RUN_LIMIT)" >> "$out.log"
+                kill -KILL "$pid" 2>/dev/null && echo "$killed_note after ${limit} s (RUN_LIMIT)" >> "$out.log"
             done
     done
 }
@@ -55,7 +56,7 @@ for scene in "$@"; do
         sed "s#^| \([a-z_:0-9]*\)$whole |#| \1 |#" > "$w/table.md"
     python3 "$validity/rank.py" "$w/table.md" 3 > "$w/rank.txt"
     aborts=$({ grep -l "SO3::exp failed" "$w"/runs/*/*.log || true; } | wc -l)
-    killed=$({ grep -l "killed by validity-ranking.sh" "$w"/runs/*/*.log || true; } | wc -l)
+    killed=$({ grep -lF "$killed_note" "$w"/runs/*/*.log || true; } | wc -l)
     runs=$(ls "$w"/runs/*/*.log | wc -l)
     echo "$scene: $(head -1 "$w/rank.txt"); ORB-SLAM3 aborted in $aborts and was killed in $killed of $runs runs ($w/table.md)"
 done
