@@ -88,11 +88,30 @@ def heading_ids(path):
 
 
 LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
+
+
+def paragraphs(prose):
+    """(first line number, text) of each run of non-blank prose lines: a link's text may break
+    across lines. Code spans are blanked, keeping the line breaks."""
+    runs, text, previous = [], [], None
+    for number, line in prose + [(None, "")]:
+        if text and (not line.strip() or number != previous + 1):
+            joined = "\n".join(text)
+            blanked = re.sub(r"`[^`]*`", lambda m: re.sub(r"[^\n]", " ", m[0]), joined)
+            runs.append((previous - len(text) + 1, blanked))
+            text = []
+        if line.strip():
+            text.append(line)
+        previous = number
+    return runs
+
+
 broken, links = [], 0
 for page in pages():
     rel = os.path.relpath(page, src)
-    for number, line in split(page)[0]:
-        for target in LINK.findall(re.sub(r"`[^`]*`", "", line)):
+    for first, text in paragraphs(split(page)[0]):
+        for match in LINK.finditer(text):
+            target, number = match[1], first + text.count("\n", 0, match.start(1))
             if re.match(r"^[a-z][a-z0-9+.-]*:", target):  # http:, https:, mailto:
                 continue
             links += 1
