@@ -120,3 +120,26 @@ fn the_catalogue_page_has_every_item_with_its_severities() {
         }
     }
 }
+
+/// A reader that has gone (`rslam list | head -1` once head has its line) ends rslam as it ends
+/// `cat`, by SIGPIPE, without a panic message.
+#[cfg(unix)]
+#[test]
+fn a_closed_stdout_ends_rslam_without_a_panic() {
+    use std::os::unix::process::ExitStatusExt;
+    let (reader, writer) = std::io::pipe().expect("pipe");
+    drop(reader);
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_rslam"))
+        .args(["list", "--json"])
+        .stdout(writer)
+        .output()
+        .expect("spawn rslam");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(
+        output.status.signal(),
+        Some(13),
+        "{:?}: {stderr}",
+        output.status
+    );
+    assert!(stderr.is_empty(), "{stderr}");
+}

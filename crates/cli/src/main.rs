@@ -62,6 +62,9 @@ fn quiet_headless_wayland_probe() {
 }
 
 fn main() -> ExitCode {
+    // `rslam eval ... | head` closes the pipe early: end quietly as `cat` does, not with a
+    // panic from `println!`. The workspace forbids unsafe code; the crate holds the one call.
+    sigpipe::reset();
     quiet_headless_wayland_probe();
     let cli = Cli::parse();
     let command = match (cli.command, cli.markdown_help) {
