@@ -206,8 +206,13 @@ fn malformed_files_name_file_line_and_what_was_expected() {
             2,
             &["gt.txt:1: expected 12 numbers (row-major 3x4 camera-to-world), found 8 fields"],
         );
-    ws.rslam(&["eval", "missing.txt", "gt.txt"])
-        .fails_with(2, &["missing.txt"]);
+    let missing = ws.rslam(&["eval", "missing.txt", "gt.txt"]);
+    let message = missing.fails_with(2, &["missing.txt: No such file or directory"]);
+    assert_eq!(
+        message.matches("No such file").count(),
+        1,
+        "the cause twice: {message}"
+    );
 }
 
 #[test]

@@ -38,9 +38,17 @@ fn rig_in_layout(rig: &str, layout: Layout) -> String {
 }
 
 /// The error as `rslam` prints it: its chain joined by `: `, each link that names a part of a
-/// job or a spec item naming the flag instead.
+/// job or a spec item naming the flag instead. A link that the one before already ends with is
+/// left out: the libraries' file errors print their I/O cause ("{path}: {source}") and keep it as
+/// their source as well.
 pub fn worded(error: &anyhow::Error) -> String {
-    error.chain().map(link).collect::<Vec<_>>().join(": ")
+    let mut links: Vec<String> = Vec::new();
+    for text in error.chain().map(link) {
+        if !links.last().is_some_and(|before| before.ends_with(&text)) {
+            links.push(text);
+        }
+    }
+    links.join(": ")
 }
 
 fn link(error: &(dyn Error + 'static)) -> String {
