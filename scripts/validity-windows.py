@@ -58,13 +58,17 @@ def stretch_ates_cm(est: Path, gt: Path, window: int) -> list[float | None] | No
 
 
 def runs(folder: Path, window: int) -> list[tuple[str, list[float | None]]]:
+    """(runN, its stretches) of each run in `folder` that saved a trajectory, found by its log as
+    validity-loops.py finds them."""
     found = []
-    for est in sorted(folder.glob("run*.txt")):
-        if est.name.count(".") > 1 or est.stat().st_size == 0:  # runN.gt.txt, runN.online.txt, ...
+    for log in sorted(folder.glob("run*.log")):
+        run = log.with_suffix("")
+        est, gt = Path(f"{run}.txt"), Path(f"{run}.gt.txt")
+        if not est.is_file() or est.stat().st_size == 0:
             continue
-        stretches = stretch_ates_cm(est, est.with_suffix(".gt.txt"), window)
+        stretches = stretch_ates_cm(est, gt, window)
         if stretches is not None:
-            found.append((est.stem, stretches))
+            found.append((run.name, stretches))
     return found
 
 
